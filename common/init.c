@@ -1,0 +1,308 @@
+/* Initial particles: mobile grains, then the silo's wall grains. */
+#include "init.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "grid.h"
+#include "rng.h"
+
+/* Streams of the scene seed used here; methods use others. */
+enum { STREAM_INIT = 0x1417 };
+
+static double species_mass(const gr_species *sp, double d) { return sp->density * M_PI * d * d / 4; }
+
+/* Species of the k-th grain: species interleaved in proportion to their
+ * counts, so a mixture starts mixed. */
+static int pick_species(const gr_scene *sc, long *left, gr_rng *rng)
+{
+    long total = 0;
+    for (int s = 0; s < sc->nspecies; s++)
+        total += left[s];
+    long u = (long)gr_rng_below(rng, (unsigned long)total);
+    for (int s = 0; s < sc->nspecies; s++) {
+        if (u < left[s]) {
+            left[s]--;
+            return s;
+        }
+        u -= left[s];
+    }
+    return sc->nspecies - 1;
+}
+
+static double draw_diameter(const gr_species *sp, gr_rng *rng)
+{
+    if (sp->polydispersity <= 0)
+        return sp->diameter;
+    return sp->diameter * (1.0 + sp->polydispersity * (2.0 * gr_rng_uniform(rng) - 1.0));
+}
+
+static int place_lattice(const gr_scene *sc, gr_particles *p, gr_rng *rng, gr_err *err)
+{
+    const gr_init *in = &sc->init;
+    double a = 0;
+    for (int s = 0; s < sc->nspecies; s++) {
+        double as = in->spacing * sc->species[s].diameter * (1.0 + sc->species[s].polydispersity);
+        a = as > a ? as : a;
+    }
+    long nx = (long)floor((in->x1 - in->x0) / a);
+    long n = gr_scene_count(sc);
+    long left[GR_MAX_SPECIES];
+    for (int s = 0; s < sc->nspecies; s++)
+        left[s] = sc->species[s].count;
+    /* Rows from the bottom, centred horizontally in the region. */
+    double xoff = in->x0 + 0.5 * ((in->x1 - in->x0) - nx * a) + 0.5 * a;
+    for (long k = 0; k < n; k++) {
+        int s = pick_species(sc, left, rng);
+        double d = draw_diameter(&sc->species[s], rng);
+        double x = xoff + (double)(k % nx) * a, y = in->y0 + 0.5 * a + (double)(k / nx) * a;
+        if (gr_particles_push(p, x, y, 0.5 * d, species_mass(&sc->species[s], d), 0, s, err) < 0)
+            return err->code;
+    }
+    return GR_OK;
+}
+
+typedef struct {
+    const gr_particles *p;
+    double x, y, r;
+} overlap_query;
+
+static int overlaps_any(const gr_grid *g, const gr_particles *p, double x, double y, double r,
+                        double Lx, double Ly)
+{
+    long nb[9];
+    int m = gr_grid_neighbours(g, gr_grid_cell(g, x, y), nb);
+    for (int k = 0; k < m; k++) {
+        for (long j = g->head[nb[k]]; j >= 0; j = g->next[j]) {
+            double dx = x - p->x[j], dy = y - p->y[j];
+            if (Lx > 0) dx -= Lx * round(dx / Lx);
+            if (Ly > 0) dy -= Ly * round(dy / Ly);
+            double s = r + p->radius[j];
+            if (dx * dx + dy * dy < s * s)
+                return 1;
+        }
+    }
+    return 0;
+}
+
+static int place_random(const gr_scene *sc, gr_particles *p, gr_rng *rng, gr_err *err)
+{
+    const gr_init *in = &sc->init;
+    double dmax = gr_scene_max_diameter(sc);
+    int px = sc->side[GR_LEFT] == GR_BC_PERIODIC, py = sc->side[GR_BOTTOM] == GR_BC_PERIODIC;
+    double lx = in->x1 - in->x0, ly = in->y1 - in->y0;
+    gr_grid *g = gr_grid_create(in->x0, in->y0, lx, ly, dmax, px, py, err);
+    if (!g)
+        return err->code;
+    long n = gr_scene_count(sc);
+    long left[GR_MAX_SPECIES];
+    for (int s = 0; s < sc->nspecies; s++)
+        left[s] = sc->species[s].count;
+    /* Incremental linked cells: push each accepted grain onto its cell. */
+    long *next = malloc((size_t)(n > 0 ? n : 1) * sizeof *next);
+    if (!next) {
+        gr_grid_free(g);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    free(g->next);
+    g->next = next;
+    g->cap = (size_t)n;
+    for (long c = 0; c < (long)g->nx * g->ny; c++)
+        g->head[c] = -1;
+    const long max_tries = 100000;
+    for (long k = 0; k < n; k++) {
+        int s = pick_species(sc, left, rng);
+        double d = draw_diameter(&sc->species[s], rng), r = 0.5 * d;
+        /* Periodic directions need no margin; walls keep grains inside. */
+        double mx = px ? 0 : r, my = py ? 0 : r;
+        long t;
+        double x = 0, y = 0;
+        for (t = 0; t < max_tries; t++) {
+            x = in->x0 + mx + (lx - 2 * mx) * gr_rng_uniform(rng);
+            y = in->y0 + my + (ly - 2 * my) * gr_rng_uniform(rng);
+            if (!overlaps_any(g, p, x, y, r, px ? lx : 0, py ? ly : 0))
+                break;
+        }
+        if (t == max_tries) {
+            gr_grid_free(g);
+            char where[1200];
+            gr_scene_where(sc, "init", "kind", where, sizeof where);
+            return gr_fail(err, GR_EINPUT, "%s: random placement found no free spot for grain %ld of %ld after %ld tries; lower the count or use kind = lattice",
+                           where, k + 1, n, max_tries);
+        }
+        long i = gr_particles_push(p, x, y, r, species_mass(&sc->species[s], d), 0, s, err);
+        if (i < 0) {
+            gr_grid_free(g);
+            return err->code;
+        }
+        long c = gr_grid_cell(g, x, y);
+        g->next[i] = g->head[c];
+        g->head[c] = i;
+    }
+    gr_grid_free(g);
+    return GR_OK;
+}
+
+static int read_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+{
+    FILE *f = fopen(sc->init.file, "r");
+    if (!f)
+        return gr_fail(err, GR_EINPUT, "%s: cannot read: %s", sc->init.file, strerror(errno));
+    char line[1024];
+    int ln = 0;
+    const gr_species *sp = &sc->species[0];
+    while (fgets(line, sizeof line, f)) {
+        ln++;
+        char *s = line;
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (*s == '#' || *s == '\n' || !*s)
+            continue;
+        double v[5] = {0, 0, 0, 0, sp->diameter};
+        int k = 0;
+        char *end;
+        while (k < 5) {
+            double x = strtod(s, &end);
+            if (end == s)
+                break;
+            v[k++] = x;
+            s = end;
+        }
+        while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
+            s++;
+        int bad = (k != 2 && k != 4 && k != 5) || *s;
+        for (int j = 0; j < k; j++)
+            bad |= !isfinite(v[j]);
+        if (bad || !(v[4] > 0)) {
+            fclose(f);
+            return gr_fail(err, GR_EINPUT, "%s:%d: expected 'x y', 'x y vx vy' or 'x y vx vy diameter' (finite, diameter > 0)",
+                           sc->init.file, ln);
+        }
+        long i = gr_particles_push(p, v[0], v[1], 0.5 * v[4], species_mass(sp, v[4]), 0, 0, err);
+        if (i < 0) {
+            fclose(f);
+            return err->code;
+        }
+        p->vx[i] = v[2];
+        p->vy[i] = v[3];
+    }
+    fclose(f);
+    if (p->n == 0)
+        return gr_fail(err, GR_EINPUT, "%s: no grains in the file", sc->init.file);
+    return GR_OK;
+}
+
+static void draw_velocities(const gr_scene *sc, gr_particles *p, size_t from, gr_rng *rng)
+{
+    const gr_init *in = &sc->init;
+    for (size_t i = from; i < p->n; i++) {
+        if (in->velocity == GR_VEL_GAUSSIAN) {
+            p->vx[i] = gr_rng_gaussian(rng, in->v0);
+            p->vy[i] = gr_rng_gaussian(rng, in->v0);
+        } else if (in->velocity == GR_VEL_SPEED) {
+            double a = 2 * M_PI * gr_rng_uniform(rng);
+            p->vx[i] = in->v0 * cos(a);
+            p->vy[i] = in->v0 * sin(a);
+        }
+    }
+}
+
+/* A row of fixed grains of diameter d from a to b, centres spaced at most d. */
+static int grain_line(gr_particles *p, double ax, double ay, double bx, double by, double d,
+                      double mass, uint32_t flags, gr_err *err)
+{
+    double len = hypot(bx - ax, by - ay);
+    long n = (long)ceil(len / d - 1e-9);
+    for (long k = 0; k <= n; k++) {
+        double t = n ? (double)k / (double)n : 0.0;
+        if (gr_particles_push(p, ax + t * (bx - ax), ay + t * (by - ay), 0.5 * d, mass, flags, 0, err) < 0)
+            return err->code;
+    }
+    return GR_OK;
+}
+
+/* Walls of fixed grains whose inner surfaces lie on the silo's inner
+ * edges; the orifice is the gap of width D between the base grains that
+ * border it, closed by gate grains until it opens. */
+static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
+{
+    const gr_silo *s = &sc->silo;
+    double d = sc->species[0].diameter, r = 0.5 * d, m = species_mass(&sc->species[0], d);
+    double x0 = s->x0 - r, x1 = s->x0 + s->width + r, yb = s->base - r, yt = s->base + s->height;
+    double ol = s->orifice_center - 0.5 * s->orifice - r, orr = s->orifice_center + 0.5 * s->orifice + r;
+    if (grain_line(p, x0, yb + d, x0, yt, d, m, GR_PF_FIXED, err) ||
+        grain_line(p, x1, yb + d, x1, yt, d, m, GR_PF_FIXED, err))
+        return err->code;
+    /* Base: from each orifice edge outwards, so the edge grains sit exactly
+     * at distance D apart whatever the widths; the corners close it. */
+    for (double x = ol; x > x0 + 1e-9; x -= d)
+        if (gr_particles_push(p, x, yb, r, m, GR_PF_FIXED, 0, err) < 0)
+            return err->code;
+    for (double x = orr; x < x1 - 1e-9; x += d)
+        if (gr_particles_push(p, x, yb, r, m, GR_PF_FIXED, 0, err) < 0)
+            return err->code;
+    if (gr_particles_push(p, x0, yb, r, m, GR_PF_FIXED, 0, err) < 0 ||
+        gr_particles_push(p, x1, yb, r, m, GR_PF_FIXED, 0, err) < 0)
+        return err->code;
+    if (s->open_time > 0) {
+        /* Gate grains fill the gap, touching its edges, until it opens. */
+        double gl = ol + d, gr_ = orr - d;
+        if (grain_line(p, gl, yb, gr_ < gl ? gl : gr_, yb, d, m, GR_PF_FIXED | GR_PF_GATE, err))
+            return err->code;
+    }
+    if (s->hopper) {
+        double c = s->orifice_center, h = 0.5 * s->hopper_outlet + r;
+        if (grain_line(p, s->x0 + r, s->hopper_top, c - h, s->hopper_bottom, d, m, GR_PF_FIXED, err) ||
+            grain_line(p, c + h, s->hopper_bottom, s->x0 + s->width - r, s->hopper_top, d, m, GR_PF_FIXED, err))
+            return err->code;
+    }
+    return GR_OK;
+}
+
+int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
+{
+    gr_rng *rng = gr_rng_create(sc->seed, STREAM_INIT, err);
+    if (!rng)
+        return err->code;
+    out->n = 0;
+    int rc;
+    switch (sc->init.kind) {
+    case GR_INIT_LATTICE: rc = place_lattice(sc, out, rng, err); break;
+    case GR_INIT_RANDOM: rc = place_random(sc, out, rng, err); break;
+    default: rc = read_file(sc, out, err); break;
+    }
+    if (!rc)
+        draw_velocities(sc, out, 0, rng);
+    if (!rc && sc->silo.present && sc->silo.walls == GR_WALLS_GRAINS)
+        rc = silo_grains(sc, out, err);
+    for (size_t i = 0; i < out->n; i++)
+        out->id[i] = (int64_t)i;
+    gr_rng_free(rng);
+    return rc;
+}
+
+int gr_reinsert_spot(const gr_scene *sc, const gr_particles *p, double r,
+                     struct gr_rng *rng, int tries, double *x, double *y)
+{
+    const gr_silo *s = &sc->silo;
+    for (int t = 0; t < tries; t++) {
+        double cx = s->x0 + r + (s->width - 2 * r) * gr_rng_uniform(rng);
+        double cy = s->reinsert_bottom + r + (s->reinsert_top - s->reinsert_bottom - 2 * r) * gr_rng_uniform(rng);
+        int free_spot = 1;
+        for (size_t j = 0; j < p->n && free_spot; j++) {
+            if (p->flags[j] & GR_PF_GONE)
+                continue;
+            double dx = cx - p->x[j], dy = cy - p->y[j], rr = r + p->radius[j];
+            free_spot = dx * dx + dy * dy >= rr * rr;
+        }
+        if (free_spot) {
+            *x = cx;
+            *y = cy;
+            return 1;
+        }
+    }
+    return 0;
+}

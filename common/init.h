@@ -1,0 +1,20 @@
+/* Initial particles of a scene: the mobile grains (lattice, random without
+ * overlap, or read from a file; velocities per [init]) followed by the
+ * fixed wall grains of a silo whose walls are grains (gate grains over the
+ * orifice flagged GR_PF_GATE). Deterministic from sc->seed. */
+#ifndef GR_INIT_H
+#define GR_INIT_H
+
+#include "particles.h"
+#include "scene.h"
+
+int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err);
+
+/* Place grain radius r at the reinsertion band of the silo without overlap
+ * with any of the n grains of p (positions x, y, radii), trying up to
+ * `tries` random spots from rng; returns 1 and the spot, or 0 if none. */
+struct gr_rng;
+int gr_reinsert_spot(const gr_scene *sc, const gr_particles *p, double r,
+                     struct gr_rng *rng, int tries, double *x, double *y);
+
+#endif

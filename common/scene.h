@@ -1,0 +1,198 @@
+/* The scene: what is simulated, independent of the method. Read from an INI
+ * file (docs/scene-format.md); every key keeps its file and line so that any
+ * later refusal (by a backend, by a check) can name them. */
+#ifndef GR_SCENE_H
+#define GR_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+
+enum { GR_LEFT = 0, GR_RIGHT = 1, GR_BOTTOM = 2, GR_TOP = 3 };
+typedef enum { GR_BC_WALL = 0, GR_BC_PERIODIC, GR_BC_OPEN } gr_bc;
+
+typedef enum { GR_NORMAL_LINEAR = 0, GR_NORMAL_HERTZ } gr_normal_law;
+typedef enum {
+    GR_TANG_NONE = 0,    /* frictionless */
+    GR_TANG_COULOMB,     /* -mu|Fn| sign(vt), eq. 2.6 */
+    GR_TANG_VISCOUS,     /* -gamma_t vt, eq. 2.8 */
+    GR_TANG_REGULARISED, /* -min(mu|Fn|, gamma_t|vt|) sign(vt), eq. 2.9 */
+    GR_TANG_SPRING       /* static friction, tangential spring zeta, eqs. 2.10-2.12 */
+} gr_tang_law;
+
+typedef struct {
+    gr_normal_law normal;
+    gr_tang_law tangential;
+    double kn, gamma_n;     /* soft methods: stiffness, normal damping */
+    double kt, gamma_t;     /* tangential spring and damping */
+    double mu;              /* Coulomb friction coefficient */
+    double restitution;     /* normal restitution for hard methods; NaN if unset */
+    double tangential_restitution; /* beta in [-1, 1]; -1 = smooth; NaN if unset */
+    double wall_restitution;       /* hard walls; NaN = same as restitution */
+    int clip_attraction;    /* soft methods: no attractive normal force (default 1) */
+} gr_material;
+
+#define GR_MAX_SPECIES 4
+typedef struct {
+    char name[32];
+    double diameter;       /* mean diameter */
+    double polydispersity; /* diameters uniform in d(1 +- p) */
+    double density;        /* areal: mass = density * pi d^2 / 4 */
+    long count;            /* mobile grains of this species */
+} gr_species;
+
+/* A wall segment of infinite mass. A gate (open_time finite) vanishes at
+ * open_time; a vibrating segment moves vertically with the floor motion. */
+typedef struct {
+    double x0, y0, x1, y1;
+    double open_time;  /* INFINITY: never opens */
+    int vibrating;     /* follows the floor motion */
+    int line;          /* scene-file line that made it, 0 if derived */
+} gr_segment;
+
+typedef enum {
+    GR_FLOOR_FIXED = 0,
+    GR_FLOOR_SINE,      /* y = A cos(omega t) */
+    GR_FLOOR_SAWTOOTH,  /* y = A (1 - 2 frac(omega t / 2 pi)) ... see geom.h */
+    GR_FLOOR_SINE_HF,   /* high-frequency limit: floor at y = 0, velocity A omega cos(random phase) */
+    GR_FLOOR_SAWTOOTH_HF /* high-frequency limit: v' = 2 Vp - v */
+} gr_floor_motion;
+
+typedef struct {
+    gr_floor_motion motion;
+    double amplitude, omega;
+} gr_floor;
+
+typedef enum { GR_WALLS_SEGMENTS = 0, GR_WALLS_GRAINS } gr_wall_kind;
+
+typedef struct {
+    int present;
+    double width, height;   /* container, inner size */
+    double x0, base;        /* left inner edge and base height */
+    double orifice;         /* width D of the orifice */
+    double orifice_center;  /* x of its centre */
+    double open_time;       /* the orifice opens at this time (INFINITY: closed) */
+    gr_wall_kind walls;
+    int hopper;             /* a filling hopper above the container */
+    double hopper_outlet;   /* width of the hopper's outlet */
+    double hopper_bottom, hopper_top; /* heights of its outlet and its rim */
+    int reinsert;           /* grains that leave are reinserted at the top */
+    double reinsert_bottom, reinsert_top; /* band where they are reinserted */
+    double exit_below;      /* grains below this height have left */
+} gr_silo;
+
+typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE } gr_init_kind;
+typedef enum { GR_VEL_ZERO = 0, GR_VEL_GAUSSIAN, GR_VEL_SPEED } gr_vel_kind;
+
+typedef struct {
+    gr_init_kind kind;
+    double x0, y0, x1, y1;  /* region to fill */
+    double spacing;         /* lattice pitch in units of the largest diameter */
+    gr_vel_kind velocity;
+    double v0;              /* gaussian: std per component; speed: modulus */
+    char file[1024];        /* columns: x y [vx vy [diameter]] */
+} gr_init;
+
+typedef struct {
+    double x0, y0, x1, y1;
+    int present;
+} gr_window;
+
+typedef struct {
+    double until;           /* simulated time to run to */
+    double output_every;    /* time between trajectory frames */
+    double observe_every;   /* time between observable samples */
+    double checkpoint_every;
+    int field_nx, field_ny; /* coarse-graining grid, 0 = none */
+} gr_runctl;
+
+/* One key = value of the file, kept for messages and for backends. */
+typedef struct {
+    char section[64], key[64], value[256];
+    int line;
+    int used;
+} gr_scene_entry;
+
+typedef struct gr_scene {
+    char path[1024];
+    char *text;             /* the whole file, stored in the output */
+    char name[64];
+    double width, height;   /* domain [0,width] x [0,height] */
+    gr_bc side[4];
+    double gravity;         /* acceleration along -y */
+    gr_material mat;
+    int nspecies;
+    gr_species species[GR_MAX_SPECIES];
+    int nsegments;
+    gr_segment *segments;   /* user walls and the silo's, when made of segments */
+    gr_floor floor;
+    gr_silo silo;
+    gr_init init;
+    gr_window window;
+    gr_runctl run;
+    uint64_t seed;
+    size_t nentries;
+    gr_scene_entry *entries;
+} gr_scene;
+
+/* Features a scene uses; a backend declares those it supports. */
+enum {
+    GR_FEAT_GRAVITY = 1u << 0,
+    GR_FEAT_FRICTION = 1u << 1,       /* any tangential force / rough collisions */
+    GR_FEAT_CONTACT_HISTORY = 1u << 2, /* tangential spring */
+    GR_FEAT_PERIODIC = 1u << 3,
+    GR_FEAT_OPEN_SIDE = 1u << 4,
+    GR_FEAT_SEGMENTS = 1u << 5,
+    GR_FEAT_WALL_GRAINS = 1u << 6,
+    GR_FEAT_ORIFICE = 1u << 7,        /* a gate that opens at a time */
+    GR_FEAT_VIBRATING_FLOOR = 1u << 8,
+    GR_FEAT_REINSERT = 1u << 9,
+    GR_FEAT_POLYDISPERSE = 1u << 10,
+    GR_FEAT_MIXTURE = 1u << 11,
+    GR_FEAT_HERTZ = 1u << 12,
+    GR_FEAT_HF_FLOOR = 1u << 13       /* high-frequency floor limits */
+};
+#define GR_FEAT_COUNT 14
+
+/* Load and check a scene file. extra_sections lists the section names the
+ * caller accepts besides the common ones (the backend names), NULL ended;
+ * their keys are kept for the backend to read. */
+gr_scene *gr_scene_load(const char *path, const char *const *extra_sections, gr_err *err);
+/* Same, from text in memory; path is used in messages. */
+gr_scene *gr_scene_parse(const char *text, const char *path,
+                         const char *const *extra_sections, gr_err *err);
+void gr_scene_free(gr_scene *sc);
+
+unsigned gr_scene_features(const gr_scene *sc);
+const char *gr_feature_name(unsigned feature_bit);
+/* The file line and key that brought in a feature, for messages:
+ * writes "file:line: key 'k'" (or the file alone) into buf. */
+void gr_scene_feature_where(const gr_scene *sc, unsigned feature_bit, char *buf, size_t n);
+
+/* Entry of the file, or NULL. */
+const gr_scene_entry *gr_scene_find(const gr_scene *sc, const char *section, const char *key);
+/* "file:line" of an entry, or "file" when absent. */
+void gr_scene_where(const gr_scene *sc, const char *section, const char *key, char *buf, size_t n);
+
+/* Backend sections: typed getters that default when the key is absent and
+ * fail with file, line and key on a bad value. */
+int gr_scene_get_double(const gr_scene *sc, const char *section, const char *key,
+                        double def, double *out, gr_err *err);
+int gr_scene_get_long(const gr_scene *sc, const char *section, const char *key,
+                      long def, long *out, gr_err *err);
+/* choices is NULL ended; *out is the index of the match. */
+int gr_scene_get_choice(const gr_scene *sc, const char *section, const char *key,
+                        const char *const *choices, int def, int *out, gr_err *err);
+/* Fail on a key of section that is not in valid (NULL ended), suggesting the nearest. */
+int gr_scene_check_keys(const gr_scene *sc, const char *section,
+                        const char *const *valid, gr_err *err);
+
+/* Total mobile grains. */
+long gr_scene_count(const gr_scene *sc);
+double gr_scene_max_diameter(const gr_scene *sc);
+
+/* The nearest of candidates to word by edit distance (NULL ended list). */
+const char *gr_nearest(const char *word, const char *const *candidates);
+
+#endif

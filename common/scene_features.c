@@ -1,0 +1,135 @@
+/* Which features a scene uses, and where in the file each was asked for. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene.h"
+
+typedef struct {
+    unsigned bit;
+    const char *name;
+    const char *section, *key; /* the key that brings it in */
+} feature_info;
+
+static const feature_info features[GR_FEAT_COUNT] = {
+    {GR_FEAT_GRAVITY, "gravity", "domain", "gravity"},
+    {GR_FEAT_FRICTION, "friction (tangential forces or rough collisions)", "material", "tangential"},
+    {GR_FEAT_CONTACT_HISTORY, "static friction with a tangential spring (contact history)", "material", "tangential"},
+    {GR_FEAT_PERIODIC, "periodic sides", "domain", "left"},
+    {GR_FEAT_OPEN_SIDE, "open sides", "domain", "bottom"},
+    {GR_FEAT_SEGMENTS, "wall segments", "silo", "walls"},
+    {GR_FEAT_WALL_GRAINS, "walls made of fixed grains", "silo", "walls"},
+    {GR_FEAT_ORIFICE, "an orifice that opens at a time", "silo", "open_time"},
+    {GR_FEAT_VIBRATING_FLOOR, "a vibrating floor", "floor", "motion"},
+    {GR_FEAT_REINSERT, "reinsertion of grains that leave", "silo", "reinsert"},
+    {GR_FEAT_POLYDISPERSE, "polydisperse grains", "species", "polydispersity"},
+    {GR_FEAT_MIXTURE, "several species", "species", "diameter"},
+    {GR_FEAT_HERTZ, "the Hertz normal force", "material", "normal"},
+    {GR_FEAT_HF_FLOOR, "a high-frequency floor limit", "floor", "motion"},
+};
+
+unsigned gr_scene_features(const gr_scene *sc)
+{
+    unsigned f = 0;
+    const gr_material *m = &sc->mat;
+    if (sc->gravity > 0)
+        f |= GR_FEAT_GRAVITY;
+    if (m->tangential != GR_TANG_NONE || (!isnan(m->tangential_restitution) && m->tangential_restitution != -1.0))
+        f |= GR_FEAT_FRICTION;
+    if (m->tangential == GR_TANG_SPRING)
+        f |= GR_FEAT_CONTACT_HISTORY;
+    for (int s = 0; s < 4; s++) {
+        if (sc->side[s] == GR_BC_PERIODIC)
+            f |= GR_FEAT_PERIODIC;
+        if (sc->side[s] == GR_BC_OPEN)
+            f |= GR_FEAT_OPEN_SIDE;
+    }
+    if (sc->nsegments > 0)
+        f |= GR_FEAT_SEGMENTS;
+    for (int i = 0; i < sc->nsegments; i++)
+        if (isfinite(sc->segments[i].open_time))
+            f |= GR_FEAT_ORIFICE;
+    if (sc->silo.present) {
+        if (sc->silo.walls == GR_WALLS_GRAINS)
+            f |= GR_FEAT_WALL_GRAINS;
+        if (isfinite(sc->silo.open_time))
+            f |= GR_FEAT_ORIFICE;
+        if (sc->silo.reinsert)
+            f |= GR_FEAT_REINSERT;
+    }
+    if (sc->floor.motion == GR_FLOOR_SINE || sc->floor.motion == GR_FLOOR_SAWTOOTH)
+        f |= GR_FEAT_VIBRATING_FLOOR;
+    if (sc->floor.motion == GR_FLOOR_SINE_HF || sc->floor.motion == GR_FLOOR_SAWTOOTH_HF)
+        f |= GR_FEAT_HF_FLOOR;
+    for (int k = 0; k < sc->nspecies; k++)
+        if (sc->species[k].polydispersity > 0)
+            f |= GR_FEAT_POLYDISPERSE;
+    if (sc->nspecies > 1)
+        f |= GR_FEAT_MIXTURE;
+    if (m->normal == GR_NORMAL_HERTZ)
+        f |= GR_FEAT_HERTZ;
+    return f;
+}
+
+const char *gr_feature_name(unsigned bit)
+{
+    for (int i = 0; i < GR_FEAT_COUNT; i++)
+        if (features[i].bit == bit)
+            return features[i].name;
+    return "an unknown feature";
+}
+
+/* The first entry of the file that brings the feature in. */
+static const gr_scene_entry *feature_entry(const gr_scene *sc, unsigned bit)
+{
+    const gr_scene_entry *e = NULL;
+    switch (bit) {
+    case GR_FEAT_PERIODIC:
+    case GR_FEAT_OPEN_SIDE: {
+        static const char *const sides[] = {"left", "right", "bottom", "top"};
+        const char *want = bit == GR_FEAT_PERIODIC ? "periodic" : "open";
+        for (int s = 0; s < 4 && !e; s++) {
+            const gr_scene_entry *c = gr_scene_find(sc, "domain", sides[s]);
+            if (c && !strcmp(c->value, want))
+                e = c;
+        }
+        return e;
+    }
+    case GR_FEAT_FRICTION:
+        e = gr_scene_find(sc, "material", "tangential");
+        return e ? e : gr_scene_find(sc, "material", "tangential_restitution");
+    case GR_FEAT_POLYDISPERSE:
+    case GR_FEAT_MIXTURE:
+        for (size_t i = 0; i < sc->nentries && !e; i++)
+            if (!strncmp(sc->entries[i].section, "species", 7) &&
+                !strcmp(sc->entries[i].key, bit == GR_FEAT_MIXTURE ? "count" : "polydispersity"))
+                e = &sc->entries[i];
+        return e;
+    case GR_FEAT_SEGMENTS:
+        for (size_t i = 0; i < sc->nentries && !e; i++)
+            if (!strncmp(sc->entries[i].section, "wall.", 5))
+                e = &sc->entries[i];
+        return e ? e : gr_scene_find(sc, "silo", "walls") ? gr_scene_find(sc, "silo", "walls")
+                                                          : gr_scene_find(sc, "silo", "orifice");
+    case GR_FEAT_ORIFICE:
+        e = gr_scene_find(sc, "silo", "open_time");
+        for (size_t i = 0; i < sc->nentries && !e; i++)
+            if (!strncmp(sc->entries[i].section, "wall.", 5) && !strcmp(sc->entries[i].key, "open_time"))
+                e = &sc->entries[i];
+        return e;
+    default:
+        for (int i = 0; i < GR_FEAT_COUNT; i++)
+            if (features[i].bit == bit)
+                return gr_scene_find(sc, features[i].section, features[i].key);
+        return NULL;
+    }
+}
+
+void gr_scene_feature_where(const gr_scene *sc, unsigned bit, char *buf, size_t n)
+{
+    const gr_scene_entry *e = feature_entry(sc, bit);
+    if (e)
+        snprintf(buf, n, "%s:%d: [%s] key '%s'", sc->path, e->line, e->section, e->key);
+    else
+        snprintf(buf, n, "%s", sc->path);
+}

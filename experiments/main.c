@@ -1,0 +1,49 @@
+/* grano: one program, one file per subcommand. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cmd.h"
+
+typedef struct {
+    const char *name;
+    const char *summary;
+    int (*main)(int argc, char **argv);
+} subcommand;
+
+static const subcommand commands[] = {
+    {"run", "run a scene with one method, writing H5MD", cmd_run},
+    {"info", "describe what a grano result file holds", cmd_info},
+    {"bench", "throughput and speed-against-error benchmarks", cmd_bench},
+};
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: grano COMMAND [options]   (grano COMMAND --help for each)\n\n"
+               "Numerical methods for dry granular media in two dimensions.\n\n"
+               "commands:\n");
+    for (size_t i = 0; i < NCOMMANDS; i++)
+        fprintf(f, "  %-12s %s\n", commands[i].name, commands[i].summary);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h") || !strcmp(argv[1], "help")) {
+        usage(stdout);
+        return 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        printf("grano %s\n", GRANO_VERSION);
+        return 0;
+    }
+    for (size_t i = 0; i < NCOMMANDS; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].main(argc - 1, argv + 1);
+    fprintf(stderr, "grano: unknown command '%s'\n", argv[1]);
+    usage(stderr);
+    return 2;
+}
