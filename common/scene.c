@@ -101,7 +101,7 @@ static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
         int known = !strcmp(kind, "wall") || !strcmp(kind, "species");
         for (size_t j = 0; all[j] && !known; j++)
             known = !strcmp(all[j], e->section);
-        if (!e->section[0])
+        if (!e->section[0] && e->key[0])
             return gr_fail(err, GR_EINPUT, "%s:%d: key '%s' outside any [section]",
                            sc->path, e->line, e->key);
         if (!known) {

@@ -14,11 +14,16 @@
 
 /* inih hands the handler no line number in Debian's build: count the lines
  * in the reader it calls once per line. */
+struct parse_ctx;
 typedef struct {
     const char *p;
     int line;     /* line of the text last returned */
     int at_bol;   /* next read starts a new line */
+    struct parse_ctx *ctx;
 } reader_state;
+
+static int on_entry(void *user, const char *section, const char *key, const char *value);
+static void note_section(reader_state *r, const char *str);
 
 static char *read_line(char *str, int num, void *stream)
 {
@@ -35,11 +40,14 @@ static char *read_line(char *str, int num, void *stream)
             break;
     }
     str[k] = '\0';
+    int starts_line = r->at_bol;
     r->at_bol = (k > 0 && str[k - 1] == '\n');
+    if (starts_line)
+        note_section(r, str);
     return str;
 }
 
-typedef struct {
+typedef struct parse_ctx {
     gr_scene *sc;
     reader_state *rd;
     gr_err *err;
@@ -60,7 +68,7 @@ static int on_entry(void *user, const char *section, const char *key, const char
                 sc->path, line, section, key);
         return 0;
     }
-    for (size_t i = 0; i < sc->nentries; i++) {
+    for (size_t i = 0; i < sc->nentries && key[0]; i++) {
         const gr_scene_entry *e = &sc->entries[i];
         if (!strcmp(e->section, section) && !strcmp(e->key, key)) {
             gr_fail(c->err, GR_EINPUT, "%s:%d: key '%s' in [%s] is set twice (first at line %d)",
@@ -87,10 +95,29 @@ static int on_entry(void *user, const char *section, const char *key, const char
     return 1;
 }
 
+/* inih calls no handler for a section without keys: record every header
+ * as an entry with an empty key, so an unknown empty section is caught. */
+static void note_section(reader_state *r, const char *str)
+{
+    while (*str == ' ' || *str == '\t')
+        str++;
+    const char *end = strchr(str, ']');
+    if (*str != '[' || !end)
+        return;
+    char name[128];
+    size_t n = (size_t)(end - str - 1);
+    if (n >= sizeof name)
+        n = sizeof name - 1;
+    memcpy(name, str + 1, n);
+    name[n] = '\0';
+    on_entry(r->ctx, name, "", "");
+}
+
 int gr_scene_read_entries(gr_scene *sc, const char *text, gr_err *err)
 {
-    reader_state rd = {text, 0, 1};
-    parse_ctx c = {sc, &rd, err, 0};
+    parse_ctx c = {sc, NULL, err, 0};
+    reader_state rd = {text, 0, 1, &c};
+    c.rd = &rd;
     int rc = ini_parse_stream(read_line, &rd, on_entry, &c);
     if (err->code)
         return err->code;
@@ -176,7 +203,7 @@ int gr_scene_check_keys(const gr_scene *sc, const char *section,
 {
     for (size_t i = 0; i < sc->nentries; i++) {
         const gr_scene_entry *e = &sc->entries[i];
-        if (strcmp(e->section, section) || list_contains(valid, e->key))
+        if (strcmp(e->section, section) || !e->key[0] || list_contains(valid, e->key))
             continue;
         const char *near = gr_nearest(e->key, valid);
         if (near)

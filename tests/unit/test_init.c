@@ -1,0 +1,145 @@
+/* Initial particles: counts, no overlaps, silo wall grains and orifice. */
+#include "test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom.h"
+#include "init.h"
+
+static gr_scene *parse(const char *text)
+{
+    gr_err e = {0};
+    gr_scene *sc = gr_scene_parse(text, "init.ini", NULL, &e);
+    if (!sc)
+        print_error("%s\n", e.msg);
+    assert_non_null(sc);
+    return sc;
+}
+
+static gr_particles *make(const gr_scene *sc)
+{
+    gr_err e = {0};
+    gr_particles *p = gr_particles_create(0, &e);
+    if (gr_init_particles(sc, p, &e))
+        print_error("%s\n", e.msg);
+    assert_int_equal(e.code, GR_OK);
+    return p;
+}
+
+static double min_gap(const gr_particles *p, double Lx, double Ly)
+{
+    double g = INFINITY;
+    for (size_t i = 0; i < p->n; i++)
+        for (size_t j = i + 1; j < p->n; j++) {
+            if ((p->flags[i] & GR_PF_FIXED) && (p->flags[j] & GR_PF_FIXED))
+                continue;
+            double dx = gr_min_image(p->x[j] - p->x[i], Lx), dy = gr_min_image(p->y[j] - p->y[i], Ly);
+            double gap = sqrt(dx * dx + dy * dy) - p->radius[i] - p->radius[j];
+            g = gap < g ? gap : g;
+        }
+    return g;
+}
+
+static void lattice_and_velocities(void **s)
+{
+    (void)s;
+    gr_scene *sc = parse("[domain]\nwidth = 40\nheight = 40\n[species]\ncount = 1000\n"
+                         "[init]\nvelocity = gaussian\nv0 = 2\n");
+    gr_particles *p = make(sc);
+    assert_int_equal(p->n, 1000);
+    double v2 = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        assert_true(p->x[i] - p->radius[i] >= 0 && p->x[i] + p->radius[i] <= 40);
+        assert_true(p->y[i] - p->radius[i] >= 0 && p->y[i] + p->radius[i] <= 40);
+        assert_close(p->mass[i], 1.0, 1e-15); /* d = 1, default density 4/pi */
+        assert_int_equal(p->id[i], (int64_t)i);
+        v2 += p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i];
+    }
+    assert_true(min_gap(p, 0, 0) >= 0.05 - 1e-12);
+    /* <vx^2 + vy^2> = 2 v0^2 within 5 sigma (sigma of the mean: 2 v0^2 / sqrt(N)) */
+    assert_close(v2 / 1000, 8.0, 5 * 8.0 / sqrt(1000));
+    /* Same seed, same bits. */
+    gr_particles *q = make(sc);
+    assert_memory_equal(p->x, q->x, p->n * sizeof(double));
+    assert_memory_equal(p->vy, q->vy, p->n * sizeof(double));
+    gr_particles_free(p);
+    gr_particles_free(q);
+    gr_scene_free(sc);
+}
+
+static void random_without_overlap(void **s)
+{
+    (void)s;
+    gr_scene *sc = parse("[domain]\nwidth = 30\nheight = 20\nleft = periodic\nright = periodic\n"
+                         "[species]\ncount = 250\npolydispersity = 0.2\n[init]\nkind = random\n");
+    gr_particles *p = make(sc);
+    assert_int_equal(p->n, 250);
+    assert_true(min_gap(p, 30, 0) >= 0);
+    double dmin = 1, dmax = 1;
+    for (size_t i = 0; i < p->n; i++) {
+        double d = 2 * p->radius[i];
+        dmin = d < dmin ? d : dmin;
+        dmax = d > dmax ? d : dmax;
+        assert_close(p->mass[i], d * d, 1e-12); /* mass scales as area */
+    }
+    assert_true(dmin >= 0.8 && dmax <= 1.2 && dmax - dmin > 0.3);
+    gr_particles_free(p);
+    gr_scene_free(sc);
+}
+
+static void silo_walls_of_grains(void **s)
+{
+    (void)s;
+    gr_scene *sc = parse("[domain]\nwidth = 22\nheight = 40\nbottom = open\n[species]\ncount = 300\n"
+                         "[silo]\nwidth = 20\nheight = 30\nbase = 3\norifice = 3.8\nopen_time = 5\nwalls = grains\n");
+    gr_particles *p = make(sc);
+    size_t mobile = gr_particles_count_mobile(p);
+    assert_int_equal(mobile, 300);
+    /* Base grains: the two bordering the orifice leave a gap of exactly D. */
+    double left_edge = -INFINITY, right_edge = INFINITY;
+    int gates = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        if (!(p->flags[i] & GR_PF_FIXED))
+            continue;
+        if (p->flags[i] & GR_PF_GATE) {
+            gates++;
+            continue;
+        }
+        if (fabs(p->y[i] - 2.5) > 1e-12)
+            continue;
+        if (p->x[i] < 11 && p->x[i] + 0.5 > left_edge)
+            left_edge = p->x[i] + 0.5;
+        if (p->x[i] > 11 && p->x[i] - 0.5 < right_edge)
+            right_edge = p->x[i] - 0.5;
+    }
+    assert_close(right_edge - left_edge, 3.8, 1e-12);
+    assert_close(0.5 * (left_edge + right_edge), 11.0, 1e-12);
+    assert_true(gates >= 3);
+    /* Walls close: consecutive wall grains along a side touch or overlap. */
+    for (size_t i = 0; i < p->n; i++) {
+        if (!(p->flags[i] & GR_PF_FIXED) || fabs(p->x[i] - 0.5) > 1e-12)
+            continue;
+        double nearest = INFINITY;
+        for (size_t j = 0; j < p->n; j++)
+            if (j != i && (p->flags[j] & GR_PF_FIXED) && !(p->flags[j] & GR_PF_GATE)) {
+                double d = hypot(p->x[j] - p->x[i], p->y[j] - p->y[i]);
+                nearest = d < nearest ? d : nearest;
+            }
+        assert_true(nearest <= 1.0 + 1e-12);
+    }
+    /* Mobile grains start inside the silo, clear of the wall grains. */
+    assert_true(min_gap(p, 0, 0) >= -1e-12);
+    gr_particles_free(p);
+    gr_scene_free(sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(lattice_and_velocities),
+        cmocka_unit_test(random_without_overlap),
+        cmocka_unit_test(silo_walls_of_grains),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
