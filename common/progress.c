@@ -1,0 +1,83 @@
+#include "progress.h"
+
+#include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
+
+struct gr_progress {
+    FILE *out;
+    int tty;
+    double t0, t1, delay;
+    double wall0, last_draw;
+    int drawn;
+};
+
+double gr_wall_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double delay)
+{
+    gr_progress *p = calloc(1, sizeof *p);
+    if (!p)
+        return NULL;
+    p->out = out;
+    p->tty = out && isatty(fileno(out));
+    p->t0 = t_begin;
+    p->t1 = t_end;
+    p->delay = delay;
+    p->wall0 = gr_wall_seconds();
+    return p;
+}
+
+void gr_progress_free(gr_progress *p)
+{
+    if (!p)
+        return;
+    gr_progress_finish(p);
+    free(p);
+}
+
+static void fmt_duration(char *buf, size_t n, double s)
+{
+    if (s < 0 || s != s)
+        snprintf(buf, n, "?");
+    else if (s < 60)
+        snprintf(buf, n, "%.0fs", s);
+    else if (s < 3600)
+        snprintf(buf, n, "%dm%02ds", (int)(s / 60), (int)s % 60);
+    else
+        snprintf(buf, n, "%dh%02dm", (int)(s / 3600), (int)(s / 60) % 60);
+}
+
+void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, double obs_value)
+{
+    if (!p || !p->tty)
+        return;
+    double now = gr_wall_seconds(), el = now - p->wall0;
+    if (el < p->delay || now - p->last_draw < 0.25)
+        return;
+    p->last_draw = now;
+    double frac = (t_sim - p->t0) / (p->t1 - p->t0);
+    double rem = frac > 0 ? el * (1 - frac) / frac : -1;
+    char e[32], r[32];
+    fmt_duration(e, sizeof e, el);
+    fmt_duration(r, sizeof r, rem);
+    fprintf(p->out, "\r\033[K%5.1f%%  t = %-10.4g elapsed %s  remaining %s", 100 * frac, t_sim, e, r);
+    if (obs_name)
+        fprintf(p->out, "  %s = %.4g", obs_name, obs_value);
+    fflush(p->out);
+    p->drawn = 1;
+}
+
+void gr_progress_finish(gr_progress *p)
+{
+    if (p && p->drawn) {
+        fprintf(p->out, "\r\033[K");
+        fflush(p->out);
+        p->drawn = 0;
+    }
+}

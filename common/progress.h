@@ -1,0 +1,20 @@
+/* Progress of a long run on a terminal: elapsed, estimated remaining,
+ * simulated time and one key observable, redrawn on one line a few times a
+ * second. Silent when the stream is not a terminal. */
+#ifndef GR_PROGRESS_H
+#define GR_PROGRESS_H
+
+#include <stdio.h>
+
+typedef struct gr_progress gr_progress;
+
+/* Shows nothing until `delay` seconds have passed (short runs stay quiet). */
+gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double delay);
+void gr_progress_free(gr_progress *p);
+void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, double obs_value);
+/* Clear the line, if anything was drawn. */
+void gr_progress_finish(gr_progress *p);
+/* Monotonic wall-clock seconds. */
+double gr_wall_seconds(void);
+
+#endif
