@@ -4,7 +4,9 @@
 #include <string.h>
 
 /* One line per backend. */
+extern const gr_method_type gr_edmd_method;
 static const gr_method_type *const registry[] = {
+    &gr_edmd_method,
     NULL
 };
 

@@ -1,0 +1,99 @@
+/* Checkpoints: the full state, event calendar included, so that a loaded
+ * run pops the very same events in the same order as the uninterrupted one
+ * (re-predicting on load would round some floor roots differently). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "edmd_int.h"
+
+/* The scalar state, as one blob. */
+#define SCALARS(X)                                                                                 \
+    X(t) X(t_prev_coll) X(stuck) X(cnt) X(steps) X(m_t) X(m_K) X(m_Krot) X(m_U) X(m_Smvy) X(m_Sm)  \
+    X(a_t0) X(a_K) X(a_Krot) X(a_U) X(a_mom) X(a_virial) X(a_inj) X(a_diss) X(a_pair0) X(a_wall0) \
+    X(e_inj) X(e_diss) X(obs_t0) X(obs_mom) X(ncap) X(nfree) X(freelist)
+
+#define SIZE_OF(f) +sizeof(((gr_edmd *)0)->f)
+enum { SCALAR_BYTES = 0 SCALARS(SIZE_OF) };
+
+static void pack(const gr_edmd *s, unsigned char *b)
+{
+#define PUT(f)                        \
+    memcpy(b, &s->f, sizeof s->f); \
+    b += sizeof s->f;
+    SCALARS(PUT)
+#undef PUT
+}
+
+static void unpack(gr_edmd *s, const unsigned char *b)
+{
+#define GET(f)                        \
+    memcpy(&s->f, b, sizeof s->f); \
+    b += sizeof s->f;
+    SCALARS(GET)
+#undef GET
+}
+
+static size_t ncells(const gr_edmd *s) { return (size_t)s->nx * (size_t)s->ny; }
+
+int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
+{
+    unsigned char sc[SCALAR_BYTES];
+    pack(s, sc);
+    uint64_t dims[5] = {s->n, (uint64_t)s->ncap, ncells(s), (uint64_t)s->P, s->cacc != NULL};
+    size_t n = s->n, nc = ncells(s);
+    if (gr_ckpt_put_u64(ck, "edmd.dims", dims, 5, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.scalars", sc, sizeof sc, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.particles", s->p, n * sizeof *s->p, err) ||
+        gr_ckpt_put_f64(ck, "edmd.omega", s->w, n, err) ||
+        gr_ckpt_put_f64(ck, "edmd.tlast", s->tlast, n, err) ||
+        gr_ckpt_put_f64(ck, "edmd.tacc", s->tacc, n, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.events", s->ev, (size_t)s->ncap * sizeof *s->ev, err) ||
+        gr_ckpt_put_f64(ck, "edmd.tmin", s->tmin, (size_t)s->P, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.tree", s->node, (size_t)s->P * 2 * sizeof *s->node, err) ||
+        gr_rng_save(s->rng, ck, "edmd.rng", err))
+        return err->code;
+    if (s->cacc && gr_ckpt_put_f64(ck, "edmd.fields", (const double *)s->cacc, nc * EDMD_CELLACC_N, err))
+        return err->code;
+    return GR_OK;
+}
+
+int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
+{
+    uint64_t dims[5];
+    if (gr_ckpt_get_u64(ck, "edmd.dims", dims, 5, err))
+        return err->code;
+    size_t n = s->n, nc = ncells(s);
+    if (dims[0] != n || dims[2] != nc || dims[3] != (uint64_t)s->P || dims[4] != (s->cacc != NULL))
+        return gr_fail(err, GR_EINPUT,
+                       "edmd: the checkpoint holds %llu grains on %llu cells, this scene %zu on %zu "
+                       "(or fields differ): not the same scene",
+                       (unsigned long long)dims[0], (unsigned long long)dims[2], n, nc);
+    if (dims[1] != (uint64_t)s->ncap) {
+        edmd_ev *ev = realloc(s->ev, (size_t)dims[1] * sizeof *ev);
+        if (!ev)
+            return gr_fail(err, GR_ERUN, "edmd: out of memory for the event pool");
+        s->ev = ev;
+        s->ncap = (int32_t)dims[1];
+    }
+    unsigned char sc[SCALAR_BYTES];
+    if (gr_ckpt_get_bytes(ck, "edmd.scalars", sc, sizeof sc, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.particles", s->p, n * sizeof *s->p, err) ||
+        gr_ckpt_get_f64(ck, "edmd.omega", s->w, n, err) ||
+        gr_ckpt_get_f64(ck, "edmd.tlast", s->tlast, n, err) ||
+        gr_ckpt_get_f64(ck, "edmd.tacc", s->tacc, n, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.events", s->ev, (size_t)s->ncap * sizeof *s->ev, err) ||
+        gr_ckpt_get_f64(ck, "edmd.tmin", s->tmin, (size_t)s->P, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.tree", s->node, (size_t)s->P * 2 * sizeof *s->node, err) ||
+        gr_rng_load(s->rng, ck, "edmd.rng", err))
+        return err->code;
+    if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
+        return err->code;
+    unpack(s, sc);
+    return GR_OK;
+}

@@ -1,0 +1,191 @@
+/* Internal state of the event-driven backend, shared by its files. */
+#ifndef GR_EDMD_INT_H
+#define GR_EDMD_INT_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "edmd.h"
+#include "rng.h"
+
+#define EDMD_INF INFINITY
+
+/* Event kinds; `partner` holds the other particle, the crossing direction
+ * or the wall id. */
+enum { EV_PAIR = 0, EV_CROSS = 1, EV_WALL = 2 };
+/* Crossing directions. */
+enum { DIR_LEFT = 0, DIR_RIGHT = 1, DIR_DOWN = 2, DIR_UP = 3 };
+/* Wall ids: the four sides (GR_LEFT...) and the moving floor. */
+enum { W_FLOOR = 4, W_COUNT = 5 };
+
+typedef struct {
+    double t;
+    int32_t next;    /* next event in the owner's list, -1 = end */
+    int32_t kind;
+    int32_t partner;
+    uint32_t pncol;  /* partner's collision counter when predicted */
+} edmd_ev;
+
+/* The hot part of a particle: one cache line. Position and velocity are
+ * those at time t, the particle's last state change (lazy advancement). */
+typedef struct {
+    double x, y, vx, vy, t, r;
+    int32_t cell;    /* event cell, -1 when not in a cell (naive) */
+    int32_t head;    /* first event of its list */
+    int32_t cnext;   /* next particle in its cell */
+    uint32_t ncol;   /* state changes so far (collision counter) */
+} edmd_p;
+
+/* Per-cell field accumulators: time integrals of mass-weighted moments and
+ * sums of collisional transfers over the averaging window. */
+typedef struct {
+    double n, m, mvx, mvy, mvxx, mvxy, mvyy, mv2vx, mv2vy;
+    double cxx, cxy, cyy, cqx, cqy, diss;
+} edmd_cellacc;
+#define EDMD_CELLACC_N 15
+
+struct gr_edmd {
+    gr_edmd_params prm;
+    size_t n;
+    edmd_p *p;
+    double *w, *m, *inertia, *tlast, *tacc;
+    int32_t *cprev;
+    int64_t *id;
+    int32_t *species;
+    size_t *order;           /* internal indices in id order */
+
+    /* scene */
+    double W, H, ybot, g;    /* domain [0,W] x [ybot,H]; ybot < 0 for a floor that dips */
+    int periodic_x, periodic_y;
+    int hard[4];             /* side is a hard wall */
+    double alpha, alpha_w, beta, mu;
+    int rough;               /* rotation and tangential impulses */
+    gr_floor_motion floor;   /* GR_FLOOR_FIXED: the bottom is an ordinary side */
+    double fA, fomega, fV0;  /* amplitude, angular frequency, HF speed A omega */
+    double rmax;
+
+    /* cells */
+    int nx, ny;
+    double cw, ch;
+    int32_t *chead;
+
+    /* events */
+    edmd_ev *ev;
+    int32_t ncap, nfree, freelist;
+    double *tmin;
+    int32_t *emin;
+    int32_t *node;           /* complete binary tree, node[1] is the root */
+    int32_t P;               /* leaves (power of two >= n) */
+
+    double t;                /* current time */
+    double t_prev_coll;
+    uint64_t stuck;
+    gr_edmd_counters cnt;
+    uint64_t steps;
+    gr_rng *rng;
+
+    /* global exact averages (measure.c) */
+    double m_t;              /* bookkeeping time */
+    double m_K, m_Krot, m_U, m_Smvy, m_Sm;
+    double a_t0, a_K, a_Krot, a_U;
+    double a_mom[4], a_virial, a_inj, a_diss;
+    uint64_t a_pair0, a_wall0;
+    double e_inj, e_diss;    /* since creation */
+    double obs_t0, obs_mom;  /* wall momentum since the last observe */
+    edmd_cellacc *cacc;
+
+    gr_edmd_event_fn hook;
+    void *hook_user;
+};
+
+/* Kinematics of free flight. */
+static inline double edmd_x_at(const edmd_p *p, double t) { return p->x + p->vx * (t - p->t); }
+static inline double edmd_y_at(const edmd_p *p, double t, double g)
+{
+    double s = t - p->t;
+    return p->y + s * (p->vy - 0.5 * g * s);
+}
+static inline double edmd_vy_at(const edmd_p *p, double t, double g) { return p->vy - g * (t - p->t); }
+/* Bring a particle's reference state to time t. */
+static inline void edmd_advance_p(edmd_p *p, double t, double g)
+{
+    double s = t - p->t;
+    p->x += p->vx * s;
+    p->y += s * (p->vy - 0.5 * g * s);
+    p->vy -= g * s;
+    p->t = t;
+}
+static inline double edmd_min_image(double d, double L)
+{
+    if (L > 0.0 && fabs(d) > 0.5 * L)
+        d -= L * nearbyint(d / L);
+    return d;
+}
+/* Height y + vy s - g s^2/2: first s >= 0 at which it rises to a level dy
+ * above, or falls to a level dy below (dy >= 0; a negative dy from
+ * rounding means "already there"). */
+static inline double edmd_rise_time(double dy, double vy, double g)
+{
+    if (vy <= 0.0)
+        return EDMD_INF;
+    if (dy <= 0.0)
+        return 0.0;
+    if (g == 0.0)
+        return dy / vy;
+    double disc = vy * vy - 2.0 * g * dy;
+    if (disc < 0.0)
+        return EDMD_INF;
+    return 2.0 * dy / (vy + sqrt(disc));
+}
+static inline double edmd_fall_time(double dy, double vy, double g)
+{
+    if (g == 0.0) {
+        if (vy >= 0.0)
+            return EDMD_INF;
+        return dy > 0.0 ? dy / -vy : 0.0;
+    }
+    double disc = vy * vy + 2.0 * g * dy;
+    double sq = disc > 0.0 ? sqrt(disc) : 0.0;
+    if (vy > 0.0)
+        return (vy + sq) / g;
+    if (dy <= 0.0)
+        return 0.0;
+    return 2.0 * dy / (sq - vy);
+}
+
+/* tree.c: event pool, per-particle lists, complete binary tree */
+int edmd_events_init(gr_edmd *s, gr_err *err);
+int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol);
+void edmd_list_clear(gr_edmd *s, int32_t i);
+void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);
+void edmd_tree_update(gr_edmd *s, int32_t i);
+void edmd_tree_build(gr_edmd *s);
+static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1]; }
+
+/* predict.c */
+double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
+double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon);
+double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir);
+int edmd_cell_of(const gr_edmd *s, double x, double y);
+int edmd_predict_all(gr_edmd *s, int32_t i);
+int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
+int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
+
+/* collide.c: return the energy change of the event */
+void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
+void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t);
+
+/* measure.c */
+void edmd_measure_init(gr_edmd *s);
+void edmd_measure_advance(gr_edmd *s, double t);
+void edmd_field_flush(gr_edmd *s, int32_t i, double t);
+void edmd_measure_pair(gr_edmd *s, int32_t i, int32_t j, double dvx_i, double dvy_i,
+                       double dE_i, double dE_j, double dx, double dy);
+double edmd_kinetic(const gr_edmd *s, int32_t i, double t);
+
+/* engine.c */
+int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
+int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
+int edmd_schedule_all(gr_edmd *s, gr_err *err);
+
+#endif

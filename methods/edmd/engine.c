@@ -1,0 +1,214 @@
+/* The event loops: the efficient scheme (cells, per-particle lists, the
+ * complete binary tree, collision counters) and the slides' algorithm v1.0
+ * (predict everything, take the minimum, O(N^2) per event). Both count
+ * state-changing events (pair, wall and floor collisions) as steps. */
+#include <math.h>
+#include <stdio.h>
+
+#include "edmd_int.h"
+
+static void cell_remove(gr_edmd *s, int32_t i)
+{
+    edmd_p *p = &s->p[i];
+    int32_t pr = s->cprev[i], nx = p->cnext;
+    if (pr >= 0)
+        s->p[pr].cnext = nx;
+    else
+        s->chead[p->cell] = nx;
+    if (nx >= 0)
+        s->cprev[nx] = pr;
+}
+
+static void cell_insert(gr_edmd *s, int32_t i, int c)
+{
+    edmd_p *p = &s->p[i];
+    p->cell = c;
+    p->cnext = s->chead[c];
+    s->cprev[i] = -1;
+    if (p->cnext >= 0)
+        s->cprev[p->cnext] = i;
+    s->chead[c] = i;
+}
+
+int edmd_schedule_all(gr_edmd *s, gr_err *err)
+{
+    for (size_t i = 0; i < s->n; i++)
+        edmd_list_clear(s, (int32_t)i);
+    for (size_t i = 0; i < s->n; i++)
+        if (edmd_predict_all(s, (int32_t)i))
+            return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
+    edmd_tree_build(s);
+    return GR_OK;
+}
+
+static void do_cross(gr_edmd *s, int32_t i, int dir)
+{
+    edmd_p *p = &s->p[i];
+    if (s->cacc)
+        edmd_field_flush(s, i, s->t);
+    int ix = p->cell % s->nx, iy = p->cell / s->nx;
+    cell_remove(s, i);
+    switch (dir) {
+    case DIR_RIGHT:
+        if (++ix == s->nx) {
+            ix = 0;
+            p->x -= s->W;
+        }
+        break;
+    case DIR_LEFT:
+        if (--ix < 0) {
+            ix = s->nx - 1;
+            p->x += s->W;
+        }
+        break;
+    case DIR_UP:
+        if (++iy == s->ny) {
+            iy = 0;
+            p->y -= s->H - s->ybot;
+        }
+        break;
+    default:
+        if (--iy < 0) {
+            iy = s->ny - 1;
+            p->y += s->H - s->ybot;
+        }
+        break;
+    }
+    cell_insert(s, i, ix + s->nx * iy);
+}
+
+static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *err)
+{
+    if (!isfinite(t))
+        return gr_fail(err, GR_ERUN, "edmd: event time %g for grain %lld at t = %.17g", t,
+                       (long long)s->id[i], s->t);
+    if (t - s->t_prev_coll <= 1e-13 * (1.0 + fabs(t)))
+        s->stuck++;
+    else
+        s->stuck = 0;
+    s->t_prev_coll = t;
+    if (s->stuck > 100000 + 10 * (uint64_t)s->n) {
+        if (j >= 0)
+            return gr_fail(err, GR_ERUN,
+                           "edmd: inelastic collapse at t = %.17g: %llu collisions without time "
+                           "advancing (last between grains %lld and %lld); set [edmd] collapse = tc "
+                           "or threshold",
+                           t, (unsigned long long)s->stuck, (long long)s->id[i], (long long)s->id[j]);
+        return gr_fail(err, GR_ERUN,
+                       "edmd: inelastic collapse at t = %.17g: %llu collisions without time advancing "
+                       "(last grain %lld against a wall); set [edmd] collapse = tc or threshold",
+                       t, (unsigned long long)s->stuck, (long long)s->id[i]);
+    }
+    return GR_OK;
+}
+
+#define OOM(s, err) gr_fail(err, GR_ERUN, "edmd: out of memory for the event pool (%d events)", (s)->ncap)
+
+int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
+{
+    uint64_t done = 0;
+    for (;;) {
+        if (max_coll && done >= max_coll)
+            return GR_OK;
+        int32_t i = edmd_tree_top(s);
+        double t = s->tmin[i];
+        if (!(t <= t_end) || t == EDMD_INF)
+            break;
+        int32_t e = s->emin[i];
+        edmd_ev ev = s->ev[e];
+        if (ev.kind == EV_PAIR) {
+            int32_t j = ev.partner;
+            if (s->p[j].ncol != ev.pncol) {
+                s->cnt.stale++;
+                edmd_list_remove(s, i, e);
+                edmd_tree_update(s, i);
+                continue;
+            }
+            if (check_collapse(s, i, j, t, err))
+                return err->code;
+            s->t = t;
+            edmd_collide_pair(s, i, j, t);
+            edmd_list_clear(s, i);
+            edmd_list_clear(s, j);
+            if (edmd_predict_all(s, i) || edmd_predict_all(s, j))
+                return OOM(s, err);
+            edmd_tree_update(s, i);
+            edmd_tree_update(s, j);
+            done++;
+            s->steps++;
+        } else if (ev.kind == EV_WALL) {
+            if (check_collapse(s, i, -1, t, err))
+                return err->code;
+            s->t = t;
+            edmd_collide_wall(s, i, ev.partner, t);
+            edmd_list_clear(s, i);
+            if (edmd_predict_all(s, i))
+                return OOM(s, err);
+            edmd_tree_update(s, i);
+            done++;
+            s->steps++;
+        } else {
+            s->t = t;
+            edmd_list_remove(s, i, e);
+            do_cross(s, i, ev.partner);
+            if (edmd_predict_cross(s, i, ev.partner))
+                return OOM(s, err);
+            edmd_tree_update(s, i);
+            s->cnt.crossing++;
+        }
+    }
+    if (t_end < EDMD_INF && t_end > s->t)
+        s->t = t_end;
+    return GR_OK;
+}
+
+/* Algorithm v1.0: every pair and every wall, every event. */
+int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
+{
+    uint64_t done = 0;
+    int32_t n = (int32_t)s->n;
+    for (;;) {
+        if (max_coll && done >= max_coll)
+            return GR_OK;
+        double best = EDMD_INF;
+        int32_t bi = -1, bj = -1;
+        for (int32_t i = 0; i < n; i++)
+            for (int32_t j = i + 1; j < n; j++) {
+                double t = edmd_pair_time(s, &s->p[i], &s->p[j]);
+                if (t < best) {
+                    best = t;
+                    bi = i;
+                    bj = j;
+                }
+            }
+        for (int32_t i = 0; i < n; i++)
+            for (int w = 0; w < W_COUNT; w++) {
+                int rel = w == W_FLOOR ? s->floor != GR_FLOOR_FIXED
+                                       : s->hard[w] && !(w == GR_BOTTOM && s->floor != GR_FLOOR_FIXED);
+                if (!rel)
+                    continue;
+                double t = edmd_wall_time(s, i, w, s->t, EDMD_INF);
+                if (t < best) {
+                    best = t;
+                    bi = i;
+                    bj = -1 - w;
+                }
+            }
+        if (best < s->t)
+            best = s->t;
+        if (!(best <= t_end) || best == EDMD_INF)
+            break;
+        if (check_collapse(s, bi, bj >= 0 ? bj : -1, best, err))
+            return err->code;
+        s->t = best;
+        if (bj >= 0)
+            edmd_collide_pair(s, bi, bj, best);
+        else
+            edmd_collide_wall(s, bi, -1 - bj, best);
+        done++;
+        s->steps++;
+    }
+    if (t_end < EDMD_INF && t_end > s->t)
+        s->t = t_end;
+    return GR_OK;
+}

@@ -1,0 +1,352 @@
+/* Event prediction: pair collisions (a quadratic, since gravity cancels in
+ * relative motion), hard walls and virtual-wall crossings (parabolas), the
+ * vibrating floor (a transcendental equation, solved by bounded
+ * subdivision so that no touching is missed). Every time is a function of
+ * the particles' reference states only, never of the moment of prediction,
+ * so the naive and the tree algorithms compute the same bits. */
+#include <math.h>
+
+#include "edmd_int.h"
+
+double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b)
+{
+    double t0 = a->t > b->t ? a->t : b->t;
+    double sa = t0 - a->t, sb = t0 - b->t;
+    double g = s->g;
+    double dx = (b->x + b->vx * sb) - (a->x + a->vx * sa);
+    double dy = (b->y + sb * (b->vy - 0.5 * g * sb)) - (a->y + sa * (a->vy - 0.5 * g * sa));
+    double dvx = b->vx - a->vx;
+    double dvy = (b->vy - g * sb) - (a->vy - g * sa);
+    if (s->periodic_x)
+        dx = edmd_min_image(dx, s->W);
+    if (s->periodic_y)
+        dy = edmd_min_image(dy, s->H - s->ybot);
+    double bb = dx * dvx + dy * dvy;
+    if (bb >= 0.0)
+        return EDMD_INF;
+    double sig = a->r + b->r;
+    double c = dx * dx + dy * dy - sig * sig;
+    if (c <= 0.0)
+        return t0; /* touching or overlapping by rounding, and approaching */
+    double vv = dvx * dvx + dvy * dvy;
+    double disc = bb * bb - vv * c;
+    if (disc <= 0.0)
+        return EDMD_INF;
+    return t0 + c / (sqrt(disc) - bb);
+}
+
+int edmd_cell_of(const gr_edmd *s, double x, double y)
+{
+    int ix = (int)floor(x / s->cw), iy = (int)floor((y - s->ybot) / s->ch);
+    if (s->periodic_x)
+        ix = ((ix % s->nx) + s->nx) % s->nx;
+    if (s->periodic_y)
+        iy = ((iy % s->ny) + s->ny) % s->ny;
+    ix = ix < 0 ? 0 : ix >= s->nx ? s->nx - 1 : ix;
+    iy = iy < 0 ? 0 : iy >= s->ny ? s->ny - 1 : iy;
+    return ix + s->nx * iy;
+}
+
+double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir)
+{
+    const edmd_p *p = &s->p[i];
+    int ix = p->cell % s->nx, iy = p->cell / s->nx;
+    double best = EDMD_INF;
+    *dir = -1;
+    if (p->vx > 0.0 && (ix < s->nx - 1 || s->periodic_x)) {
+        double d = (ix + 1) * s->cw - p->x;
+        best = d > 0.0 ? d / p->vx : 0.0;
+        *dir = DIR_RIGHT;
+    } else if (p->vx < 0.0 && (ix > 0 || s->periodic_x)) {
+        double d = p->x - ix * s->cw;
+        best = d > 0.0 ? d / -p->vx : 0.0;
+        *dir = DIR_LEFT;
+    }
+    double yb = s->ybot + iy * s->ch;
+    if (iy < s->ny - 1 || s->periodic_y) {
+        double tu = edmd_rise_time(yb + s->ch - p->y, p->vy, s->g);
+        if (tu < best) {
+            best = tu;
+            *dir = DIR_UP;
+        }
+    }
+    if (iy > 0 || s->periodic_y) {
+        double td = edmd_fall_time(p->y - yb, p->vy, s->g);
+        if (td < best) {
+            best = td;
+            *dir = DIR_DOWN;
+        }
+    }
+    return p->t + best;
+}
+
+/* Can a grain whose centre is in `cell` touch `wall`? */
+int edmd_wall_relevant(const gr_edmd *s, int cell, int wall)
+{
+    int ix = cell % s->nx, iy = cell / s->nx;
+    switch (wall) {
+    case GR_LEFT:
+        return s->hard[GR_LEFT] && ix == 0;
+    case GR_RIGHT:
+        return s->hard[GR_RIGHT] && ix == s->nx - 1;
+    case GR_TOP:
+        return s->hard[GR_TOP] && iy == s->ny - 1;
+    case GR_BOTTOM:
+        return s->hard[GR_BOTTOM] && s->floor == GR_FLOOR_FIXED && iy == 0;
+    case W_FLOOR:
+        return s->floor != GR_FLOOR_FIXED && (s->ybot + iy * s->ch < s->fA + s->rmax || iy == 0);
+    default:
+        return 0;
+    }
+}
+
+/* ---- the sinusoidal floor: h(t) = y(t) - r - A cos(omega t) ---- */
+typedef struct {
+    const edmd_p *p;
+    double g, A, om, M;
+    int nev;
+} floor_ctx;
+
+static double fh(floor_ctx *c, double t)
+{
+    c->nev++;
+    return edmd_y_at(c->p, t, c->g) - c->p->r - c->A * cos(c->om * t);
+}
+static double fdh(const floor_ctx *c, double t)
+{
+    return edmd_vy_at(c->p, t, c->g) + c->A * c->om * sin(c->om * t);
+}
+
+/* First t in (a, b] with h(t) <= 0, given h(a) > 0; |h''| <= M bounds how
+ * deep h can dip between two samples, so a root is never skipped. */
+static double first_root(floor_ctx *c, double a, double ha, double b, double hb, int depth)
+{
+    double L = b - a;
+    double tol = 4e-16 * (fabs(a) + 1.0);
+    if (hb <= 0.0 && L <= tol)
+        return b;
+    if (hb > 0.0) {
+        double lb = (ha < hb ? ha : hb) - c->M * L * L / 8.0;
+        if (lb > 0.0 || L <= tol || depth > 200 || c->nev > 20000)
+            return EDMD_INF;
+        /* concave lower bound from the slope at a: positive at both ends */
+        if (ha + fdh(c, a) * L - 0.5 * c->M * L * L > 0.0)
+            return EDMD_INF;
+    }
+    double m = a + 0.5 * L;
+    if (m <= a || m >= b)
+        return hb <= 0.0 ? b : EDMD_INF;
+    double hm = fh(c, m);
+    if (hm <= 0.0)
+        return first_root(c, a, ha, m, hm, depth + 1);
+    double r = first_root(c, a, ha, m, hm, depth + 1);
+    if (r < EDMD_INF)
+        return r;
+    return first_root(c, m, hm, b, hb, depth + 1);
+}
+
+static double floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
+{
+    double g = s->g, A = s->fA, om = s->fomega;
+    /* enter the band y - r <= A where the floor can be met */
+    if (edmd_y_at(p, a, g) - p->r > A) {
+        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
+        if (!(te < horizon))
+            return EDMD_INF;
+        a = te > a ? te : a;
+    }
+    /* certain contact by the time it falls to the floor's lowest point */
+    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
+    if (!(b < EDMD_INF))
+        b = a + 2.0 * M_PI / om;
+    if (b > horizon)
+        b = horizon;
+    if (!(b > a))
+        return EDMD_INF;
+    floor_ctx c = {p, g, A, om, g + A * om * om, 0};
+    double ha = fh(&c, a), dha = fdh(&c, a);
+    if (ha <= 0.0) {
+        if (dha <= 0.0)
+            return a;
+        /* just left the floor: h >= dha s - M s^2 / 2 > 0 up to s = dha / M */
+        a += dha / c.M;
+        if (a >= b)
+            return EDMD_INF;
+        ha = fh(&c, a);
+        if (ha <= 0.0)
+            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
+    }
+    return first_root(&c, a, ha, b, fh(&c, b), 0);
+}
+
+/* The sawtooth floor rises at V = A omega / pi from -A to A and drops back:
+ * on each rise h is a parabola, as for a fixed floor seen from the floor. */
+static double floor_saw_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
+{
+    double g = s->g, A = s->fA, om = s->fomega;
+    double V = A * om / M_PI, T = 2.0 * M_PI / om;
+    if (edmd_y_at(p, a, g) - p->r > A) {
+        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
+        if (!(te < horizon))
+            return EDMD_INF;
+        a = te > a ? te : a;
+    }
+    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
+    if (!(b < EDMD_INF))
+        b = a + T;
+    if (b > horizon)
+        b = horizon;
+    double k = floor(a / T);
+    for (int guard = 0; guard < 100000; guard++, k += 1.0) {
+        double t0 = k * T, t1 = (k + 1.0) * T;
+        double u = a > t0 ? a : t0;
+        if (u > b)
+            break;
+        double h0 = edmd_y_at(p, u, g) - p->r - (-A + V * (u - t0));
+        double h1 = edmd_vy_at(p, u, g) - V;
+        double tc = u + edmd_fall_time(h0, h1, g);
+        if (tc <= t1)
+            return tc;
+    }
+    return EDMD_INF;
+}
+
+/* Time of the next collision with a wall, searched from t_from; walls with
+ * an open-ended search (the moving floor) stop at the horizon. */
+double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon)
+{
+    const edmd_p *p = &s->p[i];
+    double dt;
+    switch (wall) {
+    case GR_LEFT:
+        if (p->vx >= 0.0)
+            return EDMD_INF;
+        dt = p->x - p->r;
+        return p->t + (dt > 0.0 ? dt / -p->vx : 0.0);
+    case GR_RIGHT:
+        if (p->vx <= 0.0)
+            return EDMD_INF;
+        dt = s->W - p->r - p->x;
+        return p->t + (dt > 0.0 ? dt / p->vx : 0.0);
+    case GR_TOP:
+        return p->t + edmd_rise_time(s->H - p->r - p->y, p->vy, s->g);
+    case GR_BOTTOM:
+        return p->t + edmd_fall_time(p->y - p->r, p->vy, s->g);
+    case W_FLOOR: {
+        double a = t_from > p->t ? t_from : p->t;
+        switch (s->floor) {
+        case GR_FLOOR_SINE:
+            return floor_sine_time(s, p, a, horizon);
+        case GR_FLOOR_SAWTOOTH:
+            return floor_saw_time(s, p, a, horizon);
+        default: /* high-frequency limits: the floor stays at y = 0 */
+            return p->t + edmd_fall_time(p->y - p->r, p->vy, s->g);
+        }
+    }
+    default:
+        return EDMD_INF;
+    }
+}
+
+static int push_pairs_in_cell(gr_edmd *s, int32_t i, int c)
+{
+    const edmd_p *pi = &s->p[i];
+    double now = s->t;
+    for (int32_t j = s->chead[c]; j >= 0; j = s->p[j].cnext) {
+        if (j == i)
+            continue;
+        double t = edmd_pair_time(s, pi, &s->p[j]);
+        if (t < EDMD_INF && edmd_ev_push(s, i, t > now ? t : now, EV_PAIR, j, s->p[j].ncol))
+            return GR_ERUN;
+    }
+    return GR_OK;
+}
+
+static int push_cross_and_walls(gr_edmd *s, int32_t i)
+{
+    int dir;
+    double now = s->t;
+    double tc = edmd_cross_time(s, i, &dir);
+    if (dir >= 0 && tc < EDMD_INF && edmd_ev_push(s, i, tc > now ? tc : now, EV_CROSS, dir, 0))
+        return GR_ERUN;
+    int cell = s->p[i].cell;
+    for (int w = 0; w < W_COUNT; w++) {
+        if (!edmd_wall_relevant(s, cell, w))
+            continue;
+        double tw = edmd_wall_time(s, i, w, now, tc);
+        if (tw <= tc && tw < EDMD_INF && edmd_ev_push(s, i, tw > now ? tw : now, EV_WALL, w, 0))
+            return GR_ERUN;
+    }
+    return GR_OK;
+}
+
+static int wrap_cell(const gr_edmd *s, int ix, int iy)
+{
+    if (ix < 0 || ix >= s->nx) {
+        if (!s->periodic_x)
+            return -1;
+        ix = (ix + s->nx) % s->nx;
+    }
+    if (iy < 0 || iy >= s->ny) {
+        if (!s->periodic_y)
+            return -1;
+        iy = (iy + s->ny) % s->ny;
+    }
+    return ix + s->nx * iy;
+}
+
+/* All events of particle i (its list is empty): crossing, walls, pairs in
+ * the 3x3 block of cells around it. */
+int edmd_predict_all(gr_edmd *s, int32_t i)
+{
+    if (push_cross_and_walls(s, i))
+        return GR_ERUN;
+    int c = s->p[i].cell, ix = c % s->nx, iy = c / s->nx;
+    int seen[9], ns = 0;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int cc = wrap_cell(s, ix + dx, iy + dy);
+            if (cc < 0)
+                continue;
+            int dup = 0;
+            for (int k = 0; k < ns; k++)
+                dup |= seen[k] == cc;
+            if (dup)
+                continue;
+            seen[ns++] = cc;
+            if (push_pairs_in_cell(s, i, cc))
+                return GR_ERUN;
+        }
+    return GR_OK;
+}
+
+/* After crossing in direction dir: the next crossing, the walls of the new
+ * cell, and pairs with the row or column of cells that just became
+ * neighbours (events with the others are already in some list). */
+int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
+{
+    if (push_cross_and_walls(s, i))
+        return GR_ERUN;
+    int c = s->p[i].cell, ix = c % s->nx, iy = c / s->nx;
+    int seen[3], ns = 0;
+    for (int k = -1; k <= 1; k++) {
+        int cc;
+        switch (dir) {
+        case DIR_RIGHT: cc = wrap_cell(s, ix + 1, iy + k); break;
+        case DIR_LEFT: cc = wrap_cell(s, ix - 1, iy + k); break;
+        case DIR_UP: cc = wrap_cell(s, ix + k, iy + 1); break;
+        default: cc = wrap_cell(s, ix + k, iy - 1); break;
+        }
+        if (cc < 0)
+            continue;
+        int dup = 0;
+        for (int q = 0; q < ns; q++)
+            dup |= seen[q] == cc;
+        if (dup)
+            continue;
+        seen[ns++] = cc;
+        if (push_pairs_in_cell(s, i, cc))
+            return GR_ERUN;
+    }
+    return GR_OK;
+}

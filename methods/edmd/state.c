@@ -1,0 +1,428 @@
+/* Creation from a scene, parameters, snapshots and observables. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "edmd_int.h"
+#include "observe.h"
+
+static const char *const algo_names[] = {"tree", "naive", NULL};
+static const char *const collapse_names[] = {"none", "tc", "threshold", NULL};
+static const char *const yesno[] = {"no", "yes", NULL};
+
+void gr_edmd_params_default(gr_edmd_params *p)
+{
+    p->algorithm = GR_EDMD_TREE;
+    p->cell = 0.0;
+    p->collapse = GR_EDMD_COLLAPSE_NONE;
+    p->tc = 1e-5;
+    p->v_threshold = 1e-4;
+    p->fields = 0;
+}
+
+int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
+{
+    gr_edmd_params_default(p);
+    int v;
+    if (gr_scene_get_choice(sc, "edmd", "algorithm", algo_names, 0, &v, err))
+        return err->code;
+    p->algorithm = (gr_edmd_algorithm)v;
+    if (gr_scene_get_choice(sc, "edmd", "collapse", collapse_names, 0, &v, err))
+        return err->code;
+    p->collapse = (gr_edmd_collapse)v;
+    if (gr_scene_get_choice(sc, "edmd", "fields", yesno, 0, &p->fields, err))
+        return err->code;
+    if (gr_scene_get_double(sc, "edmd", "cell", 0.0, &p->cell, err) ||
+        gr_scene_get_double(sc, "edmd", "tc", p->tc, &p->tc, err) ||
+        gr_scene_get_double(sc, "edmd", "v_threshold", p->v_threshold, &p->v_threshold, err))
+        return err->code;
+    const char *bad = !(p->cell >= 0) ? "cell" : !(p->tc >= 0) ? "tc" : !(p->v_threshold >= 0) ? "v_threshold" : NULL;
+    if (bad) {
+        char where[1200];
+        gr_scene_where(sc, "edmd", bad, where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: [edmd] key '%s' must be >= 0", where, bad);
+    }
+    return GR_OK;
+}
+
+void gr_edmd_free(gr_edmd *s)
+{
+    if (!s)
+        return;
+    free(s->p);
+    free(s->w);
+    free(s->m);
+    free(s->inertia);
+    free(s->tlast);
+    free(s->tacc);
+    free(s->cprev);
+    free(s->id);
+    free(s->order);
+    free(s->chead);
+    free(s->ev);
+    free(s->tmin);
+    free(s->emin);
+    free(s->node);
+    free(s->cacc);
+    free(s->species);
+    gr_rng_free(s->rng);
+    free(s);
+}
+
+static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
+{
+    const gr_material *mt = &sc->mat;
+    if (mt->tangential != GR_TANG_NONE && mt->tangential != GR_TANG_COULOMB)
+        return gr_fail(err, GR_EINPUT,
+                       "%s: method 'edmd' has no viscous, regularised or spring tangential law: "
+                       "rough hard disks use [material] tangential_restitution and mu",
+                       sc->path);
+    s->W = sc->width;
+    s->H = sc->height;
+    s->g = sc->gravity;
+    for (int k = 0; k < 4; k++)
+        s->hard[k] = sc->side[k] == GR_BC_WALL;
+    s->periodic_x = sc->side[GR_LEFT] == GR_BC_PERIODIC;
+    s->periodic_y = sc->side[GR_BOTTOM] == GR_BC_PERIODIC;
+    s->alpha = isnan(mt->restitution) ? 1.0 : mt->restitution;
+    s->alpha_w = isnan(mt->wall_restitution) ? s->alpha : mt->wall_restitution;
+    s->beta = !isnan(mt->tangential_restitution) ? mt->tangential_restitution
+              : mt->tangential == GR_TANG_COULOMB ? 1.0 : -1.0;
+    s->mu = mt->tangential == GR_TANG_NONE && isnan(mt->tangential_restitution) ? 0.0 : mt->mu;
+    s->rough = s->beta > -1.0 && s->mu > 0.0;
+    s->floor = sc->floor.motion;
+    s->fA = sc->floor.amplitude;
+    s->fomega = sc->floor.omega;
+    s->fV0 = s->fA * s->fomega;
+    s->ybot = 0.0;
+    if (s->floor != GR_FLOOR_FIXED) {
+        if (sc->side[GR_BOTTOM] != GR_BC_WALL)
+            return gr_fail(err, GR_EINPUT, "%s: a moving floor needs [domain] bottom = wall", sc->path);
+        if ((s->floor == GR_FLOOR_SINE || s->floor == GR_FLOOR_SAWTOOTH) && !(s->fomega > 0.0 && s->fA >= 0.0))
+            return gr_fail(err, GR_EINPUT, "%s: [floor] needs amplitude >= 0 and omega > 0", sc->path);
+        if (s->floor == GR_FLOOR_SINE || s->floor == GR_FLOOR_SAWTOOTH)
+            s->ybot = -s->fA;
+    }
+    for (int k = 0; k < sc->nsegments; k++)
+        if (sc->segments[k].vibrating)
+            return gr_fail(err, GR_EINPUT, "%s:%d: method 'edmd' vibrates only the bottom side, not segments",
+                           sc->path, sc->segments[k].line);
+    if (!(s->W > 0.0 && s->H > s->ybot))
+        return gr_fail(err, GR_EINPUT, "%s: edmd needs a domain of positive size", sc->path);
+    return GR_OK;
+}
+
+typedef struct {
+    int64_t id;
+    size_t i;
+} id_index;
+
+static int cmp_id(const void *a, const void *b)
+{
+    int64_t x = ((const id_index *)a)->id, y = ((const id_index *)b)->id;
+    return x < y ? -1 : x > y;
+}
+
+static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < init->n; i++) {
+        if (init->flags[i] & GR_PF_FIXED)
+            return gr_fail(err, GR_EINPUT, "edmd: grain %lld is fixed; edmd walls are the sides and the floor",
+                           (long long)init->id[i]);
+        if (!(init->flags[i] & GR_PF_GONE))
+            n++;
+    }
+    if (n == 0)
+        return gr_fail(err, GR_EINPUT, "edmd: the scene has no mobile grains");
+    if (n >= (size_t)INT32_MAX / 2)
+        return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
+    s->n = n;
+    s->p = calloc(n, sizeof *s->p);
+    s->w = calloc(n, sizeof *s->w);
+    s->m = calloc(n, sizeof *s->m);
+    s->inertia = calloc(n, sizeof *s->inertia);
+    s->tlast = calloc(n, sizeof *s->tlast);
+    s->tacc = calloc(n, sizeof *s->tacc);
+    s->cprev = calloc(n, sizeof *s->cprev);
+    s->id = calloc(n, sizeof *s->id);
+    s->order = calloc(n, sizeof *s->order);
+    s->species = calloc(n, sizeof *s->species);
+    if (!s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->cprev || !s->id || !s->order ||
+        !s->species)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
+    size_t k = 0;
+    s->rmax = 0.0;
+    for (size_t i = 0; i < init->n; i++) {
+        if (init->flags[i] & GR_PF_GONE)
+            continue;
+        edmd_p *p = &s->p[k];
+        p->x = init->x[i];
+        p->y = init->y[i];
+        p->vx = init->vx[i];
+        p->vy = init->vy[i];
+        p->r = init->radius[i];
+        p->t = 0.0;
+        p->cell = -1;
+        p->head = -1;
+        p->cnext = -1;
+        s->w[k] = init->omega[i];
+        s->m[k] = init->mass[i];
+        s->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
+        s->tlast[k] = -EDMD_INF;
+        s->id[k] = init->id[i];
+        s->species[k] = init->species[i];
+        s->order[k] = k;
+        if (!(p->r > 0.0 && s->m[k] > 0.0) || !isfinite(p->x + p->y + p->vx + p->vy))
+            return gr_fail(err, GR_EINPUT, "edmd: grain %lld has a bad radius, mass, position or velocity",
+                           (long long)s->id[k]);
+        if (p->r > s->rmax)
+            s->rmax = p->r;
+        k++;
+    }
+    id_index *tmp = malloc(n * sizeof *tmp);
+    if (!tmp)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
+    for (size_t i = 0; i < n; i++)
+        tmp[i] = (id_index){s->id[i], i};
+    qsort(tmp, n, sizeof *tmp, cmp_id);
+    for (size_t i = 0; i < n; i++)
+        s->order[i] = tmp[i].i;
+    free(tmp);
+    return GR_OK;
+}
+
+/* Every grain inside the domain and above the floor, no pair overlapping. */
+static int check_start(gr_edmd *s, gr_err *err)
+{
+    double tol = 1e-9;
+    for (size_t i = 0; i < s->n; i++) {
+        const edmd_p *p = &s->p[i];
+        double fl = s->floor == GR_FLOOR_SINE ? s->fA * cos(0.0)
+                    : s->floor == GR_FLOOR_SAWTOOTH ? -s->fA : 0.0;
+        int out = (s->hard[GR_LEFT] && p->x < p->r - tol) || (s->hard[GR_RIGHT] && p->x > s->W - p->r + tol) ||
+                  (s->hard[GR_BOTTOM] && p->y < fl + p->r - tol) || (s->hard[GR_TOP] && p->y > s->H - p->r + tol) ||
+                  p->x < 0.0 || p->x > s->W || p->y < s->ybot || p->y > s->H;
+        if (out)
+            return gr_fail(err, GR_EINPUT, "edmd: grain %lld at (%g, %g) is outside the domain or cuts a wall",
+                           (long long)s->id[i], p->x, p->y);
+    }
+    if (s->prm.algorithm == GR_EDMD_NAIVE)
+        return GR_OK;
+    for (size_t i = 0; i < s->n; i++) {
+        const edmd_p *p = &s->p[i];
+        int c = p->cell, ix = c % s->nx, iy = c / s->nx;
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                int jx = ix + dx, jy = iy + dy;
+                if (s->periodic_x)
+                    jx = (jx + s->nx) % s->nx;
+                if (s->periodic_y)
+                    jy = (jy + s->ny) % s->ny;
+                if (jx < 0 || jy < 0 || jx >= s->nx || jy >= s->ny)
+                    continue;
+                for (int32_t j = s->chead[jx + s->nx * jy]; j >= 0; j = s->p[j].cnext) {
+                    if ((size_t)j <= i)
+                        continue;
+                    double ddx = s->p[j].x - p->x, ddy = s->p[j].y - p->y;
+                    if (s->periodic_x)
+                        ddx = edmd_min_image(ddx, s->W);
+                    if (s->periodic_y)
+                        ddy = edmd_min_image(ddy, s->H - s->ybot);
+                    double sig = p->r + s->p[j].r;
+                    if (ddx * ddx + ddy * ddy < sig * sig * (1.0 - 2.0 * tol))
+                        return gr_fail(err, GR_EINPUT, "edmd: grains %lld and %lld overlap at the start",
+                                       (long long)s->id[i], (long long)s->id[j]);
+                }
+            }
+    }
+    return GR_OK;
+}
+
+static int setup_cells(gr_edmd *s, gr_err *err)
+{
+    double cmin = s->prm.cell > 0.0 ? s->prm.cell : 2.0 * s->rmax;
+    if (cmin < 2.0 * s->rmax)
+        return gr_fail(err, GR_EINPUT, "edmd: [edmd] cell = %g is smaller than the largest diameter %g",
+                       cmin, 2.0 * s->rmax);
+    double Ly = s->H - s->ybot;
+    s->nx = (int)fmax(1.0, floor(s->W / cmin));
+    s->ny = (int)fmax(1.0, floor(Ly / cmin));
+    if (s->prm.algorithm == GR_EDMD_NAIVE)
+        s->nx = s->ny = 1;
+    if ((s->periodic_x && s->nx < 4) || (s->periodic_y && s->ny < 4))
+        return gr_fail(err, GR_EINPUT,
+                       "edmd: a periodic side must be at least 4 cells (4 largest diameters) long");
+    if ((double)s->nx * s->ny > 1e9)
+        return gr_fail(err, GR_EINPUT, "edmd: %d x %d cells is too many; raise [edmd] cell", s->nx, s->ny);
+    s->cw = s->W / s->nx;
+    s->ch = Ly / s->ny;
+    size_t nc = (size_t)s->nx * (size_t)s->ny;
+    s->chead = malloc(nc * sizeof *s->chead);
+    if (!s->chead)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu cells", nc);
+    for (size_t c = 0; c < nc; c++)
+        s->chead[c] = -1;
+    for (size_t i = s->n; i-- > 0;) {
+        edmd_p *p = &s->p[i];
+        int c = edmd_cell_of(s, p->x, p->y);
+        p->cell = c;
+        p->cnext = s->chead[c];
+        s->cprev[i] = -1;
+        if (p->cnext >= 0)
+            s->cprev[p->cnext] = (int32_t)i;
+        s->chead[c] = (int32_t)i;
+    }
+    if (s->prm.fields) {
+        if (s->prm.algorithm == GR_EDMD_NAIVE)
+            return gr_fail(err, GR_EINPUT, "edmd: fields need algorithm = tree");
+        s->cacc = calloc(nc, sizeof *s->cacc);
+        if (!s->cacc)
+            return gr_fail(err, GR_ERUN, "edmd: out of memory for the fields");
+    }
+    return GR_OK;
+}
+
+int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm,
+                   gr_edmd **out, gr_err *err)
+{
+    *out = NULL;
+    gr_edmd *s = calloc(1, sizeof *s);
+    if (!s)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory");
+    s->prm = *prm;
+    int rc = setup_scene(s, sc, err);
+    if (!rc)
+        rc = setup_particles(s, init, err);
+    if (!rc)
+        rc = setup_cells(s, err);
+    if (!rc)
+        rc = check_start(s, err);
+    if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
+        rc = err->code;
+    if (!rc)
+        rc = edmd_events_init(s, err);
+    s->t = 0.0;
+    s->t_prev_coll = -EDMD_INF;
+    if (!rc && s->prm.algorithm == GR_EDMD_TREE)
+        rc = edmd_schedule_all(s, err);
+    if (rc) {
+        gr_edmd_free(s);
+        return rc;
+    }
+    edmd_measure_init(s);
+    *out = s;
+    return GR_OK;
+}
+
+int gr_edmd_advance(gr_edmd *s, double t_end, uint64_t max_collisions, gr_err *err)
+{
+    if (s->prm.algorithm == GR_EDMD_NAIVE)
+        return edmd_advance_naive(s, t_end, max_collisions, err);
+    return edmd_advance_tree(s, t_end, max_collisions, err);
+}
+
+double gr_edmd_time(const gr_edmd *s) { return s->t; }
+
+void gr_edmd_get_counters(const gr_edmd *s, gr_edmd_counters *c) { *c = s->cnt; }
+
+void gr_edmd_set_event_hook(gr_edmd *s, gr_edmd_event_fn fn, void *user)
+{
+    s->hook = fn;
+    s->hook_user = user;
+}
+
+int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
+{
+    out->n = 0;
+    if (gr_particles_reserve(out, s->n, err))
+        return err->code;
+    double t = s->t, g = s->g, Ly = s->H - s->ybot;
+    for (size_t k = 0; k < s->n; k++) {
+        size_t i = s->order[k];
+        const edmd_p *p = &s->p[i];
+        double x = edmd_x_at(p, t), y = edmd_y_at(p, t, g);
+        if (s->periodic_x)
+            x -= s->W * floor(x / s->W);
+        if (s->periodic_y)
+            y -= Ly * floor((y - s->ybot) / Ly);
+        long j = gr_particles_push(out, x, y, p->r, s->m[i], 0, s->species[i], err);
+        if (j < 0)
+            return err->code;
+        out->vx[j] = p->vx;
+        out->vy[j] = edmd_vy_at(p, t, g);
+        out->omega[j] = s->w[i];
+        out->inertia[j] = s->inertia[i];
+        out->id[j] = s->id[i];
+    }
+    return GR_OK;
+}
+
+/* ---- the method table ---- */
+
+static const char *const param_keys[] = {"algorithm", "cell", "collapse", "tc", "v_threshold", "fields", NULL};
+
+static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
+{
+    gr_edmd_params prm;
+    if (gr_edmd_params_read(sc, &prm, err))
+        return err->code;
+    gr_edmd *s;
+    if (gr_edmd_create(sc, init, &prm, &s, err))
+        return err->code;
+    *state = s;
+    return GR_OK;
+}
+static int m_advance(void *st, double t_end, uint64_t max_steps, gr_err *err)
+{
+    return gr_edmd_advance(st, t_end, max_steps, err);
+}
+static double m_time(const void *st) { return gr_edmd_time(st); }
+static int m_snapshot(void *st, gr_particles *out, gr_err *err) { return gr_edmd_snapshot(st, out, err); }
+
+static int m_observe(void *st, gr_obs *o, gr_err *err)
+{
+    gr_edmd *s = st;
+    gr_particles *p = gr_particles_create(s->n, err);
+    if (!p)
+        return err->code;
+    if (gr_edmd_snapshot(s, p, err)) {
+        gr_particles_free(p);
+        return err->code;
+    }
+    gr_obs_from_particles(p, s->g, o);
+    gr_particles_free(p);
+    o->t = s->t;
+    o->steps = s->steps;
+    o->outflow = 0;
+    double len = 0.0, Ly = s->H - s->ybot;
+    for (int k = 0; k < 4; k++)
+        if (s->hard[k])
+            len += k == GR_LEFT || k == GR_RIGHT ? Ly : s->W;
+    double T = s->t - s->obs_t0;
+    o->wall_pressure = len > 0.0 && T > 0.0 ? s->obs_mom / (len * T) : NAN;
+    o->max_overlap = NAN;
+    s->obs_t0 = s->t;
+    s->obs_mom = 0.0;
+    return GR_OK;
+}
+static int m_save(const void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_save(st, ck, err); }
+static int m_load(void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_load(st, ck, err); }
+static void m_free(void *st) { gr_edmd_free(st); }
+
+const gr_method_type gr_edmd_method = {
+    .name = "edmd",
+    .summary = "event-driven inelastic hard disks (cells, event tree, exact averages)",
+    .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_PERIODIC | GR_FEAT_VIBRATING_FLOOR |
+                GR_FEAT_HF_FLOOR | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE,
+    .param_keys = param_keys,
+    .create = m_create,
+    .advance = m_advance,
+    .time = m_time,
+    .snapshot = m_snapshot,
+    .observe = m_observe,
+    .save = m_save,
+    .load = m_load,
+    .free = m_free,
+};

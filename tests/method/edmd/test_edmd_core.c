@@ -1,0 +1,233 @@
+/* The efficient scheme against exact properties: energy and momentum
+ * conservation, contact distances, no overlaps, and the same collision
+ * sequence as the slides' naive algorithm v1.0. */
+#include "test.h"
+
+#include <stdlib.h>
+
+#include "edmd_int.h"
+#include "edmd_test.h"
+
+typedef struct {
+    gr_edmd *s;
+    double worst_contact; /* | |r_ij| - sigma | at collisions, in diameters */
+} contact_check;
+
+static void check_contact(void *user, int kind, long i, long j, double t)
+{
+    (void)t;
+    contact_check *c = user;
+    if (kind != 0)
+        return;
+    const edmd_p *a = &c->s->p[i], *b = &c->s->p[j];
+    double dx = edmd_min_image(b->x - a->x, c->s->periodic_x ? c->s->W : 0);
+    double dy = edmd_min_image(b->y - a->y, c->s->periodic_y ? c->s->H : 0);
+    double e = fabs(sqrt(dx * dx + dy * dy) - (a->r + b->r));
+    if (e > c->worst_contact)
+        c->worst_contact = e;
+}
+
+static gr_edmd *make(const gr_scene *sc, const gr_particles *p, gr_edmd_algorithm alg)
+{
+    gr_err e = {0};
+    gr_edmd_params prm;
+    gr_edmd_params_default(&prm);
+    prm.algorithm = alg;
+    gr_edmd *s = NULL;
+    int rc = gr_edmd_create(sc, p, &prm, &s, &e);
+    if (rc)
+        fprintf(stderr, "create: %s\n", e.msg);
+    assert_int_equal(rc, GR_OK);
+    return s;
+}
+
+/* 500 elastic disks at packing fraction 0.3 in a walled box, 1e6 collisions. */
+static void elastic_energy_contacts_overlaps(void **st)
+{
+    (void)st;
+    long n = 500;
+    double L = sqrt(n * M_PI / 4 / 0.3);
+    gr_scene sc = edmd_box(L, L, 0, 1.0);
+    gr_particles *p = edmd_lattice(n, 0, 0, L, L, 1.0, 0, 11);
+    gr_edmd *s = make(&sc, p, GR_EDMD_TREE);
+    contact_check cc = {s, 0};
+    gr_edmd_set_event_hook(s, check_contact, &cc);
+    double e0 = edmd_energy(p, 0);
+    gr_err e = {0};
+    double worst_ov = 0, worst_de = 0;
+    for (int k = 0; k < 20; k++) {
+        assert_int_equal(gr_edmd_advance(s, INFINITY, 50000, &e), GR_OK);
+        assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
+        double ov = edmd_max_overlap(p, 0, 0), de = fabs(edmd_energy(p, 0) - e0) / e0;
+        worst_ov = ov > worst_ov ? ov : worst_ov;
+        worst_de = de > worst_de ? de : worst_de;
+    }
+    gr_edmd_counters c;
+    gr_edmd_get_counters(s, &c);
+    printf("# 1e6 collisions (%llu pair, %llu wall, %llu crossings, %llu stale) to t = %g: "
+           "max |dE|/E = %.3e, max overlap = %.3e, max contact error = %.3e\n",
+           (unsigned long long)c.pair, (unsigned long long)c.wall, (unsigned long long)c.crossing,
+           (unsigned long long)c.stale, gr_edmd_time(s), worst_de, worst_ov, cc.worst_contact);
+    assert_true(c.pair + c.wall == 1000000);
+    assert_true(worst_de < 1e-10);
+    assert_true(worst_ov < 1e-9);
+    assert_true(cc.worst_contact < 1e-9);
+    gr_edmd_free(s);
+    gr_particles_free(p);
+}
+
+/* Periodic box at packing fraction 0.4: total momentum stays zero. */
+static void periodic_momentum(void **st)
+{
+    (void)st;
+    long n = 400;
+    double L = sqrt(n * M_PI / 4 / 0.4);
+    gr_scene sc = edmd_box(L, L, 1, 1.0);
+    gr_particles *p = edmd_lattice(n, 0, 0, L, L, 1.0, 1, 12);
+    gr_edmd *s = make(&sc, p, GR_EDMD_TREE);
+    contact_check cc = {s, 0};
+    gr_edmd_set_event_hook(s, check_contact, &cc);
+    double e0 = edmd_energy(p, 0);
+    gr_err e = {0};
+    assert_int_equal(gr_edmd_advance(s, INFINITY, 300000, &e), GR_OK);
+    assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
+    double px = 0, py = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        px += p->vx[i];
+        py += p->vy[i];
+    }
+    double de = fabs(edmd_energy(p, 0) - e0) / e0, ov = edmd_max_overlap(p, L, L);
+    printf("# periodic, 3e5 collisions: |P| = %.3e (N V0 = %ld), |dE|/E = %.3e, overlap %.3e, contact %.3e\n",
+           hypot(px, py), n, de, ov, cc.worst_contact);
+    assert_true(hypot(px, py) < 1e-10 * n);
+    assert_true(de < 1e-10);
+    assert_true(ov < 1e-9);
+    assert_true(cc.worst_contact < 1e-9);
+    gr_edmd_free(s);
+    gr_particles_free(p);
+}
+
+typedef struct {
+    long n, cap;
+    long *i, *j;
+    double *t;
+} sequence;
+
+static void record(void *user, int kind, long i, long j, double t)
+{
+    sequence *q = user;
+    if (q->n == q->cap)
+        return;
+    q->i[q->n] = kind == 0 ? i : i;
+    q->j[q->n] = j;
+    q->t[q->n] = t;
+    q->n++;
+}
+
+static sequence run_sequence(gr_edmd_algorithm alg, long events, double alpha)
+{
+    long n = 100;
+    double L = 20.0;
+    gr_scene sc = edmd_box(L, L, 0, alpha);
+    gr_particles *p = edmd_lattice(n, 0, 0, L, L, 1.0, 0, 13);
+    gr_edmd *s = make(&sc, p, alg);
+    sequence q = {0, events, malloc(events * sizeof(long)), malloc(events * sizeof(long)),
+                  malloc(events * sizeof(double))};
+    gr_edmd_set_event_hook(s, record, &q);
+    gr_err e = {0};
+    assert_int_equal(gr_edmd_advance(s, INFINITY, (uint64_t)events, &e), GR_OK);
+    gr_edmd_free(s);
+    gr_particles_free(p);
+    return q;
+}
+
+/* 100 disks, 1e4 collisions (walls included): the tree and the naive
+ * algorithm execute the same events at the same times. */
+static void same_sequence_as_naive(void **st)
+{
+    (void)st;
+    double alphas[2] = {1.0, 0.95};
+    for (int a = 0; a < 2; a++) {
+        long N = 10000;
+        sequence A = run_sequence(GR_EDMD_TREE, N, alphas[a]), B = run_sequence(GR_EDMD_NAIVE, N, alphas[a]);
+        assert_int_equal(A.n, N);
+        assert_int_equal(B.n, N);
+        long first_diff = -1;
+        double worst_dt = 0;
+        for (long k = 0; k < N; k++) {
+            if (A.i[k] != B.i[k] || A.j[k] != B.j[k]) {
+                first_diff = k;
+                break;
+            }
+            double dt = fabs(A.t[k] - B.t[k]);
+            worst_dt = dt > worst_dt ? dt : worst_dt;
+        }
+        printf("# alpha = %g: %ld events, first difference at %ld, max |dt| = %.3e\n", alphas[a], N, first_diff,
+               worst_dt);
+        assert_int_equal(first_diff, -1);
+        assert_true(worst_dt <= 1e-12 * A.t[N - 1]);
+        free(A.i), free(A.j), free(A.t), free(B.i), free(B.j), free(B.t);
+    }
+}
+
+/* Inelastic disks: the kinetic energy lost equals the sum of the losses
+ * at the collisions, (1 - alpha^2) m_12 v_n^2 / 2 each. */
+static void inelastic_bookkeeping(void **st)
+{
+    (void)st;
+    long n = 400;
+    double L = sqrt(n * M_PI / 4 / 0.1);
+    gr_scene sc = edmd_box(L, L, 1, 0.9);
+    gr_particles *p = edmd_lattice(n, 0, 0, L, L, 1.0, 1, 14);
+    gr_edmd *s = make(&sc, p, GR_EDMD_TREE);
+    double e0 = edmd_energy(p, 0);
+    gr_err e = {0};
+    assert_int_equal(gr_edmd_advance(s, INFINITY, 20000, &e), GR_OK);
+    assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
+    double inj, diss, e1 = edmd_energy(p, 0);
+    gr_edmd_energy_budget(s, &inj, &diss);
+    printf("# alpha 0.9: E %g -> %g, dissipated %g, mismatch %.3e\n", e0, e1, diss, fabs(e0 - diss - e1) / e0);
+    assert_true(e1 < 0.5 * e0);
+    assert_true(fabs(e0 - diss - e1) < 1e-10 * e0);
+    gr_edmd_free(s);
+    gr_particles_free(p);
+}
+
+static void refuses_bad_starts(void **st)
+{
+    (void)st;
+    gr_scene sc = edmd_box(10, 10, 0, 1.0);
+    gr_particles *p = edmd_lattice(4, 0, 0, 10, 10, 1.0, 0, 1);
+    p->x[1] = p->x[0] + 0.5;
+    p->y[1] = p->y[0];
+    gr_edmd_params prm;
+    gr_edmd_params_default(&prm);
+    gr_edmd *s = NULL;
+    gr_err e = {0};
+    assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "overlap"));
+    gr_particles_free(p);
+    p = edmd_lattice(4, 0, 0, 10, 10, 1.0, 0, 1);
+    prm.cell = 0.5;
+    assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "cell"));
+    gr_scene pc = edmd_box(3.5, 10, 1, 1.0);
+    prm.cell = 0;
+    gr_particles_free(p);
+    p = edmd_lattice(4, 0, 0, 3.5, 10, 1.0, 0, 1);
+    assert_int_equal(gr_edmd_create(&pc, p, &prm, &s, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "periodic"));
+    gr_particles_free(p);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(elastic_energy_contacts_overlaps),
+        cmocka_unit_test(periodic_momentum),
+        cmocka_unit_test(same_sequence_as_naive),
+        cmocka_unit_test(inelastic_bookkeeping),
+        cmocka_unit_test(refuses_bad_starts),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
