@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "err.h"
+#include "particles.h"
 
 typedef struct gr_ckpt gr_ckpt;
 
@@ -30,5 +31,15 @@ gr_ckpt *gr_ckpt_create(const char *path, gr_err *err);
 gr_ckpt *gr_ckpt_open(const char *path, gr_err *err);
 /* Flush and close; returns the status of the final flush. */
 int gr_ckpt_close(gr_ckpt *c, gr_err *err);
+/* Abandon a checkpoint being written (its temporary file is removed, the
+ * previous checkpoint stays); closes one opened for reading. Accepts NULL. */
+void gr_ckpt_discard(gr_ckpt *c);
+
+/* Make the checkpoint an H5MD file too (h5md/, parameters/ with the scene,
+ * one frame at step/time), so gr_h5md_open reads its scene and particles. */
+struct gr_scene;
+struct gr_h5md_opts;
+int gr_ckpt_put_h5md(gr_ckpt *c, const struct gr_scene *sc, const struct gr_h5md_opts *o,
+                     uint64_t step, double time, const gr_particles *p, gr_err *err);
 
 #endif

@@ -1,0 +1,725 @@
+/* H5MD writer: the layout of docs/output-format.md, written as the run goes
+ * and flushed after every write. */
+#include "h5md_impl.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "scene.h"
+
+typedef struct {
+    const char *name;
+    const char *unit;
+    gr_h5_type type;
+    int ncomp;        /* 1 or 2 (x, y) */
+    int once;         /* stored once, as a dataset, until it changes */
+} elem_def;
+
+enum { E_POS, E_VEL, E_OMEGA, E_FLAGS, E_RADIUS, E_MASS, E_INERTIA, E_SPECIES, E_ID, NPE };
+static const elem_def pdefs[NPE] = {
+    {"position", "d", GR_T_F64, 2, 0},
+    {"velocity", "d tau-1", GR_T_F64, 2, 0},
+    {"omega", "tau-1", GR_T_F64, 1, 0},
+    {"flags", "1", GR_T_U32, 1, 0},
+    {"radius", "d", GR_T_F64, 1, 1},
+    {"mass", "m", GR_T_F64, 1, 1},
+    {"inertia", "m d+2", GR_T_F64, 1, 1},
+    {"species", "1", GR_T_I32, 1, 1},
+    {"id", "1", GR_T_I64, 1, 1},
+};
+
+enum { O_NMOB, O_EKT, O_EKR, O_EPOT, O_TEMP, O_MOM, O_OUT, O_PRES, O_OVL, NOE };
+static const elem_def odefs[NOE] = {
+    {"n_mobile", "1", GR_T_I64, 1, 0},
+    {"ekin_trans", "m d+2 tau-2", GR_T_F64, 1, 0},
+    {"ekin_rot", "m d+2 tau-2", GR_T_F64, 1, 0},
+    {"epot_grav", "m d+2 tau-2", GR_T_F64, 1, 0},
+    {"temperature", "m d+2 tau-2", GR_T_F64, 1, 0},
+    {"momentum", "m d tau-1", GR_T_F64, 2, 0},
+    {"outflow", "1", GR_T_I64, 1, 0},
+    {"wall_pressure", "m tau-2", GR_T_F64, 1, 0},
+    {"max_overlap", "d", GR_T_F64, 1, 0},
+};
+
+typedef struct {
+    hid_t group;   /* time-dependent: the element group */
+    hid_t value;   /* time-dependent: its value; once: the dataset itself */
+    int series;
+    void *prev;    /* once: the stored values, to notice a change */
+} elem;
+
+typedef struct {
+    char name[128];
+    int nx, ny, ncomp;
+    double x0, y0, dx, dy;
+    hid_t group, step, time, value;
+} field;
+
+struct gr_h5md {
+    hid_t file;
+    int owned;            /* created by gr_h5md_create: closed on free */
+    int broken;           /* a write failed half-way: refuse further frames */
+    char *path, *xdmf, *h5name;
+    hid_t traj, box;
+    size_t n, frames;
+    hid_t step, time, edges;
+    elem pe[NPE];
+    double width, height;
+    void *buf;
+    double *times;
+    size_t times_cap;
+    double last_time;
+    hid_t obs_step, obs_time;
+    elem oe[NOE];
+    size_t nobs;
+    double last_obs_time;
+    field *fields;
+    size_t nfields;
+};
+
+static hid_t mkgroup(hid_t loc, const char *name)
+{
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    if (lcpl < 0)
+        return -1;
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t g = H5Gcreate2(loc, name, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    return g;
+}
+
+static const char *author_name(const gr_h5md_opts *o)
+{
+    if (o->author && o->author[0])
+        return o->author;
+    const char *a = getenv("GRANO_AUTHOR");
+    if (a && a[0])
+        return a;
+    a = getenv("USER");
+    return a && a[0] ? a : "unknown";
+}
+
+/* h5md/ metadata and parameters/: everything known before the first frame. */
+static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, gr_err *err)
+{
+    const int version[2] = {1, 1}, units_version[2] = {1, 0}, dim = 2;
+    hid_t g = mkgroup(h->file, "h5md");
+    int bad = g < 0 || gr_h5_attr_int(g, "version", version, 2);
+    gr_h5_close(g);
+    g = bad ? -1 : mkgroup(h->file, "h5md/author");
+    bad = bad || g < 0 || gr_h5_attr_str(g, "name", author_name(o), 0);
+    gr_h5_close(g);
+    g = bad ? -1 : mkgroup(h->file, "h5md/creator");
+    bad = bad || g < 0 || gr_h5_attr_str(g, "name", "grano", 0) ||
+          gr_h5_attr_str(g, "version", o->version ? o->version : GRANO_VERSION, 0);
+    gr_h5_close(g);
+    g = bad ? -1 : mkgroup(h->file, "h5md/modules/units");
+    bad = bad || g < 0 || gr_h5_attr_int(g, "version", units_version, 2) ||
+          gr_h5_attr_str(g, "system",
+                         "grano reduced units: d grain diameter, m grain mass, "
+                         "tau = sqrt(d/g) (or d/V0 for event-driven scenes without gravity)", 1);
+    gr_h5_close(g);
+    if (bad)
+        return gr_h5_fail(err, GR_ERUN, "cannot write the h5md metadata group");
+
+    g = mkgroup(h->file, "parameters");
+    bad = g < 0 || gr_h5_dset_str(g, "scene", sc->text ? sc->text : "") ||
+          gr_h5_dset_str(g, "scene_name", sc->name) || gr_h5_dset_str(g, "scene_path", sc->path) ||
+          gr_h5_dset_str(g, "method", o->method ? o->method : "") ||
+          gr_h5_dset_u64(g, "seed", o->seed) ||
+          gr_h5_dset_str(g, "grano_version", o->version ? o->version : GRANO_VERSION);
+    gr_h5_close(g);
+    if (bad)
+        return gr_h5_fail(err, GR_ERUN, "cannot write the parameters group");
+
+    h->traj = mkgroup(h->file, "particles/trajectory");
+    h->box = h->traj >= 0 ? mkgroup(h->traj, "box") : -1;
+    const char *bnd[2] = {
+        sc->side[GR_LEFT] == GR_BC_PERIODIC && sc->side[GR_RIGHT] == GR_BC_PERIODIC ? "periodic" : "none",
+        sc->side[GR_BOTTOM] == GR_BC_PERIODIC && sc->side[GR_TOP] == GR_BC_PERIODIC ? "periodic" : "none"};
+    if (h->box < 0 || gr_h5_attr_int(h->box, "dimension", &dim, 0) ||
+        gr_h5_attr_strs(h->box, "boundary", bnd, 2, 0))
+        return gr_h5_fail(err, GR_ERUN, "cannot write particles/trajectory/box");
+    h->width = sc->width;
+    h->height = sc->height;
+    return GR_OK;
+}
+
+static gr_h5md *alloc_writer(void)
+{
+    gr_h5md *h = calloc(1, sizeof *h);
+    if (!h)
+        return NULL;
+    h->file = h->traj = h->box = h->step = h->time = h->edges = -1;
+    h->obs_step = h->obs_time = -1;
+    for (int k = 0; k < NPE; k++)
+        h->pe[k].group = h->pe[k].value = -1;
+    for (int k = 0; k < NOE; k++)
+        h->oe[k].group = h->oe[k].value = -1;
+    return h;
+}
+
+static void close_handles(gr_h5md *h)
+{
+    for (int k = 0; k < NPE; k++) {
+        gr_h5_close(h->pe[k].value);
+        gr_h5_close(h->pe[k].group);
+        free(h->pe[k].prev);
+    }
+    for (int k = 0; k < NOE; k++) {
+        gr_h5_close(h->oe[k].value);
+        gr_h5_close(h->oe[k].group);
+    }
+    for (size_t i = 0; i < h->nfields; i++) {
+        gr_h5_close(h->fields[i].value);
+        gr_h5_close(h->fields[i].time);
+        gr_h5_close(h->fields[i].step);
+        gr_h5_close(h->fields[i].group);
+    }
+    gr_h5_close(h->obs_step);
+    gr_h5_close(h->obs_time);
+    gr_h5_close(h->step);
+    gr_h5_close(h->time);
+    gr_h5_close(h->edges);
+    gr_h5_close(h->box);
+    gr_h5_close(h->traj);
+}
+
+/* Close every handle (the file too when owned) and free h; returns the
+ * status of closing the file. */
+static herr_t release(gr_h5md *h)
+{
+    close_handles(h);
+    herr_t st = 0;
+    if (h->owned && h->file >= 0)
+        st = H5Fclose(h->file);
+    free(h->fields);
+    free(h->buf);
+    free(h->times);
+    free(h->path);
+    free(h->xdmf);
+    free(h->h5name);
+    free(h);
+    return st;
+}
+
+static void free_writer(gr_h5md *h)
+{
+    (void)release(h);
+}
+
+static int write_sidecar(gr_h5md *h, gr_err *err)
+{
+    if (!h->xdmf)
+        return GR_OK;
+    gr_xdmf_attr a[NPE - 1];
+    size_t na = 0;
+    for (int k = E_VEL; k < NPE; k++)
+        a[na++] = (gr_xdmf_attr){pdefs[k].name, h->pe[k].series, pdefs[k].ncomp, pdefs[k].type};
+    return gr_xdmf_write(h->xdmf, h->h5name, h->n, h->frames, h->times, a, na, err);
+}
+
+static char *catstr(const char *a, const char *b)
+{
+    size_t la = strlen(a), lb = strlen(b);
+    char *s = malloc(la + lb + 1);
+    if (s) {
+        memcpy(s, a, la);
+        memcpy(s + la, b, lb + 1);
+    }
+    return s;
+}
+
+static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_opts *o,
+                            gr_err *err)
+{
+    if (!path || !path[0]) {
+        gr_fail(err, GR_EINPUT, "no output file given");
+        return NULL;
+    }
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            gr_fail(err, GR_EINPUT, "output file %s is a directory", path);
+            return NULL;
+        }
+        if (!o->force) {
+            gr_fail(err, GR_EINPUT, "output file %s already exists; use --force to overwrite it", path);
+            return NULL;
+        }
+    }
+    gr_h5md *h = alloc_writer();
+    char *part = catstr(path, ".part");
+    if (!h || !part || !(h->path = strdup(path)) ||
+        (!o->no_xdmf && !(h->xdmf = catstr(path, ".xdmf")))) {
+        gr_fail(err, GR_ERUN, "out of memory");
+        goto fail;
+    }
+    const char *slash = strrchr(path, '/');
+    if (!(h->h5name = strdup(slash ? slash + 1 : path))) {
+        gr_fail(err, GR_ERUN, "out of memory");
+        goto fail;
+    }
+    h->owned = 1;
+    hid_t fapl = gr_h5_fapl();
+    h->file = fapl < 0 ? -1 : H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    gr_h5_close(fapl);
+    if (h->file < 0) {
+        gr_h5_fail(err, GR_EINPUT, "cannot create output file %s", path);
+        goto fail;
+    }
+    if (build_layout(h, sc, o, err))
+        goto fail_unlink;
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0) {
+        gr_h5_fail(err, GR_ERUN, "cannot write %s", path);
+        goto fail_unlink;
+    }
+    if (write_sidecar(h, err))
+        goto fail_unlink;
+    if (rename(part, path) != 0) {
+        gr_fail(err, GR_EINPUT, "cannot create output file %s: %s", path, strerror(errno));
+        goto fail_unlink;
+    }
+    free(part);
+    return h;
+fail_unlink:
+    free_writer(h);
+    h = NULL;
+    unlink(part);
+fail:
+    free(part);
+    if (h)
+        free_writer(h);
+    return NULL;
+}
+
+gr_h5md *gr_h5md_create(const char *path, const gr_scene *sc, const gr_h5md_opts *o,
+                        gr_err *err)
+{
+    gr_h5md_opts zero = {0};
+    if (!sc) {
+        gr_fail(err, GR_ERUN, "gr_h5md_create: no scene");
+        return NULL;
+    }
+    gr_h5md *h = NULL;
+    GR_H5_QUIET(h = create_impl(path, sc, o ? o : &zero, err));
+    return h;
+}
+
+gr_h5md *gr_h5md_attach(hid_t file, const gr_scene *sc, const gr_h5md_opts *o, gr_err *err)
+{
+    gr_h5md_opts zero = {0};
+    gr_h5md *h = alloc_writer();
+    if (!h) {
+        gr_fail(err, GR_ERUN, "out of memory");
+        return NULL;
+    }
+    h->file = file;
+    int rc;
+    GR_H5_QUIET(rc = build_layout(h, sc, o ? o : &zero, err));
+    if (rc) {
+        free_writer(h);
+        return NULL;
+    }
+    return h;
+}
+
+/* A time-dependent element group whose step and time are hard links to
+ * those of the element owning them (H5MD: equal sampling, shared axes). */
+static hid_t series_group(hid_t loc, const char *name, hid_t owner_group)
+{
+    hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0)
+        return -1;
+    if (H5Lcreate_hard(owner_group, "step", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
+        H5Lcreate_hard(owner_group, "time", g, "time", H5P_DEFAULT, H5P_DEFAULT) < 0) {
+        H5Gclose(g);
+        return -1;
+    }
+    return g;
+}
+
+static hid_t series_value(hid_t g, const elem_def *d, size_t n)
+{
+    hsize_t item[2] = {n, (hsize_t)d->ncomp};
+    int rank = n ? (d->ncomp > 1 ? 2 : 1) : (d->ncomp > 1 ? 1 : 0);
+    const hsize_t *dims = n ? item : item + 1;
+    hid_t v = gr_h5_ext_create(g, "value", d->type, rank, dims);
+    if (v >= 0 && gr_h5_unit(v, d->unit)) {
+        H5Dclose(v);
+        return -1;
+    }
+    return v;
+}
+
+/* Owner of step/time: a group with both, time in tau. */
+static hid_t owner_group(hid_t loc, const char *name, hid_t *step, hid_t *time)
+{
+    hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g < 0)
+        return -1;
+    *step = gr_h5_ext_create(g, "step", GR_T_I64, 0, NULL);
+    *time = gr_h5_ext_create(g, "time", GR_T_F64, 0, NULL);
+    if (*step < 0 || *time < 0 || gr_h5_unit(*time, "tau")) {
+        H5Gclose(g);
+        return -1;
+    }
+    return g;
+}
+
+static const void *pack_particles(const gr_particles *p, int k, double *buf)
+{
+    switch (k) {
+    case E_POS:
+    case E_VEL: {
+        const double *a = k == E_POS ? p->x : p->vx, *b = k == E_POS ? p->y : p->vy;
+        for (size_t i = 0; i < p->n; i++) {
+            buf[2 * i] = a[i];
+            buf[2 * i + 1] = b[i];
+        }
+        return buf;
+    }
+    case E_OMEGA: return p->omega;
+    case E_FLAGS: return p->flags;
+    case E_RADIUS: return p->radius;
+    case E_MASS: return p->mass;
+    case E_INERTIA: return p->inertia;
+    case E_SPECIES: return p->species;
+    default: return p->id;
+    }
+}
+
+static int create_trajectory(gr_h5md *h, const gr_particles *p)
+{
+    size_t n = p->n;
+    elem *pos = &h->pe[E_POS];
+    pos->group = owner_group(h->traj, "position", &h->step, &h->time);
+    if (pos->group < 0)
+        return -1;
+    pos->series = 1;
+    if ((pos->value = series_value(pos->group, &pdefs[E_POS], n)) < 0)
+        return -1;
+    /* The box never changes, but H5MD wants box step/time to be those of
+     * position when edges is time-dependent; writing it per frame keeps
+     * readers that expect edges/value (VMD, MDAnalysis) happy. */
+    static const elem_def edges = {"edges", "d", GR_T_F64, 2, 0};
+    hid_t eg = series_group(h->box, "edges", pos->group);
+    if (eg < 0)
+        return -1;
+    h->edges = series_value(eg, &edges, 0);
+    H5Gclose(eg);
+    if (h->edges < 0)
+        return -1;
+    for (int k = E_VEL; k < NPE; k++) {
+        elem *e = &h->pe[k];
+        if (pdefs[k].once) {
+            size_t bytes = n * gr_h5_tsize(pdefs[k].type);
+            hsize_t dims[2] = {n, 0};
+            e->value = gr_h5_fixed_create(h->traj, pdefs[k].name, pdefs[k].type, dims,
+                                          pack_particles(p, k, h->buf));
+            if (e->value < 0 || gr_h5_unit(e->value, pdefs[k].unit) || !(e->prev = malloc(bytes)))
+                return -1;
+            memcpy(e->prev, pack_particles(p, k, h->buf), bytes);
+        } else {
+            e->series = 1;
+            e->group = series_group(h->traj, pdefs[k].name, pos->group);
+            if (e->group < 0 || (e->value = series_value(e->group, &pdefs[k], n)) < 0)
+                return -1;
+        }
+    }
+    return 0;
+}
+
+/* A quantity stored once changed: turn it into a time-dependent element
+ * whose first rows repeat the stored values. */
+static int promote(gr_h5md *h, int k)
+{
+    elem *e = &h->pe[k];
+    H5Dclose(e->value);
+    e->value = -1;
+    if (H5Ldelete(h->traj, pdefs[k].name, H5P_DEFAULT) < 0)
+        return -1;
+    e->group = series_group(h->traj, pdefs[k].name, h->pe[E_POS].group);
+    if (e->group < 0 || (e->value = series_value(e->group, &pdefs[k], h->n)) < 0)
+        return -1;
+    for (size_t f = 0; f < h->frames; f++)
+        if (gr_h5_ext_append(e->value, pdefs[k].type, e->prev))
+            return -1;
+    e->series = 1;
+    free(e->prev);
+    e->prev = NULL;
+    return 0;
+}
+
+static int check_finite(const gr_particles *p, double time, gr_err *err)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        const char *what = !isfinite(p->x[i]) || !isfinite(p->y[i]) ? "position"
+                           : !isfinite(p->vx[i]) || !isfinite(p->vy[i]) ? "velocity"
+                           : !isfinite(p->omega[i]) ? "angular velocity" : NULL;
+        if (what)
+            return gr_fail(err, GR_ERUN,
+                           "grain id %lld (index %zu) has a non-finite %s at t = %.17g; "
+                           "frame not written", (long long)p->id[i], i, what, time);
+    }
+    return GR_OK;
+}
+
+static int push_time(gr_h5md *h, double t)
+{
+    if (h->frames + 1 > h->times_cap) {
+        size_t cap = h->times_cap ? 2 * h->times_cap : 64;
+        double *q = realloc(h->times, cap * sizeof *q);
+        if (!q)
+            return -1;
+        h->times = q;
+        h->times_cap = cap;
+    }
+    h->times[h->frames] = t;
+    return 0;
+}
+
+static int frame_impl(gr_h5md *h, uint64_t step, double time, const gr_particles *p, gr_err *err)
+{
+    if (h->broken)
+        return gr_fail(err, GR_ERUN, "an earlier write to %s failed; no further frames",
+                       h->path ? h->path : "the file");
+    if (!p || p->n == 0)
+        return gr_fail(err, GR_ERUN, "a trajectory frame needs at least one grain");
+    if (h->frames && p->n != h->n)
+        return gr_fail(err, GR_ERUN, "frame with %zu grains, but this file holds %zu per frame",
+                       p->n, h->n);
+    if (!isfinite(time) || (h->frames && time < h->last_time))
+        return gr_fail(err, GR_ERUN, "frame time %.17g is not after the previous one (%.17g)",
+                       time, h->last_time);
+    if (check_finite(p, time, err))
+        return err->code;
+    if (!h->frames) {
+        free(h->buf);
+        if (!(h->buf = malloc(2 * p->n * sizeof(double))))
+            return gr_fail(err, GR_ERUN, "out of memory");
+        h->n = p->n;
+        if (create_trajectory(h, p)) {
+            h->broken = 1;
+            return gr_h5_fail(err, GR_ERUN, "cannot create the trajectory in %s", h->path ? h->path : "the file");
+        }
+    }
+    if (push_time(h, time))
+        return gr_fail(err, GR_ERUN, "out of memory");
+    h->broken = 1;
+    for (int k = 0; k < NPE; k++) {
+        elem *e = &h->pe[k];
+        const void *row = pack_particles(p, k, h->buf);
+        if (!e->series) {
+            if (!h->frames || !memcmp(row, e->prev, h->n * gr_h5_tsize(pdefs[k].type)))
+                continue;
+            if (promote(h, k))
+                return gr_h5_fail(err, GR_ERUN, "cannot make %s time-dependent", pdefs[k].name);
+        }
+        if (gr_h5_ext_append(e->value, pdefs[k].type, row))
+            return gr_h5_fail(err, GR_ERUN, "cannot append to particles/trajectory/%s", pdefs[k].name);
+    }
+    double edges[2] = {h->width, h->height};
+    int64_t s = (int64_t)step;
+    if (gr_h5_ext_append(h->edges, GR_T_F64, edges) || gr_h5_ext_append(h->step, GR_T_I64, &s) ||
+        gr_h5_ext_append(h->time, GR_T_F64, &time))
+        return gr_h5_fail(err, GR_ERUN, "cannot append the frame step and time");
+    h->frames++;
+    h->last_time = time;
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
+    h->broken = 0;
+    return write_sidecar(h, err);
+}
+
+int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time, const gr_particles *p,
+                        gr_err *err)
+{
+    int rc;
+    GR_H5_QUIET(rc = frame_impl(h, step, time, p, err));
+    return rc;
+}
+
+static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
+{
+    if (!isfinite(o->t) || (h->nobs && o->t < h->last_obs_time))
+        return gr_fail(err, GR_ERUN, "observable time %.17g is not after the previous one (%.17g)",
+                       o->t, h->last_obs_time);
+    if (!h->nobs && h->oe[0].group < 0) {
+        hid_t og = mkgroup(h->file, "observables");
+        int bad = og < 0;
+        for (int k = 0; k < NOE && !bad; k++) {
+            elem *e = &h->oe[k];
+            e->group = k == 0 ? owner_group(og, odefs[k].name, &h->obs_step, &h->obs_time)
+                              : series_group(og, odefs[k].name, h->oe[0].group);
+            e->series = 1;
+            bad = e->group < 0 || (e->value = series_value(e->group, &odefs[k], 0)) < 0;
+        }
+        gr_h5_close(og);
+        if (bad)
+            return gr_h5_fail(err, GR_ERUN, "cannot create the observables group");
+    }
+    int64_t nmob = (int64_t)o->n_mobile, out = (int64_t)o->outflow, step = (int64_t)o->steps;
+    double mom[2] = {o->px, o->py};
+    const void *rows[NOE] = {&nmob, &o->ekin_trans, &o->ekin_rot, &o->epot_grav,
+                             &o->temperature, mom, &out, &o->wall_pressure, &o->max_overlap};
+    for (int k = 0; k < NOE; k++)
+        if (gr_h5_ext_append(h->oe[k].value, odefs[k].type, rows[k]))
+            return gr_h5_fail(err, GR_ERUN, "cannot append to observables/%s", odefs[k].name);
+    if (gr_h5_ext_append(h->obs_step, GR_T_I64, &step) ||
+        gr_h5_ext_append(h->obs_time, GR_T_F64, &o->t))
+        return gr_h5_fail(err, GR_ERUN, "cannot append the observables step and time");
+    h->nobs++;
+    h->last_obs_time = o->t;
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
+    return GR_OK;
+}
+
+int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err)
+{
+    int rc;
+    GR_H5_QUIET(rc = obs_impl(h, o, err));
+    return rc;
+}
+
+static int valid_name(const char *s)
+{
+    if (!s || !s[0] || s[0] == '/' || s[strlen(s) - 1] == '/' || strstr(s, "//") ||
+        strstr(s, "..") || strchr(s, '"') || strchr(s, '<') || strchr(s, '&'))
+        return 0;
+    return 1;
+}
+
+static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double time,
+                      const double *values, gr_err *err)
+{
+    if (!valid_name(f->name) || strchr(f->name, '/') || strlen(f->name) >= sizeof h->fields->name)
+        return gr_fail(err, GR_ERUN, "invalid field name '%s'", f->name ? f->name : "");
+    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 2 || !(f->dx > 0) || !(f->dy > 0) ||
+        !isfinite(f->dx) || !isfinite(f->dy) || !isfinite(f->x0) || !isfinite(f->y0))
+        return gr_fail(err, GR_ERUN, "field '%s': invalid grid %dx%d (ncomp %d, cell %g x %g)",
+                       f->name, f->nx, f->ny, f->ncomp, f->dx, f->dy);
+    field *fl = NULL;
+    for (size_t i = 0; i < h->nfields; i++)
+        if (!strcmp(h->fields[i].name, f->name))
+            fl = &h->fields[i];
+    if (fl && (fl->nx != f->nx || fl->ny != f->ny || fl->ncomp != f->ncomp || fl->x0 != f->x0 ||
+               fl->y0 != f->y0 || fl->dx != f->dx || fl->dy != f->dy))
+        return gr_fail(err, GR_ERUN, "field '%s': grid differs from its first sample", f->name);
+    if (!fl) {
+        field *q = realloc(h->fields, (h->nfields + 1) * sizeof *q);
+        if (!q)
+            return gr_fail(err, GR_ERUN, "out of memory");
+        h->fields = q;
+        fl = &q[h->nfields];
+        *fl = (field){.nx = f->nx, .ny = f->ny, .ncomp = f->ncomp, .x0 = f->x0, .y0 = f->y0,
+                      .dx = f->dx, .dy = f->dy, .group = -1, .step = -1, .time = -1, .value = -1};
+        snprintf(fl->name, sizeof fl->name, "%s", f->name);
+        h->nfields++;
+        char path[160];
+        snprintf(path, sizeof path, "fields/%s", f->name);
+        hid_t g = mkgroup(h->file, path);
+        fl->group = g;
+        int grid[2] = {f->nx, f->ny}, nc = f->ncomp;
+        double origin[2] = {f->x0, f->y0}, cell[2] = {f->dx, f->dy};
+        hsize_t item[3] = {(hsize_t)f->ny, (hsize_t)f->nx, (hsize_t)f->ncomp};
+        if (g < 0 || gr_h5_attr_int(g, "grid", grid, 2) || gr_h5_attr_f64(g, "origin", origin, 2) ||
+            gr_h5_attr_f64(g, "cell", cell, 2) || gr_h5_attr_int(g, "components", &nc, 0) ||
+            (fl->step = gr_h5_ext_create(g, "step", GR_T_I64, 0, NULL)) < 0 ||
+            (fl->time = gr_h5_ext_create(g, "time", GR_T_F64, 0, NULL)) < 0 ||
+            gr_h5_unit(fl->time, "tau") ||
+            (fl->value = gr_h5_ext_create(g, "value", GR_T_F64, f->ncomp > 1 ? 3 : 2, item)) < 0 ||
+            gr_h5_unit(fl->value, f->unit ? f->unit : "1"))
+            return gr_h5_fail(err, GR_ERUN, "cannot create fields/%s", f->name);
+    }
+    int64_t s = (int64_t)step;
+    if (gr_h5_ext_append(fl->value, GR_T_F64, values) || gr_h5_ext_append(fl->step, GR_T_I64, &s) ||
+        gr_h5_ext_append(fl->time, GR_T_F64, &time))
+        return gr_h5_fail(err, GR_ERUN, "cannot append to fields/%s", f->name);
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
+    return GR_OK;
+}
+
+int gr_h5md_write_field(gr_h5md *h, const gr_field_desc *f, uint64_t step, double time,
+                        const double *values, gr_err *err)
+{
+    int rc;
+    GR_H5_QUIET(rc = field_impl(h, f, step, time, values, err));
+    return rc;
+}
+
+static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)
+{
+    if (!valid_name(d->name) || strlen(d->name) > 200)
+        return gr_fail(err, GR_ERUN, "invalid result name '%s'", d->name ? d->name : "");
+    char path[256];
+    snprintf(path, sizeof path, "results/%s", d->name);
+    if (gr_h5_exists(h->file, path) && H5Ldelete(h->file, path, H5P_DEFAULT) < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot replace %s", path);
+    hsize_t dims[2] = {d->rows, d->cols};
+    hid_t ds = gr_h5_fixed_create(h->file, path, GR_T_F64, dims, v);
+    int bad = ds < 0;
+    size_t nlab = d->cols ? d->cols : 1;
+    if (!bad && d->columns && d->cols)
+        bad = gr_h5_attr_strs(ds, "columns", (const char *const *)d->columns, d->cols, 1);
+    if (!bad && d->units)
+        bad = d->cols ? gr_h5_attr_strs(ds, "units", d->units, nlab, 1)
+                      : gr_h5_unit(ds, d->units[0]);
+    if (!bad && d->description)
+        bad = gr_h5_attr_str(ds, "description", d->description, 1);
+    gr_h5_close(ds);
+    if (bad)
+        return gr_h5_fail(err, GR_ERUN, "cannot write %s", path);
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
+    return GR_OK;
+}
+
+int gr_h5md_write_result(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)
+{
+    int rc;
+    GR_H5_QUIET(rc = result_impl(h, d, v, err));
+    return rc;
+}
+
+int gr_h5md_flush(gr_h5md *h, gr_err *err)
+{
+    int rc = GR_OK;
+    GR_H5_QUIET(if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+                    rc = gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file"));
+    return rc;
+}
+
+size_t gr_h5md_frames(const gr_h5md *h)
+{
+    return h->frames;
+}
+
+int gr_h5md_close(gr_h5md *h, gr_err *err)
+{
+    if (!h)
+        return GR_OK;
+    int rc = gr_h5md_flush(h, err);
+    if (!rc)
+        rc = write_sidecar(h, err);
+    char *path = h->path ? strdup(h->path) : NULL;
+    herr_t st;
+    GR_H5_QUIET(st = release(h));
+    if (st < 0 && !rc)
+        rc = gr_fail(err, GR_ERUN, "cannot close %s", path ? path : "the output file");
+    free(path);
+    return rc;
+}
+
+void gr_h5md_free(gr_h5md *h)
+{
+    if (h)
+        GR_H5_QUIET(free_writer(h));
+}

@@ -1,0 +1,87 @@
+/* Internals shared by the H5MD writer, reader, XDMF sidecar and checkpoint
+ * store. Not part of the public interface: only common/ includes it. */
+#ifndef GR_H5MD_IMPL_H
+#define GR_H5MD_IMPL_H
+
+#include <hdf5.h>
+
+#include "h5md.h"
+
+#ifndef GRANO_VERSION
+#define GRANO_VERSION "unknown"
+#endif
+
+/* Run an HDF5 sequence with the library's own stderr report turned off:
+ * errors reach the caller through gr_err instead. */
+#define GR_H5_QUIET(stmt)                                                      \
+    do {                                                                       \
+        H5E_BEGIN_TRY { stmt; }                                                \
+        H5E_END_TRY;                                                           \
+    } while (0)
+
+/* Fill err with the message followed by the innermost HDF5 error, then clear
+ * the HDF5 error stack. Returns code. */
+int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+/* File access list: strong close (the file is really closed by H5Fclose, so
+ * a rename after it is safe) and the 1.8 format (H5MD recommends format 2
+ * and every reader of the last ten years opens it). */
+hid_t gr_h5_fapl(void);
+void gr_h5_close(hid_t id); /* any id kind, ignores <= 0 */
+
+/* Attributes. */
+int gr_h5_attr_str(hid_t obj, const char *name, const char *value, int vlen);
+int gr_h5_attr_strs(hid_t obj, const char *name, const char *const *v, size_t n, int vlen);
+int gr_h5_attr_int(hid_t obj, const char *name, const int *v, size_t n); /* n 0: scalar */
+int gr_h5_attr_f64(hid_t obj, const char *name, const double *v, size_t n);
+int gr_h5_unit(hid_t obj, const char *unit);
+/* String attribute (fixed or variable length) as a malloc'd string; NULL if
+ * absent or unreadable. */
+char *gr_h5_read_attr_str(hid_t obj, const char *name);
+int gr_h5_read_attr_int(hid_t obj, const char *name, int *v, size_t n);
+int gr_h5_read_attr_f64(hid_t obj, const char *name, double *v, size_t n);
+
+/* Scalar datasets. */
+int gr_h5_dset_str(hid_t loc, const char *name, const char *text);
+int gr_h5_dset_u64(hid_t loc, const char *name, uint64_t v);
+char *gr_h5_read_dset_str(hid_t loc, const char *name);
+int gr_h5_read_dset_u64(hid_t loc, const char *name, uint64_t *v);
+
+/* Element types. */
+typedef enum { GR_T_F64 = 0, GR_T_I64, GR_T_I32, GR_T_U32, GR_T_U64, GR_T_U8 } gr_h5_type;
+hid_t gr_h5_ftype(gr_h5_type t); /* little-endian file type */
+hid_t gr_h5_mtype(gr_h5_type t); /* native memory type */
+size_t gr_h5_tsize(gr_h5_type t);
+
+/* Extendible datasets: shape [rows][item...], rows growing one at a time. */
+hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
+                       const hsize_t *item_dims);
+int gr_h5_ext_append(hid_t dset, gr_h5_type t, const void *row);
+hsize_t gr_h5_rows(hid_t dset); /* first dimension; 0 on error */
+int gr_h5_read_rows(hid_t dset, gr_h5_type t, hsize_t first, hsize_t count, void *buf);
+/* Fixed dataset of rank 1 or 2 (dims[1] 0 for rank 1). */
+hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_t dims[2],
+                         const void *data);
+
+int gr_h5_exists(hid_t loc, const char *path); /* link exists (all components) */
+
+/* Attach the H5MD layout to an open file that the caller keeps owning (the
+ * checkpoint store): no rename, no sidecar, the file stays open on free. */
+gr_h5md *gr_h5md_attach(hid_t file, const struct gr_scene *sc, const gr_h5md_opts *o,
+                        gr_err *err);
+
+/* XDMF sidecar: rewrite xdmf_path (via a temporary and rename) for the
+ * trajectory in h5_name (a path relative to the sidecar). */
+typedef struct {
+    const char *name;      /* element under particles/trajectory */
+    int series;            /* time-dependent (group with value) or a dataset */
+    int ncomp;             /* 1 or 2 */
+    gr_h5_type type;
+} gr_xdmf_attr;
+
+int gr_xdmf_write(const char *xdmf_path, const char *h5_name, size_t n,
+                  size_t frames, const double *times, const gr_xdmf_attr *attrs,
+                  size_t nattrs, gr_err *err);
+
+#endif
