@@ -22,9 +22,10 @@ static int residual_cb(const gsl_vector *p, void *params, gsl_vector *f)
     const fit_data *d = params;
     for (size_t i = 0; i < f->size; i++) {
         double v = d->m->f(d->x[i], p->data, NULL, d->m->user);
-        if (!isfinite(v))
-            return GSL_EDOM;
-        gsl_vector_set(f, i, v - d->y[i]);
+        /* A trial step outside the model's domain gets a huge but finite
+         * residual, so the trust region rejects it and shrinks instead of
+         * aborting (the start is checked to be inside the domain). */
+        gsl_vector_set(f, i, isfinite(v) ? v - d->y[i] : 1e100);
     }
     return GSL_SUCCESS;
 }
@@ -83,6 +84,12 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
     for (size_t j = 0; j < np; j++)
         if (!isfinite(p0[j]))
             return gr_fail(err, GR_EINPUT, "%s fit: start value %zu is not finite", name, j);
+    for (size_t i = 0; i < n; i++) {
+        double v = m->f(x[i], p0, NULL, m->user);
+        if (!isfinite(v))
+            return gr_fail(err, GR_EINPUT, "%s fit: model undefined at the start values (x = %g)",
+                           name, x[i]);
+    }
     gr_fit_opts o = opt ? *opt : (gr_fit_opts){0};
     if (o.max_iter == 0)
         o.max_iter = 500;
@@ -119,34 +126,51 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
         rc = gr_fail(err, GR_ERUN, "%s fit: out of memory (%zu points)", name, n);
         goto done;
     }
-    gsl_vector_const_view start = gsl_vector_const_view_array(p0, np);
-    int st;
-    if (sigma) {
+    if (sigma)
         for (size_t i = 0; i < n; i++)
             gsl_vector_set(wts, i, 1.0 / (sigma[i] * sigma[i]));
-        st = gsl_multifit_nlinear_winit(&start.vector, wts, &fdf, w);
-    } else {
-        st = gsl_multifit_nlinear_init(&start.vector, &fdf, w);
-    }
-    if (st) {
-        rc = gr_fail(err, GR_EINPUT, "%s fit: model undefined at the start values (%s)", name,
-                     gsl_strerror(st));
-        goto done;
-    }
-    int info = 0;
-    st = gsl_multifit_nlinear_driver(o.max_iter, o.xtol, o.gtol, o.ftol, NULL, NULL, &info, w);
-    /* GSL stops with "no progress" (as GSL_EMAXITER after one iteration)
-     * when the start is already the optimum, e.g. noise-free data: accept
-     * any stop where the convergence test holds. */
-    if (st != GSL_SUCCESS) {
-        int info2 = 0;
-        if (gsl_multifit_nlinear_test(o.xtol, o.gtol, o.ftol, &info2, w) == GSL_SUCCESS) {
-            st = GSL_SUCCESS;
-            info = info2;
+    /* GSL's step-size test also fires when rejected steps (outside the
+     * domain, or a poor model of the cost) have shrunk the trust region to
+     * nothing: restart from where it stopped, with a fresh region, until a
+     * restart no longer moves. */
+    double cur[GR_FIT_MAXP];
+    memcpy(cur, p0, np * sizeof *cur);
+    int st, info = 0;
+    size_t iter = 0;
+    for (int round = 0; round < 20; round++) {
+        gsl_vector_view start = gsl_vector_view_array(cur, np);
+        st = sigma ? gsl_multifit_nlinear_winit(&start.vector, wts, &fdf, w)
+                   : gsl_multifit_nlinear_init(&start.vector, &fdf, w);
+        if (st) {
+            rc = gr_fail(err, GR_ERUN, "%s fit: model evaluation failed (%s)", name,
+                         gsl_strerror(st));
+            goto done;
         }
+        st = gsl_multifit_nlinear_driver(o.max_iter, o.xtol, o.gtol, o.ftol, NULL, NULL, &info,
+                                         w);
+        iter += gsl_multifit_nlinear_niter(w);
+        /* GSL stops with "no progress" (as GSL_EMAXITER after one
+         * iteration) when the start is already the optimum, e.g. noise-free
+         * data: accept a stop where the convergence test holds. */
+        if (st != GSL_SUCCESS && round > 0) {
+            int info2 = 0;
+            if (gsl_multifit_nlinear_test(o.xtol, o.gtol, o.ftol, &info2, w) == GSL_SUCCESS) {
+                st = GSL_SUCCESS;
+                info = info2;
+            }
+        }
+        const double *q = gsl_multifit_nlinear_position(w)->data;
+        int moved = 0;
+        for (size_t j = 0; j < np; j++)
+            moved |= fabs(q[j] - cur[j]) > 1e-7 * fmax(fabs(cur[j]), 1e-7);
+        memcpy(cur, q, np * sizeof *cur);
+        if (st != GSL_SUCCESS && round == 0 && st == GSL_EMAXITER && info == GSL_ENOPROG)
+            st = GSL_SUCCESS; /* no first step found: let the restart decide */
+        if (st != GSL_SUCCESS || !moved || iter >= o.max_iter)
+            break;
     }
-    memcpy(out->p, gsl_multifit_nlinear_position(w)->data, np * sizeof(double));
-    out->iter = gsl_multifit_nlinear_niter(w);
+    memcpy(out->p, cur, np * sizeof(double));
+    out->iter = iter;
     out->nfev = fdf.nevalf;
     out->info = info;
     gsl_vector *f = gsl_multifit_nlinear_residual(w);
@@ -287,6 +311,19 @@ gr_model gr_model_density_law(void)
 {
     return (gr_model){.name = "density law rho0 (1 - a exp(-b D))", .np = 3, .f = density_f,
                       .analytic_jac = 1, .pnames = {"rho0", "a", "b"}};
+}
+
+static double tsallis_f(double x, const double *p, double *g, void *u)
+{
+    (void)u;
+    (void)g;
+    return gr_pdf_tsallis_unit(x, p[0]);
+}
+
+gr_model gr_model_tsallis_unit(void)
+{
+    return (gr_model){.name = "unit-variance Tsallis law (eq. 3.8)", .np = 1, .f = tsallis_f,
+                      .analytic_jac = 0, .pnames = {"c"}};
 }
 
 gr_model gr_model_beverloo(const gr_beverloo_par *par)

@@ -232,14 +232,27 @@ void gr_moments_add_array(gr_moments *m, const double *x, size_t n)
 }
 
 size_t gr_moments_n(const gr_moments *m) { return gsl_rstat_n(m->rs); }
-double gr_moments_mean(const gr_moments *m) { return gsl_rstat_n(m->rs) ? gsl_rstat_mean(m->rs) : NAN; }
-double gr_moments_variance(const gr_moments *m) { return gsl_rstat_n(m->rs) > 1 ? gsl_rstat_variance(m->rs) : NAN; }
-double gr_moments_sd(const gr_moments *m) { return gsl_rstat_n(m->rs) > 1 ? gsl_rstat_sd(m->rs) : NAN; }
-double gr_moments_sd_mean(const gr_moments *m) { return gsl_rstat_n(m->rs) > 1 ? gsl_rstat_sd_mean(m->rs) : NAN; }
-double gr_moments_skew(const gr_moments *m) { return gsl_rstat_n(m->rs) > 1 ? gsl_rstat_skew(m->rs) : NAN; }
-double gr_moments_kurtosis(const gr_moments *m) { return gsl_rstat_n(m->rs) > 1 ? gsl_rstat_kurtosis(m->rs) : NAN; }
-double gr_moments_min(const gr_moments *m) { return gsl_rstat_n(m->rs) ? gsl_rstat_min(m->rs) : NAN; }
-double gr_moments_max(const gr_moments *m) { return gsl_rstat_n(m->rs) ? gsl_rstat_max(m->rs) : NAN; }
+
+/* GSL's values for fewer samples than a moment needs are 0, not NaN. */
+static int has(const gr_moments *m, size_t k) { return gsl_rstat_n(m->rs) >= k; }
+
+double gr_moments_mean(const gr_moments *m) { return has(m, 1) ? gsl_rstat_mean(m->rs) : NAN; }
+double gr_moments_variance(const gr_moments *m)
+{
+    return has(m, 2) ? gsl_rstat_variance(m->rs) : NAN;
+}
+double gr_moments_sd(const gr_moments *m) { return has(m, 2) ? gsl_rstat_sd(m->rs) : NAN; }
+double gr_moments_sd_mean(const gr_moments *m)
+{
+    return has(m, 2) ? gsl_rstat_sd_mean(m->rs) : NAN;
+}
+double gr_moments_skew(const gr_moments *m) { return has(m, 2) ? gsl_rstat_skew(m->rs) : NAN; }
+double gr_moments_kurtosis(const gr_moments *m)
+{
+    return has(m, 2) ? gsl_rstat_kurtosis(m->rs) : NAN;
+}
+double gr_moments_min(const gr_moments *m) { return has(m, 1) ? gsl_rstat_min(m->rs) : NAN; }
+double gr_moments_max(const gr_moments *m) { return has(m, 1) ? gsl_rstat_max(m->rs) : NAN; }
 
 double gr_moments_m2_zero(const gr_moments *m)
 {

@@ -144,7 +144,8 @@ double gr_ks_pvalue(double d, size_t n);
 
 /* A model y = f(x; p). When dydp is non-NULL (only if the model declares
  * an analytic Jacobian) it receives the np partial derivatives. A model
- * returns a non-finite value where it is undefined; the fit then fails. */
+ * returns a non-finite value where it is undefined: at the start that is
+ * GR_EINPUT, during the iteration the trial step is rejected. */
 typedef double (*gr_model_fn)(double x, const double *p, double *dydp, void *user);
 
 typedef struct {
@@ -197,13 +198,19 @@ gr_model gr_model_power(void);       /* A x^p: {A, p} */
 gr_model gr_model_exp(void);         /* A exp(b x): {A, b} */
 gr_model gr_model_gauss(void);       /* A exp(-(x-mu)^2 / (2 s^2)): {A, mu, s} */
 gr_model gr_model_density_law(void); /* rho0 (1 - a exp(-b D)): {rho0, a, b}, eq. 4.7 */
+/* gr_pdf_tsallis_unit(x, c): {c}, for a histogram of data scaled to unit
+ * standard deviation; c = 3/2 is eq. 3.4, large c Gaussian (finite
+ * differences for the Jacobian). */
+gr_model gr_model_tsallis_unit(void);
 
-/* Beverloo in 2D, W = C rho sqrt(g) (D - k)^e with e = 3/2 (d = 1 so k is
- * in diameters), free {C, k}; rho (number density or packing fraction, as
- * the caller measures W) and g fixed. W = 0 for D <= k. The modified law of
- * eqs. 4.14-4.15, W = C rho (1 - a exp(-b D)) sqrt(g) D^e with v ~ sqrt(gD),
- * free {C, a, b}. exponent <= 0 means 3/2 (5/2 gives the 3D law). The
- * model keeps a pointer to par: it must outlive the model. */
+/* Beverloo in 2D, W = C rho sqrt(g) (D - k)^e with e = 3/2, free {C, k}
+ * (d = 1, so k is in diameters; eq. 4.1 prints sqrt(g rho), but
+ * dimensional analysis and eq. 4.6 give rho sqrt(g)); rho (number density
+ * or packing fraction, as the caller measures W) and g are fixed. W = 0 for
+ * D <= k. The modified law of eqs. 4.14-4.15, W = C rho (1 - a exp(-b D))
+ * sqrt(g) D^e (v ~ sqrt(g D)), free {C, a, b}. exponent <= 0 means 3/2
+ * (5/2 gives the 3D law). The model keeps a pointer to par: it must
+ * outlive the model. */
 typedef struct {
     double rho, g, exponent;
 } gr_beverloo_par;
