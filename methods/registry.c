@@ -5,8 +5,10 @@
 
 /* One line per backend. */
 extern const gr_method_type gr_edmd_method;
+extern const gr_method_type gr_dem_method;
 static const gr_method_type *const registry[] = {
     &gr_edmd_method,
+    &gr_dem_method,
     NULL
 };
 

@@ -1,0 +1,210 @@
+/* Soft-particle DEM backend (chapter 2 of the thesis): internal interface
+ * shared by the backend's files and its tests. Not part of method.h. */
+#ifndef GR_DEM_H
+#define GR_DEM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ckpt.h"
+#include "err.h"
+#include "observe.h"
+#include "particles.h"
+#include "scene.h"
+
+struct gr_rng;
+
+typedef enum { GR_DEM_VERLET = 0, GR_DEM_GEAR, GR_DEM_EULER, GR_DEM_CVODE } gr_dem_integrator;
+typedef enum { GR_DEM_NB_VERLET = 0, GR_DEM_NB_CELLS, GR_DEM_NB_BRUTE } gr_dem_neighbour;
+
+/* Parameters of the [dem] section (docs/methods/dem.md). */
+typedef struct {
+    double dt;            /* time step; <= 0 before gr_dem_params_read: t_c / 50 */
+    double dt_fraction;   /* refused above dt_fraction * t_c */
+    double v_impact;      /* impact speed for the Hertz t_c; <= 0: from the scene */
+    int integrator;       /* gr_dem_integrator */
+    int neighbour;        /* gr_dem_neighbour */
+    double skin;          /* Verlet list skin, in length units */
+    long threads;
+    double max_overlap;   /* in units of the smaller diameter of the pair */
+    double energy_jump;   /* allowed relative kinetic energy rise per step */
+    long sort_every;      /* cells: spatial sort period in steps */
+    double cvode_rtol, cvode_atol;
+} gr_dem_params;
+
+/* Field arrays, double-buffered so a failed step leaves the last good
+ * state untouched (parity cur is the state at time t). */
+enum {
+    F_X, F_Y, F_VX, F_VY, F_W, F_FX, F_FY, F_TQ,
+    /* Gear: angle and scaled derivatives b_k = dt^k/k! d^k q/dt^k, k = 2..5 */
+    F_TH, F_B2X, F_B2Y, F_B2T, F_B3X, F_B3Y, F_B3T, F_B4X, F_B4Y, F_B4T, F_B5X, F_B5Y, F_B5T,
+    F_NFIELDS
+};
+#define F_NBASIC (F_TQ + 1)
+
+/* A wall segment of infinite mass (user walls, silo walls, domain sides). */
+typedef struct {
+    double x0, y0, x1, y1;
+    double open_time;
+    int vibrating;
+} gr_dem_seg;
+
+/* Contact history (tangential spring): fixed slots per particle, owned by
+ * the grain of smaller tag; a slot is live when its stamp is the previous
+ * step. The *_old fields undo a failed step. */
+typedef struct {
+    int cap;                 /* slots per particle */
+    int32_t *partner, *partner_old; /* tag, or ntag + segment; -1 empty */
+    double *z, *z_old;
+    uint64_t *stamp, *stamp_old;
+} gr_dem_hist;
+
+/* Cells: CSR of particle indices by cell, row-major (row = y). */
+typedef struct {
+    int nx, ny;
+    double x0, y0, cx, cy, icx, icy;
+    int px, py;              /* periodic */
+    int32_t *start;          /* nx*ny+1 */
+    int32_t *idx;            /* particle indices sorted by cell */
+    int32_t *cell;           /* cell of each particle */
+    size_t cap;
+    int32_t *cell_seg_start, *cell_seg; /* segments near each cell */
+} gr_dem_cells;
+
+/* Groups of cell rows processed in 3 colours, so that threads never write
+ * the same grain and the summation order does not depend on the thread
+ * count. */
+typedef struct {
+    int n;
+    int32_t *row0;           /* n+1 row boundaries */
+    int32_t *i0;             /* n+1 particle index boundaries (sorted modes) */
+} gr_dem_strips;
+
+typedef struct gr_dem {
+    gr_scene sc;             /* shallow copy: pointers stay the caller's */
+    gr_dem_params par;
+    gr_normal_law normal;
+    gr_tang_law tang;
+    double kn, gn, kt, gt, mu;
+    int clip, rot, hist_on;
+    double g;
+    double Lx, Ly;           /* periods, 0 if none */
+    double dmin, dmax, rmax;
+
+    size_t n, cap;           /* live grains in the arrays */
+    size_t ntag;             /* all grains ever (tags 0..ntag-1 in id order) */
+    int nmobile;
+    int cur;
+    double *f[F_NFIELDS][2];
+    double *ux, *uy, *uw;    /* velocities seen by the force evaluation */
+    double *rad, *im, *iI, *gf, *mass, *inertia;
+    int32_t *tag;
+    uint32_t *flags;
+    int32_t *species;
+    double *xref, *yref;     /* positions at the last list build */
+    double *ext_fx, *ext_fy; /* external forces (tests), NULL if none */
+
+    gr_particles *gone;      /* tag-indexed record of grains that left */
+    int64_t *tag_id;         /* original id per tag */
+
+    gr_dem_seg *seg;
+    int nseg;
+
+    gr_dem_cells cells;
+    gr_dem_strips strips;
+    /* Verlet list (half: j > i), CSR */
+    int32_t *nb_start, *nb_j;
+    size_t nb_cap;
+    int32_t *sg_start, *sg_j; /* candidate segments per particle */
+    size_t sg_cap;
+    int need_build;
+    uint64_t builds;
+
+    gr_dem_hist hist;
+
+    uint64_t step;           /* steps done */
+    double t;
+    double t0;               /* time when step was 0 */
+    double ekin_last;
+    double e_floor;          /* energy below which jumps are not checked */
+    uint64_t outflow;
+    int gates_open;
+    double wall_impulse;     /* normal impulse on segments since last observe */
+    double wall_time;
+    double max_ovl;          /* largest overlap of the last force evaluation */
+    double *seg_force;       /* per segment: fx, fy, normal force (3 each) */
+    struct gr_rng *rng;      /* reinsertion */
+    gr_particles *scratch;
+    void *cv;                /* CVODE reference integrator, or NULL */
+    uint64_t since_sort;
+} gr_dem;
+
+/* Parameters: defaults, then the scene's [dem] section; checks the time
+ * step against the contact time (GR_EINPUT naming the key). */
+void gr_dem_params_default(gr_dem_params *p);
+int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err);
+/* Contact time of the stiffest pair (eq. 2.2 or 2.5) and the speed used. */
+double gr_dem_contact_time(const gr_scene *sc, const gr_particles *init, double v_impact);
+double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init);
+int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params *p, gr_err *err);
+
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+                  gr_dem **out, gr_err *err);
+void gr_dem_free(gr_dem *d);
+int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);
+int gr_dem_snapshot(gr_dem *d, gr_particles *out, gr_err *err);
+int gr_dem_observe(gr_dem *d, gr_obs *o, gr_err *err);
+int gr_dem_save(const gr_dem *d, gr_ckpt *ck, gr_err *err);
+int gr_dem_load(gr_dem *d, gr_ckpt *ck, gr_err *err);
+
+/* Forces on the current state (velocities as they are, springs not
+ * stretched) with a given neighbour mode, in internal order; the state is
+ * left unchanged. Tests compare the modes with it. */
+int gr_dem_forces(gr_dem *d, int mode, double *fx, double *fy, double *tq, gr_err *err);
+/* Kinetic (translation + rotation) and, if eel, elastic contact energy
+ * (all pairs: small systems only). Ignores a vibrating floor's offset. */
+void gr_dem_energy(gr_dem *d, double *ekin, double *eel);
+/* Index of tag, or -1 if gone. */
+long gr_dem_index(const gr_dem *d, long tag);
+/* Tests: an external force on a grain, and locking its rotation. */
+int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err);
+void gr_dem_lock_rotation(gr_dem *d, long tag);
+/* Force exerted by the grains on segment s during the last evaluation. */
+void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy);
+
+/* Internals shared by the backend's files. */
+int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err);
+int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err);
+int gr_dem_sort(gr_dem *d, gr_err *err);
+int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
+void gr_dem_make_strips(gr_dem *d);
+/* Forces on the positions of parity q with velocities ux, uy, uw at time
+ * t_eval; E numbers the evaluation for the contact history, integ is the
+ * spring's time step (0: do not stretch). Fills seg_force. */
+int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
+                   double *seg_out, gr_err *err);
+int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
+/* Drop the grains with gone[i] != 0 (recorded in d->gone), keeping order. */
+int gr_dem_prepare(gr_dem *d, gr_err *err);
+int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err);
+void gr_dem_hist_undo_at(gr_dem *d, uint64_t E);
+int gr_dem_step(gr_dem *d, gr_err *err);
+
+/* CVODE reference integrator (dem_cvode.c). */
+int gr_dem_cv_create(gr_dem *d, gr_err *err);
+int gr_dem_cv_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);
+void gr_dem_cv_free(gr_dem *d);
+
+/* Periodic minimum image along a period L (0: none). */
+static inline double gr_dem_image(double dx, double L)
+{
+    if (L > 0.0) {
+        if (dx > 0.5 * L)
+            dx -= L;
+        else if (dx < -0.5 * L)
+            dx += L;
+    }
+    return dx;
+}
+
+#endif

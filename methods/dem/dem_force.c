@@ -1,0 +1,404 @@
+/* Force evaluation: pair and wall contacts over Verlet lists, linked cells
+ * or all pairs. Threads take strips of cell rows in three colours, so no
+ * two threads write the same grain and the sums do not depend on the
+ * thread count (bit-identical runs for any --threads). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+#include "dem_contact.h"
+#include "geom.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+typedef struct {
+    gr_dem *d;
+    double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
+    const double *restrict ux, *restrict uy, *restrict uw, *restrict rad;
+    const int32_t *restrict tag;
+    const uint32_t *restrict flags;
+    dem_law law;
+    uint64_t E;
+    double integ;
+    double Lx, Ly;
+    /* active segments at this evaluation: offset and velocity */
+    const double *seg_off;
+    double *seg_vy;
+    const unsigned char *seg_on;
+    /* per strip results */
+    double *smax;       /* largest relative overlap */
+    long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
+    double *sseg;       /* per strip, per segment: fx, fy, fn */
+    int hist_full;      /* set when a grain ran out of history slots */
+    long full_i;
+} dem_ctx;
+
+DEM_INLINE void track(dem_ctx *c, int s, double rel, long i, long j)
+{
+    if (rel > c->smax[s]) {
+        c->smax[s] = rel;
+        c->sarg_i[s] = i;
+        c->sarg_j[s] = j;
+    }
+}
+
+/* Pair contact i-j (j = i + separation dx, dy) if they overlap. */
+DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, int s, size_t i, size_t j,
+                     double dx, double dy, double *fxi, double *fyi, double *tqi)
+{
+    double ri = c->rad[i], rj = c->rad[j], rs = ri + rj;
+    double r2 = dx * dx + dy * dy;
+    if (r2 >= rs * rs)
+        return;
+    double r = sqrt(r2);
+    double xi = rs - r;
+    double inv = r > 0 ? 1.0 / r : 0.0;
+    double nx = dx * inv, ny = dy * inv;
+    if (r == 0) nx = 1.0;
+    double dvx = c->ux[j] - c->ux[i], dvy = c->uy[j] - c->uy[i];
+    double wsum = 0.0;
+    if (TL != GR_TANG_NONE)
+        wsum = c->uw[i] * ri + c->uw[j] * rj;
+    double Fx, Fy, Ft, zeta = 0.0;
+    long slot = -1;
+    int32_t key = 0;
+    if (TL == GR_TANG_SPRING) {
+        int fresh;
+        size_t own = c->tag[i] < c->tag[j] ? i : j;
+        key = c->tag[own == i ? j : i];
+        slot = dem_hist_slot(&c->d->hist, own, key, c->E, &fresh);
+        if (slot < 0) {
+            c->hist_full = 1;
+            c->full_i = (long)own;
+        } else if (!fresh) {
+            zeta = c->d->hist.z[slot];
+        }
+        /* v_t and F_t are symmetric in i and j, so zeta needs no sign per owner */
+    }
+    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft);
+    if (TL == GR_TANG_SPRING && slot >= 0)
+        dem_hist_write(&c->d->hist, slot, key, zeta, c->E);
+    c->fx[j] += Fx;
+    c->fy[j] += Fy;
+    *fxi -= Fx;
+    *fyi -= Fy;
+    if (TL != GR_TANG_NONE) {
+        c->tq[j] -= Ft * rj;
+        *tqi -= Ft * ri;
+    }
+    double dm = 2.0 * (ri < rj ? ri : rj);
+    track(c, s, xi / dm, (long)i, (long)j);
+}
+
+/* Contacts of grain i with segment k. */
+DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, int s, size_t i, int k,
+                     double *fxi, double *fyi, double *tqi)
+{
+    const gr_dem_seg *sg = &c->d->seg[k];
+    double off = c->seg_off[k];
+    double ax = sg->x0, ay = sg->y0 + off, bx = sg->x1, by = sg->y1 + off;
+    double px = c->x[i], py = c->y[i], r = c->rad[i];
+    double ex = bx - ax, ey = by - ay;
+    double l2 = ex * ex + ey * ey;
+    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
+    u = u < 0 ? 0 : u > 1 ? 1 : u;
+    double dx = px - (ax + u * ex), dy = py - (ay + u * ey);
+    double d2 = dx * dx + dy * dy;
+    if (d2 >= r * r)
+        return;
+    double dist = sqrt(d2), nx, ny;
+    if (dist > 0) {
+        nx = dx / dist;
+        ny = dy / dist;
+    } else {
+        double le = sqrt(l2);
+        nx = -ey / le;
+        ny = ex / le;
+    }
+    double xi = r - dist;
+    double dvx = c->ux[i], dvy = c->uy[i] - c->seg_vy[k];
+    double wsum = TL != GR_TANG_NONE ? c->uw[i] * r : 0.0;
+    double Fx, Fy, Ft, zeta = 0.0;
+    long slot = -1;
+    int32_t key = (int32_t)(c->d->ntag + (size_t)k);
+    if (TL == GR_TANG_SPRING) {
+        int fresh;
+        slot = dem_hist_slot(&c->d->hist, i, key, c->E, &fresh);
+        if (slot < 0) {
+            c->hist_full = 1;
+            c->full_i = (long)i;
+        } else if (!fresh) {
+            zeta = c->d->hist.z[slot];
+        }
+    }
+    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft);
+    if (TL == GR_TANG_SPRING && slot >= 0)
+        dem_hist_write(&c->d->hist, slot, key, zeta, c->E);
+    *fxi += Fx;
+    *fyi += Fy;
+    if (TL != GR_TANG_NONE)
+        *tqi -= Ft * r;
+    double *sf = c->sseg + ((size_t)s * (size_t)c->d->nseg + (size_t)k) * 3;
+    sf[0] -= Fx;
+    sf[1] -= Fy;
+    sf[2] += Fx * nx + Fy * ny;
+    track(c, s, xi / (2.0 * r), (long)i, -1 - k);
+}
+
+DEM_INLINE void add_i(dem_ctx *c, size_t i, double fxi, double fyi, double tqi, const int TL)
+{
+    c->fx[i] += fxi;
+    c->fy[i] += fyi;
+    if (TL != GR_TANG_NONE)
+        c->tq[i] += tqi;
+}
+
+DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
+{
+    gr_dem *d = c->d;
+    const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j;
+    const int32_t *restrict sgs = d->sg_start, *restrict sgj = d->sg_j;
+    int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
+    for (int32_t i = i0; i < i1; i++) {
+        double fxi = 0, fyi = 0, tqi = 0;
+        double xi = c->x[i], yi = c->y[i];
+        for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
+            int32_t j = nbj[k];
+            double dx = c->x[j] - xi, dy = c->y[j] - yi;
+            if (c->Lx > 0) dx = gr_dem_image(dx, c->Lx);
+            if (c->Ly > 0) dy = gr_dem_image(dy, c->Ly);
+            pair(c, NL, TL, s, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
+        }
+        for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
+            if (c->seg_on[sgj[k]])
+                wall(c, NL, TL, s, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
+        add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+    }
+}
+
+/* Forward neighbour cells of (cx, cy): east, and the three above. */
+static int forward_cells(const gr_dem_cells *g, int cx, int cy, int32_t out[4])
+{
+    static const int off[4][2] = {{1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    int m = 0;
+    for (int k = 0; k < 4; k++) {
+        int x = cx + off[k][0], y = cy + off[k][1];
+        if (x < 0 || x >= g->nx) {
+            if (!g->px)
+                continue;
+            x = (x + g->nx) % g->nx;
+        }
+        if (y >= g->ny) {
+            if (!g->py)
+                continue;
+            y -= g->ny;
+        }
+        out[m++] = y * g->nx + x;
+    }
+    return m;
+}
+
+DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
+{
+    gr_dem *d = c->d;
+    const gr_dem_cells *g = &d->cells;
+    for (int row = d->strips.row0[s]; row < d->strips.row0[s + 1]; row++) {
+        for (int cx = 0; cx < g->nx; cx++) {
+            int32_t cell = row * g->nx + cx;
+            int32_t nbc[4];
+            int m = forward_cells(g, cx, row, nbc);
+            for (int32_t a = g->start[cell]; a < g->start[cell + 1]; a++) {
+                size_t i = (size_t)g->idx[a];
+                double fxi = 0, fyi = 0, tqi = 0;
+                int fi = (c->flags[i] & GR_PF_FIXED) != 0;
+                for (int32_t b = a + 1; b < g->start[cell + 1]; b++) {
+                    size_t j = (size_t)g->idx[b];
+                    if (fi && (c->flags[j] & GR_PF_FIXED))
+                        continue;
+                    double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
+                    double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                    pair(c, NL, TL, s, i, j, dx, dy, &fxi, &fyi, &tqi);
+                }
+                for (int q = 0; q < m; q++) {
+                    for (int32_t b = g->start[nbc[q]]; b < g->start[nbc[q] + 1]; b++) {
+                        size_t j = (size_t)g->idx[b];
+                        if (fi && (c->flags[j] & GR_PF_FIXED))
+                            continue;
+                        double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
+                        double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                        pair(c, NL, TL, s, i, j, dx, dy, &fxi, &fyi, &tqi);
+                    }
+                }
+                if (!fi)
+                    for (int32_t k = g->cell_seg_start[cell]; k < g->cell_seg_start[cell + 1]; k++)
+                        if (c->seg_on[g->cell_seg[k]])
+                            wall(c, NL, TL, s, i, g->cell_seg[k], &fxi, &fyi, &tqi);
+                add_i(c, i, fxi, fyi, tqi, TL);
+            }
+        }
+    }
+}
+
+DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
+{
+    gr_dem *d = c->d;
+    for (size_t i = 0; i < d->n; i++) {
+        double fxi = 0, fyi = 0, tqi = 0;
+        int fi = (c->flags[i] & GR_PF_FIXED) != 0;
+        for (size_t j = i + 1; j < d->n; j++) {
+            if (fi && (c->flags[j] & GR_PF_FIXED))
+                continue;
+            double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
+            double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+            pair(c, NL, TL, 0, i, j, dx, dy, &fxi, &fyi, &tqi);
+        }
+        if (!fi)
+            for (int k = 0; k < d->nseg; k++)
+                if (c->seg_on[k])
+                    wall(c, NL, TL, 0, i, k, &fxi, &fyi, &tqi);
+        add_i(c, i, fxi, fyi, tqi, TL);
+    }
+}
+
+DEM_INLINE void run_loops(dem_ctx *c, const int NL, const int TL, int mode)
+{
+    gr_dem *d = c->d;
+    if (mode == GR_DEM_NB_BRUTE) {
+        all_brute(c, NL, TL);
+        return;
+    }
+    int ns = d->strips.n;
+    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
+    (void)nth;
+#pragma omp parallel num_threads(nth) if (nth > 1 && ns > 1)
+    for (int col = 0; col < (ns > 1 ? 3 : 1); col++) {
+#pragma omp for schedule(dynamic, 1)
+        for (int s = col; s < ns; s += (ns > 1 ? 3 : 1)) {
+            if (mode == GR_DEM_NB_VERLET)
+                strip_verlet(c, NL, TL, s);
+            else
+                strip_cells(c, NL, TL, s);
+        }
+    }
+}
+
+static void dispatch(dem_ctx *c, int mode)
+{
+#define CASE_T(NL, TL) case TL: run_loops(c, NL, TL, mode); break;
+#define CASES(NL)                                                                  \
+    switch (c->d->tang) {                                                          \
+    CASE_T(NL, GR_TANG_NONE) CASE_T(NL, GR_TANG_COULOMB) CASE_T(NL, GR_TANG_VISCOUS) \
+    CASE_T(NL, GR_TANG_REGULARISED) CASE_T(NL, GR_TANG_SPRING)                     \
+    }
+    if (c->d->normal == GR_NORMAL_HERTZ) {
+        CASES(GR_NORMAL_HERTZ)
+    } else {
+        CASES(GR_NORMAL_LINEAR)
+    }
+#undef CASES
+#undef CASE_T
+}
+
+int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
+                   double *seg_out, gr_err *err)
+{
+    if (mode == GR_DEM_NB_CELLS) {
+        if (gr_dem_bin(d, d->f[F_X][q], d->f[F_Y][q], err))
+            return err->code;
+    }
+    int ns = mode == GR_DEM_NB_BRUTE ? 1 : d->strips.n;
+    int nseg = d->nseg;
+    size_t nsf = (size_t)ns * (size_t)(nseg > 0 ? nseg : 1) * 3;
+    double *smax = malloc((size_t)ns * sizeof *smax);
+    long *si = malloc((size_t)ns * sizeof *si), *sj = malloc((size_t)ns * sizeof *sj);
+    double *sseg = calloc(nsf, sizeof *sseg);
+    double *soff = calloc((size_t)nseg + 1, sizeof *soff), *svy = calloc((size_t)nseg + 1, sizeof *svy);
+    unsigned char *son = calloc((size_t)nseg + 1, 1);
+    if (!smax || !si || !sj || !sseg || !soff || !svy || !son) {
+        free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
+        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    }
+    for (int s = 0; s < ns; s++) {
+        smax[s] = -INFINITY;
+        si[s] = sj[s] = -1;
+    }
+    for (int k = 0; k < nseg; k++) {
+        son[k] = t_eval < d->seg[k].open_time;
+        if (d->seg[k].vibrating) {
+            soff[k] = gr_floor_offset(&d->sc.floor, t_eval);
+            svy[k] = gr_floor_velocity(&d->sc.floor, t_eval);
+        }
+    }
+    size_t n = d->n;
+    memset(d->f[F_FX][q], 0, n * sizeof(double));
+    memset(d->f[F_FY][q], 0, n * sizeof(double));
+    if (d->rot)
+        memset(d->f[F_TQ][q], 0, n * sizeof(double));
+    dem_ctx c = {
+        .d = d,
+        .x = d->f[F_X][q], .y = d->f[F_Y][q],
+        .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
+        .ux = d->ux, .uy = d->uy, .uw = d->uw, .rad = d->rad,
+        .tag = d->tag, .flags = d->flags,
+        .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
+        .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
+        .seg_off = soff, .seg_vy = svy, .seg_on = son,
+        .smax = smax, .sarg_i = si, .sarg_j = sj, .sseg = sseg,
+    };
+    dispatch(&c, mode);
+    if (d->ext_fx) {
+        for (size_t i = 0; i < n; i++) {
+            c.fx[i] += d->ext_fx[i];
+            c.fy[i] += d->ext_fy[i];
+        }
+    }
+    double best = 0.0;
+    long bi = -1, bj = -1;
+    for (int s = 0; s < ns; s++) {
+        if (smax[s] > best) {
+            best = smax[s];
+            bi = si[s];
+            bj = sj[s];
+        }
+    }
+    if (seg_out) {
+        for (int k = 0; k < nseg; k++) {
+            double a = 0, b = 0, cfn = 0;
+            for (int s = 0; s < ns; s++) {
+                const double *sf = sseg + ((size_t)s * (size_t)nseg + (size_t)k) * 3;
+                a += sf[0];
+                b += sf[1];
+                cfn += sf[2];
+            }
+            seg_out[3 * k] = a;
+            seg_out[3 * k + 1] = b;
+            seg_out[3 * k + 2] = cfn;
+        }
+    }
+    free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
+    d->max_ovl = best;
+    int rc = GR_OK;
+    if (c.hist_full) {
+        rc = gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",
+                     t_eval, (long long)d->tag_id[d->tag[c.full_i]], d->hist.cap);
+    } else if (best > d->par.max_overlap) {
+        char other[96];
+        if (bj >= 0)
+            snprintf(other, sizeof other, "grain id %lld", (long long)d->tag_id[d->tag[bj]]);
+        else
+            snprintf(other, sizeof other, "wall segment %ld", -1 - bj);
+        if (E == 0)
+            rc = gr_fail(err, GR_EINPUT,
+                         "initial state: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); place the grains apart",
+                         (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+        else
+            rc = gr_fail(err, GR_ERUN,
+                         "unstable at t = %.9g: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); lower dt or check the scene",
+                         t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+    }
+    return rc;
+}

@@ -1,0 +1,352 @@
+/* Neighbour search: cells (CSR by counting sort, row-major so that a sort
+ * by cell is also a spatial sort for cache locality), Verlet half lists
+ * with a skin, candidate wall segments per grain or per cell, and the
+ * strips of rows that the threaded force loop colours. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+
+static void cells_free(gr_dem_cells *g)
+{
+    free(g->start);
+    free(g->idx);
+    free(g->cell);
+    free(g->cell_seg_start);
+    free(g->cell_seg);
+    memset(g, 0, sizeof *g);
+}
+
+/* Distance from point p to segment [a, b]. */
+static double seg_dist(double ax, double ay, double bx, double by, double px, double py)
+{
+    double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
+    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
+    u = u < 0 ? 0 : u > 1 ? 1 : u;
+    return hypot(px - ax - u * ex, py - ay - u * ey);
+}
+
+static double seg_margin(const gr_dem *d)
+{
+    /* a vibrating segment moves by up to the amplitude either way */
+    return 2.0 * fabs(d->sc.floor.amplitude);
+}
+
+int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
+{
+    gr_dem_cells *g = &d->cells;
+    cells_free(g);
+    double xmin = 0, xmax = d->sc.width, ymin = 0, ymax = d->sc.height;
+    double *x = d->f[F_X][d->cur], *y = d->f[F_Y][d->cur];
+    for (size_t i = 0; i < d->n; i++) {
+        xmin = fmin(xmin, x[i]), xmax = fmax(xmax, x[i]);
+        ymin = fmin(ymin, y[i]), ymax = fmax(ymax, y[i]);
+    }
+    for (int k = 0; k < d->nseg; k++) {
+        const gr_dem_seg *s = &d->seg[k];
+        xmin = fmin(xmin, fmin(s->x0, s->x1)), xmax = fmax(xmax, fmax(s->x0, s->x1));
+        ymin = fmin(ymin, fmin(s->y0, s->y1)), ymax = fmax(ymax, fmax(s->y0, s->y1));
+    }
+    double m = d->rmax + seg_margin(d);
+    xmin -= m, xmax += m, ymin -= m, ymax += m;
+    g->px = d->Lx > 0;
+    g->py = d->Ly > 0;
+    if (g->px)
+        xmin = 0, xmax = d->Lx;
+    if (g->py)
+        ymin = 0, ymax = d->Ly;
+    double lx = xmax - xmin, ly = ymax - ymin;
+    long nx = (long)floor(lx / cutoff), ny = (long)floor(ly / cutoff);
+    if (nx < 1) nx = 1;
+    if (ny < 1) ny = 1;
+    if ((g->px && nx < 3) || (g->py && ny < 3))
+        return gr_fail(err, GR_EINPUT,
+                       "periodic domain %g x %g is narrower than 3 neighbour cells of %g (largest diameter plus skin)",
+                       d->sc.width, d->sc.height, cutoff);
+    /* keep the grid a few cells per grain at most */
+    while ((double)nx * (double)ny > 4.0 * (double)(d->ntag + 64) && (nx > 3 || ny > 3)) {
+        if (nx > 3 && !g->px) nx = (nx + 1) / 2;
+        if (ny > 3 && !g->py) ny = (ny + 1) / 2;
+        if (g->px && g->py)
+            break;
+    }
+    g->nx = (int)nx;
+    g->ny = (int)ny;
+    g->x0 = xmin;
+    g->y0 = ymin;
+    g->cx = lx / (double)nx;
+    g->cy = ly / (double)ny;
+    g->icx = 1.0 / g->cx;
+    g->icy = 1.0 / g->cy;
+    size_t nc = (size_t)nx * (size_t)ny;
+    g->start = calloc(nc + 1, sizeof *g->start);
+    g->cell_seg_start = calloc(nc + 1, sizeof *g->cell_seg_start);
+    if (!g->start || !g->cell_seg_start)
+        return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
+    /* segments near each cell: centre distance below half diagonal + reach */
+    double reach = 0.5 * hypot(g->cx, g->cy) + d->rmax + d->par.skin + seg_margin(d);
+    size_t cnt = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        cnt = 0;
+        for (size_t c = 0; c < nc; c++) {
+            double ccx = xmin + ((double)(c % (size_t)nx) + 0.5) * g->cx;
+            double ccy = ymin + ((double)(c / (size_t)nx) + 0.5) * g->cy;
+            if (pass)
+                g->cell_seg_start[c] = (int32_t)cnt;
+            for (int k = 0; k < d->nseg; k++) {
+                const gr_dem_seg *s = &d->seg[k];
+                if (seg_dist(s->x0, s->y0, s->x1, s->y1, ccx, ccy) < reach) {
+                    if (pass)
+                        g->cell_seg[cnt] = k;
+                    cnt++;
+                }
+            }
+        }
+        if (!pass) {
+            g->cell_seg = malloc((cnt + 1) * sizeof *g->cell_seg);
+            if (!g->cell_seg)
+                return gr_fail(err, GR_ERUN, "out of memory for wall cells");
+        }
+    }
+    g->cell_seg_start[nc] = (int32_t)cnt;
+    gr_dem_make_strips(d);
+    return GR_OK;
+}
+
+static int cells_reserve(gr_dem_cells *g, size_t n, gr_err *err)
+{
+    if (n <= g->cap)
+        return GR_OK;
+    size_t cap = n + n / 2 + 16;
+    int32_t *a = realloc(g->idx, cap * sizeof *a);
+    if (!a)
+        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
+    g->idx = a;
+    a = realloc(g->cell, cap * sizeof *a);
+    if (!a)
+        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
+    g->cell = a;
+    g->cap = cap;
+    return GR_OK;
+}
+
+int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err)
+{
+    gr_dem_cells *g = &d->cells;
+    size_t n = d->n, nc = (size_t)g->nx * (size_t)g->ny;
+    if (cells_reserve(g, n, err))
+        return err->code;
+    memset(g->start, 0, (nc + 1) * sizeof *g->start);
+    for (size_t i = 0; i < n; i++) {
+        double fx = floor((x[i] - g->x0) * g->icx), fy = floor((y[i] - g->y0) * g->icy);
+        long cx = fx < 0 ? 0 : fx >= g->nx ? g->nx - 1 : (long)fx;
+        long cy = fy < 0 ? 0 : fy >= g->ny ? g->ny - 1 : (long)fy;
+        int32_t c = (int32_t)(cy * g->nx + cx);
+        g->cell[i] = c;
+        g->start[c + 1]++;
+    }
+    for (size_t c = 0; c < nc; c++)
+        g->start[c + 1] += g->start[c];
+    /* stable placement: grains keep their relative order within a cell */
+    int32_t *fill = malloc((nc + 1) * sizeof *fill);
+    if (!fill)
+        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
+    memcpy(fill, g->start, (nc + 1) * sizeof *fill);
+    for (size_t i = 0; i < n; i++)
+        g->idx[fill[g->cell[i]]++] = (int32_t)i;
+    free(fill);
+    return GR_OK;
+}
+
+/* Reorder every per-grain array by perm (new slot k holds old perm[k]). */
+static int permute(gr_dem *d, const int32_t *perm, gr_err *err)
+{
+    size_t n = d->n;
+    size_t hc = d->hist_on ? (size_t)d->hist.cap : 0;
+    size_t wsz = n * (hc > 1 ? hc : 1);
+    void *tmp = malloc(wsz * sizeof(double) + 16);
+    if (!tmp)
+        return gr_fail(err, GR_ERUN, "out of memory for the spatial sort");
+#define PERM(T, a)                                                                 \
+    if (a) {                                                                       \
+        T *t_ = tmp;                                                               \
+        for (size_t k = 0; k < n; k++)                                             \
+            t_[k] = (a)[perm[k]];                                                  \
+        memcpy((a), t_, n * sizeof(T));                                            \
+    }
+    for (int f = 0; f < F_NFIELDS; f++)
+        for (int p = 0; p < 2; p++)
+            PERM(double, d->f[f][p]);
+    PERM(double, d->ux) PERM(double, d->uy) PERM(double, d->uw)
+    PERM(double, d->rad) PERM(double, d->im) PERM(double, d->iI) PERM(double, d->gf)
+    PERM(double, d->mass) PERM(double, d->inertia)
+    PERM(double, d->xref) PERM(double, d->yref)
+    PERM(double, d->ext_fx) PERM(double, d->ext_fy)
+    PERM(int32_t, d->tag) PERM(uint32_t, d->flags) PERM(int32_t, d->species)
+#undef PERM
+    if (hc) {
+#define PERMROW(T, a)                                                              \
+    {                                                                              \
+        T *t_ = tmp;                                                               \
+        for (size_t k = 0; k < n; k++)                                             \
+            memcpy(t_ + k * hc, (a) + (size_t)perm[k] * hc, hc * sizeof(T));       \
+        memcpy((a), t_, n * hc * sizeof(T));                                       \
+    }
+        gr_dem_hist *h = &d->hist;
+        PERMROW(int32_t, h->partner) PERMROW(int32_t, h->partner_old)
+        PERMROW(double, h->z) PERMROW(double, h->z_old)
+        PERMROW(uint64_t, h->stamp) PERMROW(uint64_t, h->stamp_old)
+#undef PERMROW
+    }
+    free(tmp);
+    return GR_OK;
+}
+
+int gr_dem_sort(gr_dem *d, gr_err *err)
+{
+    int q = d->cur;
+    if (gr_dem_bin(d, d->f[F_X][q], d->f[F_Y][q], err))
+        return err->code;
+    if (permute(d, d->cells.idx, err))
+        return err->code;
+    /* after the permutation grain k sits in slot k */
+    gr_dem_cells *g = &d->cells;
+    size_t nc = (size_t)g->nx * (size_t)g->ny;
+    for (size_t c = 0; c < nc; c++)
+        for (int32_t a = g->start[c]; a < g->start[c + 1]; a++)
+            g->cell[a] = (int32_t)c;
+    for (size_t i = 0; i < d->n; i++)
+        g->idx[i] = (int32_t)i;
+    d->since_sort = 0;
+    return GR_OK;
+}
+
+void gr_dem_make_strips(gr_dem *d)
+{
+    gr_dem_cells *g = &d->cells;
+    gr_dem_strips *s = &d->strips;
+    int ny = g->ny;
+    /* a fixed rule in the grid only: the strips (and so the sums) do not
+     * depend on the number of threads */
+    int rps = ny / 48 > 1 ? ny / 48 : 1;
+    int ns = ny / rps;
+    ns -= ns % 3;
+    if (ns < 3)
+        ns = 1;
+    free(s->row0);
+    free(s->i0);
+    s->row0 = malloc((size_t)(ns + 1) * sizeof *s->row0);
+    s->i0 = calloc((size_t)(ns + 1), sizeof *s->i0);
+    s->n = ns;
+    for (int k = 0; k <= ns; k++)
+        s->row0[k] = (int32_t)((long)k * ny / ns);
+}
+
+static void strips_index(gr_dem *d)
+{
+    gr_dem_strips *s = &d->strips;
+    for (int k = 0; k <= s->n; k++)
+        s->i0[k] = d->cells.start[(size_t)s->row0[k] * (size_t)d->cells.nx];
+}
+
+static int grow_i32(int32_t **a, size_t *cap, size_t need, gr_err *err)
+{
+    if (need <= *cap)
+        return GR_OK;
+    size_t c = need + need / 2 + 64;
+    int32_t *p = realloc(*a, c * sizeof *p);
+    if (!p)
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list (%zu entries)", c);
+    *a = p;
+    *cap = c;
+    return GR_OK;
+}
+
+/* Build the half list from the grains' current order and positions (the
+ * caller sorted them first, or restored a saved order). */
+int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
+{
+    if (gr_dem_bin(d, x, y, err))
+        return err->code;
+    gr_dem_cells *g = &d->cells;
+    size_t n = d->n;
+    int32_t *ns = realloc(d->nb_start, (n + 1) * sizeof *ns);
+    if (!ns)
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    d->nb_start = ns;
+    ns = realloc(d->sg_start, (n + 1) * sizeof *ns);
+    if (!ns)
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    d->sg_start = ns;
+    double skin = d->par.skin, sm = seg_margin(d);
+    size_t cnt = 0, scnt = 0;
+    for (size_t i = 0; i < n; i++) {
+        d->nb_start[i] = (int32_t)cnt;
+        d->sg_start[i] = (int32_t)scnt;
+        int32_t c = g->cell[i];
+        int cx = c % g->nx, cy = c / g->nx;
+        int fi = (d->flags[i] & GR_PF_FIXED) != 0;
+        double xi = x[i], yi = y[i], ri = d->rad[i];
+        for (int oy = -1; oy <= 1; oy++) {
+            int yy = cy + oy;
+            if (yy < 0 || yy >= g->ny) {
+                if (!g->py)
+                    continue;
+                yy = (yy + g->ny) % g->ny;
+            }
+            for (int ox = -1; ox <= 1; ox++) {
+                int xx = cx + ox;
+                if (xx < 0 || xx >= g->nx) {
+                    if (!g->px)
+                        continue;
+                    xx = (xx + g->nx) % g->nx;
+                }
+                int32_t cc = yy * g->nx + xx;
+                for (int32_t a = g->start[cc]; a < g->start[cc + 1]; a++) {
+                    int32_t j = g->idx[a];
+                    if ((size_t)j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
+                        continue;
+                    double dx = gr_dem_image(x[j] - xi, d->Lx), dy = gr_dem_image(y[j] - yi, d->Ly);
+                    double rc = ri + d->rad[j] + skin;
+                    if (dx * dx + dy * dy < rc * rc) {
+                        if (grow_i32(&d->nb_j, &d->nb_cap, cnt + 1, err))
+                            return err->code;
+                        d->nb_j[cnt++] = j;
+                    }
+                }
+            }
+        }
+        /* neighbours in cell order are not sorted by index: sort the row so
+         * that the list does not depend on how cells were scanned */
+        for (size_t a = d->nb_start[i] + 1; a < cnt; a++) {
+            int32_t v = d->nb_j[a];
+            size_t b = a;
+            while (b > (size_t)d->nb_start[i] && d->nb_j[b - 1] > v) {
+                d->nb_j[b] = d->nb_j[b - 1];
+                b--;
+            }
+            d->nb_j[b] = v;
+        }
+        if (!fi) {
+            for (int32_t k = g->cell_seg_start[c]; k < g->cell_seg_start[c + 1]; k++) {
+                const gr_dem_seg *s = &d->seg[g->cell_seg[k]];
+                if (seg_dist(s->x0, s->y0, s->x1, s->y1, xi, yi) < ri + skin + sm) {
+                    if (grow_i32(&d->sg_j, &d->sg_cap, scnt + 1, err))
+                        return err->code;
+                    d->sg_j[scnt++] = g->cell_seg[k];
+                }
+            }
+        }
+        d->xref[i] = xi;
+        d->yref[i] = yi;
+    }
+    d->nb_start[n] = (int32_t)cnt;
+    d->sg_start[n] = (int32_t)scnt;
+    if (cnt > INT32_MAX / 2)
+        return gr_fail(err, GR_ERUN, "neighbour list too long (%zu pairs)", cnt);
+    strips_index(d);
+    d->need_build = 0;
+    d->builds++;
+    return GR_OK;
+}

@@ -1,0 +1,138 @@
+/* The [dem] section: defaults, reading, and the time-step limit from the
+ * contact time (eqs. 2.2 and 2.5). */
+#include <math.h>
+#include <stdio.h>
+
+#include "dem.h"
+
+void gr_dem_params_default(gr_dem_params *p)
+{
+    p->dt = 0.0;
+    p->dt_fraction = 0.1;
+    p->v_impact = 0.0;
+    p->integrator = GR_DEM_VERLET;
+    p->neighbour = GR_DEM_NB_VERLET;
+    p->skin = 0.2;
+    p->threads = 1;
+    p->max_overlap = 0.1;
+    p->energy_jump = 1.0;
+    p->sort_every = 100;
+    p->cvode_rtol = 1e-10;
+    p->cvode_atol = 1e-12;
+}
+
+static const char *const integrators[] = {"verlet", "gear", "euler", "cvode", NULL};
+static const char *const neighbours[] = {"verlet", "cells", "brute", NULL};
+
+double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init)
+{
+    double v = 1.0;
+    if (sc->gravity > 0)
+        v = fmax(v, sqrt(2.0 * sc->gravity * sc->height));
+    if (sc->init.velocity == GR_VEL_GAUSSIAN)
+        v = fmax(v, 4.0 * sc->init.v0);
+    else if (sc->init.velocity == GR_VEL_SPEED)
+        v = fmax(v, sc->init.v0);
+    for (size_t i = 0; init && i < init->n; i++)
+        v = fmax(v, 2.0 * hypot(init->vx[i], init->vy[i]));
+    return v;
+}
+
+/* Lightest pair: two mobile grains, or one grain on a wall. */
+static double min_meff(const gr_particles *init)
+{
+    double m1 = INFINITY;
+    size_t nm = 0;
+    for (size_t i = 0; i < init->n; i++) {
+        if (init->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
+            continue;
+        nm++;
+        m1 = fmin(m1, init->mass[i]);
+    }
+    if (!nm)
+        return 1.0;
+    return nm >= 2 ? 0.5 * m1 : m1;
+}
+
+double gr_dem_contact_time(const gr_scene *sc, const gr_particles *init, double v)
+{
+    double me = min_meff(init), kn = sc->mat.kn, gn = sc->mat.gamma_n;
+    if (sc->mat.normal == GR_NORMAL_HERTZ)
+        return 3.21 * pow(me / kn, 0.4) * pow(v, -0.2);
+    double w2 = kn / me, z = gn / (2 * me);
+    return w2 > z * z ? M_PI / sqrt(w2 - z * z) : M_PI / sqrt(w2);
+}
+
+int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params *p, gr_err *err)
+{
+    if (p->v_impact <= 0)
+        p->v_impact = gr_dem_default_v_impact(sc, init);
+    double me = min_meff(init);
+    double tc = gr_dem_contact_time(sc, init, p->v_impact);
+    const char *what = sc->mat.normal == GR_NORMAL_HERTZ ? "Hertz contact time (eq. 2.5)" : "contact time (eq. 2.2)";
+    double limit = p->dt_fraction * tc;
+    /* a dashpot alone is integrated explicitly, stable for dt < 2 m / gamma:
+     * keep half of that (tangential: effective mass m_eff/3 for disks) */
+    double tdn = sc->mat.gamma_n > 0 ? me / sc->mat.gamma_n : INFINITY;
+    int tang_damped = sc->mat.tangential == GR_TANG_VISCOUS || sc->mat.tangential == GR_TANG_REGULARISED ||
+                      sc->mat.tangential == GR_TANG_SPRING;
+    double tdt = tang_damped && sc->mat.gamma_t > 0 ? me / 3.0 / sc->mat.gamma_t : INFINITY;
+    double lim_d = fmin(tdn, tdt);
+    if (p->dt <= 0)
+        p->dt = 0.2 * fmin(limit, lim_d);
+    char where[1200];
+    gr_scene_where(sc, "dem", "dt", where, sizeof where);
+    if (p->dt > limit)
+        return gr_fail(err, GR_EINPUT,
+                       "%s: dt = %g is above the stable limit %.6g = dt_fraction %g x the %s %.6g (m_eff %g, kn %g, impact speed %g); use dt <= %.6g",
+                       where, p->dt, limit, p->dt_fraction, what, tc, me, sc->mat.kn, p->v_impact, limit);
+    if (p->dt > lim_d)
+        return gr_fail(err, GR_EINPUT,
+                       "%s: dt = %g is above the damping limit %.6g = m_eff / gamma, half the explicit stability bound (gamma_n %g, gamma_t %g on m_eff/3, m_eff %g); use dt <= %.6g",
+                       where, p->dt, lim_d, sc->mat.gamma_n, sc->mat.gamma_t, me, lim_d);
+    return GR_OK;
+}
+
+int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err)
+{
+    gr_dem_params_default(p);
+    const char *S = "dem";
+    char where[1200];
+#define POS(key, field)                                                            \
+    do {                                                                           \
+        if (gr_scene_get_double(sc, S, key, p->field, &p->field, err))             \
+            return err->code;                                                      \
+        if (!(p->field > 0) && gr_scene_find(sc, S, key)) {                        \
+            gr_scene_where(sc, S, key, where, sizeof where);                       \
+            return gr_fail(err, GR_EINPUT, "%s: must be positive", where);         \
+        }                                                                          \
+    } while (0)
+    POS("dt", dt);
+    POS("dt_fraction", dt_fraction);
+    POS("v_impact", v_impact);
+    POS("max_overlap", max_overlap);
+    POS("energy_jump", energy_jump);
+    POS("cvode_rtol", cvode_rtol);
+    POS("cvode_atol", cvode_atol);
+    if (gr_scene_get_double(sc, S, "skin", p->skin, &p->skin, err))
+        return err->code;
+    if (!(p->skin >= 0)) {
+        gr_scene_where(sc, S, "skin", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: must not be negative", where);
+    }
+#undef POS
+    if (gr_scene_get_choice(sc, S, "integrator", integrators, p->integrator, &p->integrator, err) ||
+        gr_scene_get_choice(sc, S, "neighbour", neighbours, p->neighbour, &p->neighbour, err) ||
+        gr_scene_get_long(sc, S, "threads", p->threads, &p->threads, err) ||
+        gr_scene_get_long(sc, S, "sort_every", p->sort_every, &p->sort_every, err))
+        return err->code;
+    if (p->threads < 1 || p->threads > 256) {
+        gr_scene_where(sc, S, "threads", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: %ld threads; use 1 to 256", where, p->threads);
+    }
+    if (p->sort_every < 1) {
+        gr_scene_where(sc, S, "sort_every", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: must be at least 1", where);
+    }
+    return GR_OK;
+}

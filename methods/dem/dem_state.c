@@ -1,0 +1,498 @@
+/* State of the DEM backend: creation from a scene and its particles,
+ * per-grain arrays, grains leaving, snapshots and observables. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+#include "rng.h"
+
+enum { STREAM_DEM_REINSERT = 0xD3E1 };
+
+static int field_used(const gr_dem *d, int f)
+{
+    if (f == F_W || f == F_TQ)
+        return d->rot;
+    if (f >= F_TH)
+        return d->par.integrator == GR_DEM_GEAR;
+    return 1;
+}
+
+int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
+{
+    if (cap <= d->cap)
+        return GR_OK;
+    size_t old = d->cap;
+#define GROW(T, a)                                                                 \
+    {                                                                              \
+        T *p_ = realloc((a), cap * sizeof(T));                                     \
+        if (!p_)                                                                   \
+            return gr_fail(err, GR_ERUN, "out of memory for %zu grains", cap);     \
+        memset(p_ + old, 0, (cap - old) * sizeof(T));                              \
+        (a) = p_;                                                                  \
+    }
+    for (int f = 0; f < F_NFIELDS; f++)
+        if (field_used(d, f))
+            for (int p = 0; p < 2; p++)
+                GROW(double, d->f[f][p]);
+    GROW(double, d->ux) GROW(double, d->uy)
+    if (d->rot)
+        GROW(double, d->uw);
+    GROW(double, d->rad) GROW(double, d->im) GROW(double, d->iI) GROW(double, d->gf)
+    GROW(double, d->mass) GROW(double, d->inertia) GROW(double, d->xref) GROW(double, d->yref)
+    GROW(int32_t, d->tag) GROW(uint32_t, d->flags) GROW(int32_t, d->species)
+    if (d->ext_fx) {
+        GROW(double, d->ext_fx) GROW(double, d->ext_fy)
+    }
+    if (d->hist_on) {
+        size_t hc = (size_t)d->hist.cap, oc = old * hc, nc = cap * hc;
+        gr_dem_hist *h = &d->hist;
+#define GROWH(T, a, fillv)                                                         \
+        {                                                                          \
+            T *p_ = realloc((a), nc * sizeof(T));                                  \
+            if (!p_)                                                               \
+                return gr_fail(err, GR_ERUN, "out of memory for contact history"); \
+            for (size_t k = oc; k < nc; k++)                                       \
+                p_[k] = fillv;                                                     \
+            (a) = p_;                                                              \
+        }
+        GROWH(int32_t, h->partner, -1) GROWH(int32_t, h->partner_old, -1)
+        GROWH(double, h->z, 0.0) GROWH(double, h->z_old, 0.0)
+        GROWH(uint64_t, h->stamp, 0) GROWH(uint64_t, h->stamp_old, 0)
+#undef GROWH
+    }
+#undef GROW
+    d->cap = cap;
+    return GR_OK;
+}
+
+void gr_dem_free(gr_dem *d)
+{
+    if (!d)
+        return;
+    gr_dem_cv_free(d);
+    for (int f = 0; f < F_NFIELDS; f++)
+        for (int p = 0; p < 2; p++)
+            free(d->f[f][p]);
+    free(d->ux), free(d->uy), free(d->uw);
+    free(d->rad), free(d->im), free(d->iI), free(d->gf), free(d->mass), free(d->inertia);
+    free(d->tag), free(d->flags), free(d->species), free(d->xref), free(d->yref);
+    free(d->ext_fx), free(d->ext_fy);
+    gr_particles_free(d->gone);
+    gr_particles_free(d->scratch);
+    free(d->tag_id);
+    free(d->seg);
+    free(d->seg_force);
+    free(d->cells.start), free(d->cells.idx), free(d->cells.cell);
+    free(d->cells.cell_seg_start), free(d->cells.cell_seg);
+    free(d->strips.row0), free(d->strips.i0);
+    free(d->nb_start), free(d->nb_j), free(d->sg_start), free(d->sg_j);
+    gr_dem_hist *h = &d->hist;
+    free(h->partner), free(h->partner_old), free(h->z), free(h->z_old), free(h->stamp), free(h->stamp_old);
+    gr_rng_free(d->rng);
+    free(d);
+}
+
+static int cmp_id(const void *a, const void *b)
+{
+    const int64_t *x = a, *y = b;
+    return (x[0] > y[0]) - (x[0] < y[0]);
+}
+
+static int add_seg(gr_dem *d, double x0, double y0, double x1, double y1, double open_time,
+                   int vibrating, gr_err *err)
+{
+    gr_dem_seg *s = realloc(d->seg, (size_t)(d->nseg + 1) * sizeof *s);
+    if (!s)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    d->seg = s;
+    d->seg[d->nseg++] = (gr_dem_seg){x0, y0, x1, y1, open_time, vibrating};
+    return GR_OK;
+}
+
+static int make_segments(gr_dem *d, gr_err *err)
+{
+    const gr_scene *sc = &d->sc;
+    double W = sc->width, H = sc->height;
+    int vib = sc->floor.motion != GR_FLOOR_FIXED;
+    if (sc->side[GR_LEFT] == GR_BC_WALL && add_seg(d, 0, 0, 0, H, INFINITY, 0, err))
+        return err->code;
+    if (sc->side[GR_RIGHT] == GR_BC_WALL && add_seg(d, W, 0, W, H, INFINITY, 0, err))
+        return err->code;
+    if (sc->side[GR_BOTTOM] == GR_BC_WALL && add_seg(d, 0, 0, W, 0, INFINITY, vib, err))
+        return err->code;
+    if (sc->side[GR_TOP] == GR_BC_WALL && add_seg(d, 0, H, W, H, INFINITY, 0, err))
+        return err->code;
+    for (int k = 0; k < sc->nsegments; k++) {
+        const gr_segment *s = &sc->segments[k];
+        if (add_seg(d, s->x0, s->y0, s->x1, s->y1, s->open_time, s->vibrating, err))
+            return err->code;
+    }
+    d->seg_force = calloc((size_t)(d->nseg + 1) * 3, sizeof(double));
+    return d->seg_force ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
+}
+
+/* Velocities for the first force evaluation: the state's own. */
+static void copy_u(gr_dem *d)
+{
+    int p = d->cur;
+    memcpy(d->ux, d->f[F_VX][p], d->n * sizeof(double));
+    memcpy(d->uy, d->f[F_VY][p], d->n * sizeof(double));
+    if (d->rot)
+        memcpy(d->uw, d->f[F_W][p], d->n * sizeof(double));
+}
+
+int gr_dem_prepare(gr_dem *d, gr_err *err)
+{
+    double cutoff = 2.0 * d->rmax + (d->par.neighbour == GR_DEM_NB_VERLET ? d->par.skin : 0.0);
+    if (gr_dem_cells_setup(d, cutoff, err))
+        return err->code;
+    if (d->par.neighbour != GR_DEM_NB_BRUTE && gr_dem_sort(d, err))
+        return err->code;
+    if (d->par.neighbour == GR_DEM_NB_VERLET &&
+        gr_dem_build_list(d, d->f[F_X][d->cur], d->f[F_Y][d->cur], err))
+        return err->code;
+    return GR_OK;
+}
+
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+                  gr_dem **out, gr_err *err)
+{
+    *out = NULL;
+    gr_dem *d = calloc(1, sizeof *d);
+    if (!d)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    d->sc = *sc;
+    d->par = *par;
+    const gr_material *m = &sc->mat;
+    d->normal = m->normal;
+    d->tang = m->tangential;
+    d->kn = m->kn, d->gn = m->gamma_n, d->kt = m->kt, d->gt = m->gamma_t, d->mu = m->mu;
+    d->clip = m->clip_attraction;
+    d->rot = d->tang != GR_TANG_NONE;
+    d->hist_on = d->tang == GR_TANG_SPRING;
+    d->g = sc->gravity;
+    d->Lx = sc->side[GR_LEFT] == GR_BC_PERIODIC ? sc->width : 0.0;
+    d->Ly = sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? sc->height : 0.0;
+    int rc = GR_OK;
+    if (d->hist_on && d->par.integrator == GR_DEM_CVODE) {
+        rc = gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
+        goto fail;
+    }
+    if (d->hist_on && !(d->kt > 0)) {
+        rc = gr_fail(err, GR_EINPUT, "[material] tangential = spring needs kt > 0");
+        goto fail;
+    }
+
+    /* tags: rank of each grain's id */
+    size_t nt = init->n;
+    d->ntag = nt;
+    int64_t *order = malloc((nt + 1) * 2 * sizeof *order);
+    d->tag_id = malloc((nt + 1) * sizeof *d->tag_id);
+    d->gone = gr_particles_create(nt + 1, err);
+    if (!order || !d->tag_id || !d->gone) {
+        free(order);
+        rc = d->gone ? gr_fail(err, GR_ERUN, "out of memory") : err->code;
+        goto fail;
+    }
+    for (size_t i = 0; i < nt; i++) {
+        order[2 * i] = init->id[i];
+        order[2 * i + 1] = (int64_t)i;
+    }
+    qsort(order, nt, 2 * sizeof *order, cmp_id);
+    for (size_t t = 1; t < nt; t++) {
+        if (order[2 * t] == order[2 * t - 2]) {
+            free(order);
+            rc = gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)order[2 * t]);
+            goto fail;
+        }
+    }
+    d->gone->n = nt;
+    size_t live = 0;
+    double rmin = INFINITY;
+    for (size_t t = 0; t < nt; t++) {
+        size_t i = (size_t)order[2 * t + 1];
+        d->tag_id[t] = init->id[i];
+        gr_particles_copy_one(d->gone, t, init, i);
+        if (init->flags[i] & GR_PF_GONE)
+            continue;
+        live++;
+        d->rmax = fmax(d->rmax, init->radius[i]);
+        rmin = fmin(rmin, init->radius[i]);
+        if (!(init->radius[i] > 0) || (!(init->flags[i] & GR_PF_FIXED) && !(init->mass[i] > 0))) {
+            free(order);
+            rc = gr_fail(err, GR_EINPUT, "grain id %lld has radius %g and mass %g; both must be positive",
+                         (long long)init->id[i], init->radius[i], init->mass[i]);
+            goto fail;
+        }
+    }
+    if (live == 0) {
+        free(order);
+        rc = gr_fail(err, GR_EINPUT, "the scene has no grains");
+        goto fail;
+    }
+    d->dmax = 2 * d->rmax;
+    d->dmin = 2 * rmin;
+    if (d->hist_on) {
+        double a = asin(rmin / (rmin + d->rmax));
+        d->hist.cap = (int)floor(M_PI / a + 1e-9) + 4;
+    }
+    if (gr_dem_grow(d, live + 16, err)) {
+        free(order);
+        rc = err->code;
+        goto fail;
+    }
+    int p = d->cur = 0;
+    for (size_t t = 0; t < nt; t++) {
+        size_t i = (size_t)order[2 * t + 1];
+        if (init->flags[i] & GR_PF_GONE)
+            continue;
+        size_t k = d->n++;
+        int fixed = (init->flags[i] & GR_PF_FIXED) != 0;
+        d->f[F_X][p][k] = init->x[i];
+        d->f[F_Y][p][k] = init->y[i];
+        d->f[F_VX][p][k] = fixed ? 0.0 : init->vx[i];
+        d->f[F_VY][p][k] = fixed ? 0.0 : init->vy[i];
+        if (d->rot)
+            d->f[F_W][p][k] = fixed ? 0.0 : init->omega[i];
+        d->rad[k] = init->radius[i];
+        d->mass[k] = init->mass[i];
+        d->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
+        d->im[k] = fixed ? 0.0 : 1.0 / init->mass[i];
+        d->iI[k] = fixed ? 0.0 : 1.0 / d->inertia[k];
+        d->gf[k] = fixed ? 0.0 : d->g;
+        d->tag[k] = (int32_t)t;
+        d->flags[k] = init->flags[i];
+        d->species[k] = init->species[i];
+        d->nmobile += !fixed;
+        /* periodic positions live in [0, L) */
+        if (d->Lx > 0)
+            d->f[F_X][p][k] -= d->Lx * floor(d->f[F_X][p][k] / d->Lx);
+        if (d->Ly > 0)
+            d->f[F_Y][p][k] -= d->Ly * floor(d->f[F_Y][p][k] / d->Ly);
+    }
+    free(order);
+    if (make_segments(d, err)) {
+        rc = err->code;
+        goto fail;
+    }
+    d->scratch = gr_particles_create(nt + 1, err);
+    if (!d->scratch) {
+        rc = err->code;
+        goto fail;
+    }
+    if (sc->silo.present && sc->silo.reinsert) {
+        d->rng = gr_rng_create(sc->seed, STREAM_DEM_REINSERT, err);
+        if (!d->rng) {
+            rc = err->code;
+            goto fail;
+        }
+    }
+    d->gates_open = !(sc->silo.present && isfinite(sc->silo.open_time));
+    if (gr_dem_prepare(d, err)) {
+        rc = err->code;
+        goto fail;
+    }
+    if (d->par.integrator == GR_DEM_CVODE) {
+        if (gr_dem_cv_create(d, err)) {
+            rc = err->code;
+            goto fail;
+        }
+    } else {
+        copy_u(d);
+        if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err)) {
+            rc = err->code;
+            goto fail;
+        }
+        if (d->par.integrator == GR_DEM_GEAR) {
+            double h2 = 0.5 * d->par.dt * d->par.dt;
+            for (size_t i = 0; i < d->n; i++) {
+                d->f[F_B2X][p][i] = h2 * d->f[F_FX][p][i] * d->im[i];
+                d->f[F_B2Y][p][i] = h2 * (d->f[F_FY][p][i] * d->im[i] - d->gf[i]);
+                d->f[F_B2T][p][i] = d->rot ? h2 * d->f[F_TQ][p][i] * d->iI[i] : 0.0;
+            }
+        }
+    }
+    double ek, msum = 0;
+    for (size_t i = 0; i < d->n; i++)
+        msum += d->im[i] != 0 ? d->mass[i] : 0.0;
+    d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
+    gr_dem_energy(d, &ek, NULL);
+    d->ekin_last = ek;
+    *out = d;
+    return GR_OK;
+fail:
+    gr_dem_free(d);
+    return rc;
+}
+
+long gr_dem_index(const gr_dem *d, long tag)
+{
+    for (size_t i = 0; i < d->n; i++)
+        if (d->tag[i] == tag)
+            return (long)i;
+    return -1;
+}
+
+/* Record the current state of the grains in `which` (tags) into d->gone. */
+static void record(gr_dem *d, size_t i, uint32_t extra_flags)
+{
+    int p = d->cur;
+    gr_particles *g = d->gone;
+    size_t t = (size_t)d->tag[i];
+    g->x[t] = d->f[F_X][p][i];
+    g->y[t] = d->f[F_Y][p][i];
+    g->vx[t] = d->f[F_VX][p][i];
+    g->vy[t] = d->f[F_VY][p][i];
+    g->omega[t] = d->rot ? d->f[F_W][p][i] : 0.0;
+    g->flags[t] = d->flags[i] | extra_flags;
+}
+
+int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err)
+{
+    (void)err;
+    size_t hc = d->hist_on ? (size_t)d->hist.cap : 0;
+    size_t k = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (gone[i]) {
+            record(d, i, GR_PF_GONE);
+            if (!(d->flags[i] & GR_PF_FIXED))
+                d->nmobile--;
+            continue;
+        }
+        if (k != i) {
+#define MV(a) if (a) (a)[k] = (a)[i];
+            for (int f = 0; f < F_NFIELDS; f++)
+                for (int p = 0; p < 2; p++)
+                    MV(d->f[f][p]);
+            MV(d->ux) MV(d->uy) MV(d->uw) MV(d->rad) MV(d->im) MV(d->iI) MV(d->gf)
+            MV(d->mass) MV(d->inertia) MV(d->xref) MV(d->yref) MV(d->ext_fx) MV(d->ext_fy)
+            MV(d->tag) MV(d->flags) MV(d->species)
+#undef MV
+            if (hc) {
+                gr_dem_hist *h = &d->hist;
+#define MVR(a) memcpy((a) + k * hc, (a) + i * hc, hc * sizeof *(a));
+                MVR(h->partner) MVR(h->partner_old) MVR(h->z) MVR(h->z_old) MVR(h->stamp) MVR(h->stamp_old)
+#undef MVR
+            }
+        }
+        k++;
+    }
+    d->n = k;
+    d->need_build = 1;
+    return GR_OK;
+}
+
+int gr_dem_snapshot(gr_dem *d, gr_particles *out, gr_err *err)
+{
+    if (gr_particles_copy(out, d->gone, err))
+        return err->code;
+    int p = d->cur;
+    for (size_t i = 0; i < d->n; i++) {
+        size_t t = (size_t)d->tag[i];
+        out->x[t] = d->f[F_X][p][i];
+        out->y[t] = d->f[F_Y][p][i];
+        out->vx[t] = d->f[F_VX][p][i];
+        out->vy[t] = d->f[F_VY][p][i];
+        out->omega[t] = d->rot ? d->f[F_W][p][i] : 0.0;
+        out->flags[t] = d->flags[i];
+    }
+    return GR_OK;
+}
+
+void gr_dem_energy(gr_dem *d, double *ekin, double *eel)
+{
+    int p = d->cur;
+    double ek = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->im[i] == 0)
+            continue;
+        double vx = d->f[F_VX][p][i], vy = d->f[F_VY][p][i];
+        ek += 0.5 * d->mass[i] * (vx * vx + vy * vy);
+        if (d->rot) {
+            double w = d->f[F_W][p][i];
+            ek += 0.5 * d->inertia[i] * w * w;
+        }
+    }
+    *ekin = ek;
+    if (!eel)
+        return;
+    /* elastic energy: all overlapping pairs and walls, by brute force over
+     * the cells (a diagnostic, not on the hot path) */
+    double e = 0;
+    const double *x = d->f[F_X][p], *y = d->f[F_Y][p];
+    double a = d->normal == GR_NORMAL_HERTZ ? 2.5 : 2.0;
+    for (size_t i = 0; i < d->n; i++) {
+        for (size_t j = i + 1; j < d->n; j++) {
+            double dx = gr_dem_image(x[j] - x[i], d->Lx), dy = gr_dem_image(y[j] - y[i], d->Ly);
+            double rs = d->rad[i] + d->rad[j];
+            if (dx * dx + dy * dy < rs * rs) {
+                double xi = rs - sqrt(dx * dx + dy * dy);
+                e += d->kn * pow(xi, a) / a;
+            }
+        }
+    }
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->flags[i] & GR_PF_FIXED)
+            continue;
+        for (int k = 0; k < d->nseg; k++) {
+            const gr_dem_seg *sg = &d->seg[k];
+            if (!(d->t < sg->open_time))
+                continue;
+            double ex = sg->x1 - sg->x0, ey = sg->y1 - sg->y0, l2 = ex * ex + ey * ey;
+            double u = l2 > 0 ? ((x[i] - sg->x0) * ex + (y[i] - sg->y0) * ey) / l2 : 0.0;
+            u = u < 0 ? 0 : u > 1 ? 1 : u;
+            double dist = hypot(x[i] - sg->x0 - u * ex, y[i] - sg->y0 - u * ey);
+            if (dist < d->rad[i])
+                e += d->kn * pow(d->rad[i] - dist, a) / a;
+        }
+    }
+    *eel = e;
+}
+
+int gr_dem_observe(gr_dem *d, gr_obs *o, gr_err *err)
+{
+    if (gr_dem_snapshot(d, d->scratch, err))
+        return err->code;
+    gr_obs_from_particles(d->scratch, d->g, o);
+    o->t = d->t;
+    o->steps = d->step;
+    o->outflow = d->outflow;
+    o->max_overlap = d->max_ovl;
+    double len = 0;
+    for (int k = 0; k < d->nseg; k++)
+        len += hypot(d->seg[k].x1 - d->seg[k].x0, d->seg[k].y1 - d->seg[k].y0);
+    o->wall_pressure = d->wall_time > 0 && len > 0 ? d->wall_impulse / d->wall_time / len : NAN;
+    d->wall_impulse = 0;
+    d->wall_time = 0;
+    return GR_OK;
+}
+
+int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err)
+{
+    if (!d->ext_fx) {
+        d->ext_fx = calloc(d->cap, sizeof(double));
+        d->ext_fy = calloc(d->cap, sizeof(double));
+        if (!d->ext_fx || !d->ext_fy)
+            return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    long i = gr_dem_index(d, tag);
+    if (i < 0)
+        return gr_fail(err, GR_EINPUT, "no live grain with tag %ld", tag);
+    d->ext_fx[i] = fx;
+    d->ext_fy[i] = fy;
+    return GR_OK;
+}
+
+void gr_dem_lock_rotation(gr_dem *d, long tag)
+{
+    long i = gr_dem_index(d, tag);
+    if (i >= 0)
+        d->iI[i] = 0.0;
+}
+
+void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy)
+{
+    *fx = d->seg_force[3 * s];
+    *fy = d->seg_force[3 * s + 1];
+}

@@ -1,0 +1,385 @@
+/* Time stepping: velocity Verlet (2.17-2.21), Gear's 6-value predictor-
+ * corrector and explicit Euler, written into the other buffer so that a
+ * step that fails its checks leaves the last good state in place; the
+ * neighbour-list rebuild rule; gates, grains leaving and reinsertion. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+#include "init.h"
+#include "rng.h"
+
+void gr_dem_hist_undo_at(gr_dem *d, uint64_t E)
+{
+    if (!d->hist_on)
+        return;
+    gr_dem_hist *h = &d->hist;
+    size_t ns = d->n * (size_t)h->cap;
+    for (size_t s = 0; s < ns; s++) {
+        if (h->stamp[s] == E) {
+            h->partner[s] = h->partner_old[s];
+            h->z[s] = h->z_old[s];
+            h->stamp[s] = h->stamp_old[s];
+        }
+    }
+}
+
+static inline double wrap(double x, double L)
+{
+    if (L > 0) {
+        if (x >= L)
+            x -= L;
+        else if (x < 0)
+            x += L;
+    }
+    return x;
+}
+
+static void predict_verlet(gr_dem *d, int p, int q)
+{
+    double dt = d->par.dt, h = 0.5 * dt;
+    size_t n = d->n;
+    const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
+    const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
+    const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
+    double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
+    double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
+    double *restrict ux = d->ux, *restrict uy = d->uy;
+    const double *restrict im = d->im, *restrict gf = d->gf;
+    double Lx = d->Lx, Ly = d->Ly;
+    for (size_t i = 0; i < n; i++) {
+        double ax = fx[i] * im[i], ay = fy[i] * im[i] - gf[i];
+        double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
+        xn[i] = wrap(x[i] + dt * hx, Lx);
+        yn[i] = wrap(y[i] + dt * hy, Ly);
+        vxn[i] = hx;
+        vyn[i] = hy;
+        /* the damping sees v(t+dt) predicted to second order, not the
+         * half-step velocity, so the dissipation is second order too */
+        ux[i] = hx + h * ax;
+        uy[i] = hy + h * ay;
+    }
+    if (d->rot) {
+        const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
+        double *restrict wn = d->f[F_W][q], *restrict uw = d->uw;
+        const double *restrict iI = d->iI;
+        for (size_t i = 0; i < n; i++) {
+            double a = tq[i] * iI[i];
+            wn[i] = w[i] + h * a;
+            uw[i] = wn[i] + h * a;
+        }
+    }
+}
+
+static void correct_verlet(gr_dem *d, int q)
+{
+    double h = 0.5 * d->par.dt;
+    size_t n = d->n;
+    double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
+    const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
+    const double *restrict im = d->im, *restrict gf = d->gf;
+    for (size_t i = 0; i < n; i++) {
+        vx[i] += h * fx[i] * im[i];
+        vy[i] += h * (fy[i] * im[i] - gf[i]);
+    }
+    if (d->rot) {
+        double *restrict w = d->f[F_W][q];
+        const double *restrict tq = d->f[F_TQ][q], *restrict iI = d->iI;
+        for (size_t i = 0; i < n; i++)
+            w[i] += h * tq[i] * iI[i];
+    }
+}
+
+static void predict_euler(gr_dem *d, int p, int q)
+{
+    double dt = d->par.dt;
+    for (size_t i = 0; i < d->n; i++) {
+        double ax = d->f[F_FX][p][i] * d->im[i], ay = d->f[F_FY][p][i] * d->im[i] - d->gf[i];
+        d->f[F_X][q][i] = wrap(d->f[F_X][p][i] + dt * d->f[F_VX][p][i], d->Lx);
+        d->f[F_Y][q][i] = wrap(d->f[F_Y][p][i] + dt * d->f[F_VY][p][i], d->Ly);
+        d->ux[i] = d->f[F_VX][q][i] = d->f[F_VX][p][i] + dt * ax;
+        d->uy[i] = d->f[F_VY][q][i] = d->f[F_VY][p][i] + dt * ay;
+        if (d->rot)
+            d->uw[i] = d->f[F_W][q][i] = d->f[F_W][p][i] + dt * d->f[F_TQ][p][i] * d->iI[i];
+    }
+}
+
+/* Gear, 6 values (Allen & Tildesley, app. E), scaled derivatives b_k;
+ * c0 = 3/16 because the forces depend on velocities. */
+static const double gear_c[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
+
+static void predict_gear(gr_dem *d, int p, int q)
+{
+    double dt = d->par.dt;
+    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
+    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
+                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
+    int ndof = d->rot ? 3 : 2;
+    for (int c = 0; c < ndof; c++) {
+        double *r0 = d->f[q0[c]][p], *v = d->f[qv[c]][p];
+        double *b2 = d->f[qb[c][0]][p], *b3 = d->f[qb[c][1]][p], *b4 = d->f[qb[c][2]][p], *b5 = d->f[qb[c][3]][p];
+        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
+        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        double *u = c == 0 ? d->ux : c == 1 ? d->uy : d->uw;
+        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
+        for (size_t i = 0; i < d->n; i++) {
+            double b1 = dt * v[i];
+            R0[i] = wrap(r0[i] + b1 + b2[i] + b3[i] + b4[i] + b5[i], L);
+            double B1 = b1 + 2 * b2[i] + 3 * b3[i] + 4 * b4[i] + 5 * b5[i];
+            B2[i] = b2[i] + 3 * b3[i] + 6 * b4[i] + 10 * b5[i];
+            B3[i] = b3[i] + 4 * b4[i] + 10 * b5[i];
+            B4[i] = b4[i] + 5 * b5[i];
+            B5[i] = b5[i];
+            V[i] = u[i] = B1 / dt;
+        }
+    }
+}
+
+static void correct_gear(gr_dem *d, int q)
+{
+    double dt = d->par.dt, h2 = 0.5 * dt * dt;
+    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
+    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
+                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
+    int ndof = d->rot ? 3 : 2;
+    for (int c = 0; c < ndof; c++) {
+        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
+        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        const double *F = d->f[c == 0 ? F_FX : c == 1 ? F_FY : F_TQ][q];
+        const double *inv = c == 2 ? d->iI : d->im;
+        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
+        for (size_t i = 0; i < d->n; i++) {
+            double a = F[i] * inv[i] - (c == 1 ? d->gf[i] : 0.0);
+            double del = h2 * a - B2[i];
+            R0[i] = wrap(R0[i] + gear_c[0] * del, L);
+            V[i] += gear_c[1] * del / dt;
+            B2[i] += gear_c[2] * del;
+            B3[i] += gear_c[3] * del;
+            B4[i] += gear_c[4] * del;
+            B5[i] += gear_c[5] * del;
+        }
+    }
+}
+
+/* Two largest displacements since the list build (section 2.4.1). */
+static int needs_rebuild(const gr_dem *d, int q)
+{
+    const double *x = d->f[F_X][q], *y = d->f[F_Y][q];
+    double m1 = 0, m2 = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        double dx = gr_dem_image(x[i] - d->xref[i], d->Lx), dy = gr_dem_image(y[i] - d->yref[i], d->Ly);
+        double s = dx * dx + dy * dy;
+        if (s > m2) {
+            if (s > m1) {
+                m2 = m1;
+                m1 = s;
+            } else {
+                m2 = s;
+            }
+        }
+    }
+    return sqrt(m1) + sqrt(m2) > d->par.skin;
+}
+
+static int open_gates(gr_dem *d, gr_err *err)
+{
+    unsigned char *gone = calloc(d->n + 1, 1);
+    if (!gone)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    int any = 0;
+    for (size_t i = 0; i < d->n; i++)
+        if (d->flags[i] & GR_PF_GATE)
+            gone[i] = 1, any = 1;
+    int rc = any ? gr_dem_compact(d, gone, err) : GR_OK;
+    free(gone);
+    d->gates_open = 1;
+    return rc;
+}
+
+/* Grains below the exit or past an open side leave; reinserted at the top
+ * when the silo says so. */
+static int handle_exits(gr_dem *d, gr_err *err)
+{
+    const gr_scene *sc = &d->sc;
+    int p = d->cur;
+    double xlo = sc->side[GR_LEFT] == GR_BC_OPEN ? 0.0 : -INFINITY;
+    double xhi = sc->side[GR_RIGHT] == GR_BC_OPEN ? sc->width : INFINITY;
+    double ylo = sc->side[GR_BOTTOM] == GR_BC_OPEN ? 0.0 : -INFINITY;
+    double yhi = sc->side[GR_TOP] == GR_BC_OPEN ? sc->height : INFINITY;
+    if (sc->silo.present)
+        ylo = fmax(ylo, sc->silo.exit_below);
+    if (!isfinite(xlo) && !isfinite(xhi) && !isfinite(ylo) && !isfinite(yhi))
+        return GR_OK;
+    const double *x = d->f[F_X][p], *y = d->f[F_Y][p];
+    size_t nout = 0;
+    for (size_t i = 0; i < d->n; i++)
+        nout += d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi);
+    if (!nout)
+        return GR_OK;
+    int reinsert = sc->silo.present && sc->silo.reinsert;
+    unsigned char *gone = calloc(d->n + 1, 1);
+    if (!gone)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    int any_gone = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (!(d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi)))
+            continue;
+        d->outflow++;
+        double nx, ny;
+        if (reinsert) {
+            if (gr_dem_snapshot(d, d->scratch, err)) {
+                free(gone);
+                return err->code;
+            }
+            if (gr_reinsert_spot(sc, d->scratch, d->rad[i], d->rng, 1000, &nx, &ny)) {
+                d->f[F_X][p][i] = nx;
+                d->f[F_Y][p][i] = ny;
+                d->f[F_VX][p][i] = 0.0;
+                d->f[F_VY][p][i] = 0.0;
+                d->f[F_FX][p][i] = d->f[F_FY][p][i] = 0.0;
+                if (d->rot)
+                    d->f[F_W][p][i] = d->f[F_TQ][p][i] = 0.0;
+                if (d->par.integrator == GR_DEM_GEAR)
+                    for (int f = F_TH; f < F_NFIELDS; f++)
+                        d->f[f][p][i] = 0.0;
+                continue;
+            }
+            /* no free spot: the grain is lost, and says so in its flags */
+        }
+        gone[i] = 1;
+        any_gone = 1;
+    }
+    int rc = any_gone ? gr_dem_compact(d, gone, err) : GR_OK;
+    free(gone);
+    return rc;
+}
+
+static int report_nonfinite(gr_dem *d, int q, gr_err *err)
+{
+    for (size_t i = 0; i < d->n; i++) {
+        double s = d->f[F_X][q][i] + d->f[F_Y][q][i] + d->f[F_VX][q][i] + d->f[F_VY][q][i] +
+                   (d->rot ? d->f[F_W][q][i] : 0.0);
+        if (!isfinite(s))
+            return gr_fail(err, GR_ERUN,
+                           "unstable at t = %.9g: grain id %lld has a non-finite position or velocity (overlap %.4g of a diameter in that step); lower dt",
+                           d->t + d->par.dt, (long long)d->tag_id[d->tag[i]], d->max_ovl);
+    }
+    return gr_fail(err, GR_ERUN, "unstable at t = %.9g: non-finite kinetic energy", d->t + d->par.dt);
+}
+
+int gr_dem_step(gr_dem *d, gr_err *err)
+{
+    if (!d->gates_open && d->t >= d->sc.silo.open_time && open_gates(d, err))
+        return err->code;
+    int p = d->cur, q = 1 - p;
+    double dt = d->par.dt;
+    uint64_t E = d->step + 1;
+    double tn = d->t0 + (double)E * dt;
+    switch (d->par.integrator) {
+    case GR_DEM_GEAR: predict_gear(d, p, q); break;
+    case GR_DEM_EULER: predict_euler(d, p, q); break;
+    default: predict_verlet(d, p, q); break;
+    }
+    int mode = d->par.neighbour;
+    if (mode == GR_DEM_NB_VERLET && (d->need_build || needs_rebuild(d, q))) {
+        /* sort and build on the new positions; both buffers move along */
+        d->cur = q;
+        int rc = gr_dem_sort(d, err) || gr_dem_build_list(d, d->f[F_X][q], d->f[F_Y][q], err);
+        d->cur = p;
+        if (rc)
+            return err->code;
+    } else if (mode == GR_DEM_NB_CELLS && (d->need_build || ++d->since_sort >= (uint64_t)d->par.sort_every)) {
+        d->cur = q;
+        int rc = gr_dem_sort(d, err);
+        d->cur = p;
+        if (rc)
+            return err->code;
+        d->need_build = 0;
+    }
+    if (gr_dem_eval_at(d, q, tn, E, dt, mode, d->seg_force, err)) {
+        gr_dem_hist_undo_at(d, E);
+        return err->code;
+    }
+    if (d->par.integrator == GR_DEM_GEAR)
+        correct_gear(d, q);
+    else if (d->par.integrator == GR_DEM_VERLET)
+        correct_verlet(d, q);
+    double ek = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        double vx = d->f[F_VX][q][i], vy = d->f[F_VY][q][i];
+        ek += (d->im[i] != 0) * 0.5 * d->mass[i] * (vx * vx + vy * vy);
+    }
+    if (d->rot)
+        for (size_t i = 0; i < d->n; i++)
+            ek += 0.5 * d->inertia[i] * d->f[F_W][q][i] * d->f[F_W][q][i] * (d->iI[i] != 0);
+    if (!isfinite(ek)) {
+        gr_dem_hist_undo_at(d, E);
+        return report_nonfinite(d, q, err);
+    }
+    if (ek > (1.0 + d->par.energy_jump) * d->ekin_last + d->e_floor) {
+        gr_dem_hist_undo_at(d, E);
+        /* name the fastest grain: where the energy went */
+        size_t arg = 0;
+        double best = -1;
+        for (size_t i = 0; i < d->n; i++) {
+            double v2 = d->f[F_VX][q][i] * d->f[F_VX][q][i] + d->f[F_VY][q][i] * d->f[F_VY][q][i];
+            if (v2 > best)
+                best = v2, arg = i;
+        }
+        return gr_fail(err, GR_ERUN,
+                       "unstable at t = %.9g: kinetic energy jumped from %.6g to %.6g in one step (bound energy_jump = %g); fastest grain id %lld at speed %.4g, largest overlap %.4g of a diameter; lower dt",
+                       tn, d->ekin_last, ek, d->par.energy_jump, (long long)d->tag_id[d->tag[arg]], sqrt(best), d->max_ovl);
+    }
+    d->ekin_last = ek;
+    d->cur = q;
+    d->step = E;
+    d->t = tn;
+    for (int k = 0; k < d->nseg; k++)
+        d->wall_impulse += d->seg_force[3 * k + 2] * dt;
+    d->wall_time += dt;
+    return handle_exits(d, err);
+}
+
+int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
+{
+    if (d->par.integrator == GR_DEM_CVODE)
+        return gr_dem_cv_advance(d, t_end, max_steps, err);
+    uint64_t done = 0;
+    double eps = 1e-6 * d->par.dt;
+    while (d->t < t_end - eps && (max_steps == 0 || done < max_steps)) {
+        if (gr_dem_step(d, err))
+            return err->code;
+        done++;
+    }
+    return GR_OK;
+}
+
+int gr_dem_forces(gr_dem *d, int mode, double *fx, double *fy, double *tq, gr_err *err)
+{
+    int p = d->cur, q = 1 - p;
+    size_t n = d->n;
+    memcpy(d->f[F_X][q], d->f[F_X][p], n * sizeof(double));
+    memcpy(d->f[F_Y][q], d->f[F_Y][p], n * sizeof(double));
+    memcpy(d->ux, d->f[F_VX][p], n * sizeof(double));
+    memcpy(d->uy, d->f[F_VY][p], n * sizeof(double));
+    if (d->rot)
+        memcpy(d->uw, d->f[F_W][p], n * sizeof(double));
+    uint64_t E = d->step + 1;
+    double *segf = calloc((size_t)d->nseg * 3 + 3, sizeof *segf);
+    if (!segf)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    double ovl = d->max_ovl;
+    int rc = gr_dem_eval_at(d, q, d->t, E, 0.0, mode, segf, err);
+    gr_dem_hist_undo_at(d, E);
+    d->max_ovl = ovl;
+    free(segf);
+    if (rc)
+        return rc;
+    memcpy(fx, d->f[F_FX][q], n * sizeof(double));
+    memcpy(fy, d->f[F_FY][q], n * sizeof(double));
+    if (tq)
+        for (size_t i = 0; i < n; i++)
+            tq[i] = d->rot ? d->f[F_TQ][q][i] : 0.0;
+    return GR_OK;
+}
