@@ -193,7 +193,12 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
                 size_t n, const double *p0, const gr_fit_opts *opt, gr_fit *out,
                 gr_err *err);
 
-/* Ready models. Parameter order is the order in p[]. */
+/* The input checks of gr_fit_nlin (GR_EINPUT naming `what`): 1 <= np <=
+ * GR_FIT_MAXP, n > np, finite x and y, finite sigma > 0 when given. */
+int gr_fit_check_data(const char *what, size_t np, const double *x, const double *y,
+                      const double *sigma, size_t n, gr_err *err);
+
+/* Ready models (fit_models.c). Parameter order is the order in p[]. */
 gr_model gr_model_power(void);       /* A x^p: {A, p} */
 gr_model gr_model_exp(void);         /* A exp(b x): {A, b} */
 gr_model gr_model_gauss(void);       /* A exp(-(x-mu)^2 / (2 s^2)): {A, mu, s} */
