@@ -53,13 +53,6 @@ typedef struct {
     void *prev;    /* once: the stored values, to notice a change */
 } elem;
 
-typedef struct {
-    char name[128];
-    int nx, ny, ncomp;
-    double x0, y0, dx, dy;
-    hid_t group, step, time, value;
-} field;
-
 struct gr_h5md {
     hid_t file;
     int owned;            /* created by gr_h5md_create: closed on free */
@@ -78,20 +71,7 @@ struct gr_h5md {
     elem oe[NOE];
     size_t nobs;
     double last_obs_time;
-    field *fields;
-    size_t nfields;
 };
-
-static hid_t mkgroup(hid_t loc, const char *name)
-{
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    if (lcpl < 0)
-        return -1;
-    H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t g = H5Gcreate2(loc, name, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-    H5Pclose(lcpl);
-    return g;
-}
 
 static const char *author_name(const gr_h5md_opts *o)
 {
@@ -108,17 +88,17 @@ static const char *author_name(const gr_h5md_opts *o)
 static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, gr_err *err)
 {
     const int version[2] = {1, 1}, units_version[2] = {1, 0}, dim = 2;
-    hid_t g = mkgroup(h->file, "h5md");
+    hid_t g = gr_h5_mkgroup(h->file, "h5md");
     int bad = g < 0 || gr_h5_attr_int(g, "version", version, 2);
     gr_h5_close(g);
-    g = bad ? -1 : mkgroup(h->file, "h5md/author");
+    g = bad ? -1 : gr_h5_mkgroup(h->file, "h5md/author");
     bad = bad || g < 0 || gr_h5_attr_str(g, "name", author_name(o), 0);
     gr_h5_close(g);
-    g = bad ? -1 : mkgroup(h->file, "h5md/creator");
+    g = bad ? -1 : gr_h5_mkgroup(h->file, "h5md/creator");
     bad = bad || g < 0 || gr_h5_attr_str(g, "name", "grano", 0) ||
           gr_h5_attr_str(g, "version", o->version ? o->version : GRANO_VERSION, 0);
     gr_h5_close(g);
-    g = bad ? -1 : mkgroup(h->file, "h5md/modules/units");
+    g = bad ? -1 : gr_h5_mkgroup(h->file, "h5md/modules/units");
     bad = bad || g < 0 || gr_h5_attr_int(g, "version", units_version, 2) ||
           gr_h5_attr_str(g, "system",
                          "grano reduced units: d grain diameter, m grain mass, "
@@ -127,7 +107,7 @@ static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, g
     if (bad)
         return gr_h5_fail(err, GR_ERUN, "cannot write the h5md metadata group");
 
-    g = mkgroup(h->file, "parameters");
+    g = gr_h5_mkgroup(h->file, "parameters");
     bad = g < 0 || gr_h5_dset_str(g, "scene", sc->text ? sc->text : "") ||
           gr_h5_dset_str(g, "scene_name", sc->name) || gr_h5_dset_str(g, "scene_path", sc->path) ||
           gr_h5_dset_str(g, "method", o->method ? o->method : "") ||
@@ -137,8 +117,8 @@ static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, g
     if (bad)
         return gr_h5_fail(err, GR_ERUN, "cannot write the parameters group");
 
-    h->traj = mkgroup(h->file, "particles/trajectory");
-    h->box = h->traj >= 0 ? mkgroup(h->traj, "box") : -1;
+    h->traj = gr_h5_mkgroup(h->file, "particles/trajectory");
+    h->box = h->traj >= 0 ? gr_h5_mkgroup(h->traj, "box") : -1;
     const char *bnd[2] = {
         sc->side[GR_LEFT] == GR_BC_PERIODIC && sc->side[GR_RIGHT] == GR_BC_PERIODIC ? "periodic" : "none",
         sc->side[GR_BOTTOM] == GR_BC_PERIODIC && sc->side[GR_TOP] == GR_BC_PERIODIC ? "periodic" : "none"};
@@ -175,12 +155,6 @@ static void close_handles(gr_h5md *h)
         gr_h5_close(h->oe[k].value);
         gr_h5_close(h->oe[k].group);
     }
-    for (size_t i = 0; i < h->nfields; i++) {
-        gr_h5_close(h->fields[i].value);
-        gr_h5_close(h->fields[i].time);
-        gr_h5_close(h->fields[i].step);
-        gr_h5_close(h->fields[i].group);
-    }
     gr_h5_close(h->obs_step);
     gr_h5_close(h->obs_time);
     gr_h5_close(h->step);
@@ -198,7 +172,6 @@ static herr_t release(gr_h5md *h)
     herr_t st = 0;
     if (h->owned && h->file >= 0)
         st = H5Fclose(h->file);
-    free(h->fields);
     free(h->buf);
     free(h->times);
     free(h->path);
@@ -551,7 +524,7 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
         return gr_fail(err, GR_ERUN, "observable time %.17g is not after the previous one (%.17g)",
                        o->t, h->last_obs_time);
     if (!h->nobs && h->oe[0].group < 0) {
-        hid_t og = mkgroup(h->file, "observables");
+        hid_t og = gr_h5_mkgroup(h->file, "observables");
         int bad = og < 0;
         for (int k = 0; k < NOE && !bad; k++) {
             elem *e = &h->oe[k];
@@ -588,113 +561,22 @@ int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err)
     return rc;
 }
 
-static int valid_name(const char *s)
-{
-    if (!s || !s[0] || s[0] == '/' || s[strlen(s) - 1] == '/' || strstr(s, "//") ||
-        strstr(s, "..") || strchr(s, '"') || strchr(s, '<') || strchr(s, '&'))
-        return 0;
-    return 1;
-}
-
-static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double time,
-                      const double *values, gr_err *err)
-{
-    if (!valid_name(f->name) || strchr(f->name, '/') || strlen(f->name) >= sizeof h->fields->name)
-        return gr_fail(err, GR_ERUN, "invalid field name '%s'", f->name ? f->name : "");
-    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 2 || !(f->dx > 0) || !(f->dy > 0) ||
-        !isfinite(f->dx) || !isfinite(f->dy) || !isfinite(f->x0) || !isfinite(f->y0))
-        return gr_fail(err, GR_ERUN, "field '%s': invalid grid %dx%d (ncomp %d, cell %g x %g)",
-                       f->name, f->nx, f->ny, f->ncomp, f->dx, f->dy);
-    field *fl = NULL;
-    for (size_t i = 0; i < h->nfields; i++)
-        if (!strcmp(h->fields[i].name, f->name))
-            fl = &h->fields[i];
-    if (fl && (fl->nx != f->nx || fl->ny != f->ny || fl->ncomp != f->ncomp || fl->x0 != f->x0 ||
-               fl->y0 != f->y0 || fl->dx != f->dx || fl->dy != f->dy))
-        return gr_fail(err, GR_ERUN, "field '%s': grid differs from its first sample", f->name);
-    if (!fl) {
-        field *q = realloc(h->fields, (h->nfields + 1) * sizeof *q);
-        if (!q)
-            return gr_fail(err, GR_ERUN, "out of memory");
-        h->fields = q;
-        fl = &q[h->nfields];
-        *fl = (field){.nx = f->nx, .ny = f->ny, .ncomp = f->ncomp, .x0 = f->x0, .y0 = f->y0,
-                      .dx = f->dx, .dy = f->dy, .group = -1, .step = -1, .time = -1, .value = -1};
-        snprintf(fl->name, sizeof fl->name, "%s", f->name);
-        h->nfields++;
-        char path[160];
-        snprintf(path, sizeof path, "fields/%s", f->name);
-        hid_t g = mkgroup(h->file, path);
-        fl->group = g;
-        int grid[2] = {f->nx, f->ny}, nc = f->ncomp;
-        double origin[2] = {f->x0, f->y0}, cell[2] = {f->dx, f->dy};
-        hsize_t item[3] = {(hsize_t)f->ny, (hsize_t)f->nx, (hsize_t)f->ncomp};
-        if (g < 0 || gr_h5_attr_int(g, "grid", grid, 2) || gr_h5_attr_f64(g, "origin", origin, 2) ||
-            gr_h5_attr_f64(g, "cell", cell, 2) || gr_h5_attr_int(g, "components", &nc, 0) ||
-            (fl->step = gr_h5_ext_create(g, "step", GR_T_I64, 0, NULL)) < 0 ||
-            (fl->time = gr_h5_ext_create(g, "time", GR_T_F64, 0, NULL)) < 0 ||
-            gr_h5_unit(fl->time, "tau") ||
-            (fl->value = gr_h5_ext_create(g, "value", GR_T_F64, f->ncomp > 1 ? 3 : 2, item)) < 0 ||
-            gr_h5_unit(fl->value, f->unit ? f->unit : "1"))
-            return gr_h5_fail(err, GR_ERUN, "cannot create fields/%s", f->name);
-    }
-    int64_t s = (int64_t)step;
-    if (gr_h5_ext_append(fl->value, GR_T_F64, values) || gr_h5_ext_append(fl->step, GR_T_I64, &s) ||
-        gr_h5_ext_append(fl->time, GR_T_F64, &time))
-        return gr_h5_fail(err, GR_ERUN, "cannot append to fields/%s", f->name);
-    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
-        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
-    return GR_OK;
-}
-
-int gr_h5md_write_field(gr_h5md *h, const gr_field_desc *f, uint64_t step, double time,
-                        const double *values, gr_err *err)
-{
-    int rc;
-    GR_H5_QUIET(rc = field_impl(h, f, step, time, values, err));
-    return rc;
-}
-
-static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)
-{
-    if (!valid_name(d->name) || strlen(d->name) > 200)
-        return gr_fail(err, GR_ERUN, "invalid result name '%s'", d->name ? d->name : "");
-    char path[256];
-    snprintf(path, sizeof path, "results/%s", d->name);
-    if (gr_h5_exists(h->file, path) && H5Ldelete(h->file, path, H5P_DEFAULT) < 0)
-        return gr_h5_fail(err, GR_ERUN, "cannot replace %s", path);
-    hsize_t dims[2] = {d->rows, d->cols};
-    hid_t ds = gr_h5_fixed_create(h->file, path, GR_T_F64, dims, v);
-    int bad = ds < 0;
-    size_t nlab = d->cols ? d->cols : 1;
-    if (!bad && d->columns && d->cols)
-        bad = gr_h5_attr_strs(ds, "columns", (const char *const *)d->columns, d->cols, 1);
-    if (!bad && d->units)
-        bad = d->cols ? gr_h5_attr_strs(ds, "units", d->units, nlab, 1)
-                      : gr_h5_unit(ds, d->units[0]);
-    if (!bad && d->description)
-        bad = gr_h5_attr_str(ds, "description", d->description, 1);
-    gr_h5_close(ds);
-    if (bad)
-        return gr_h5_fail(err, GR_ERUN, "cannot write %s", path);
-    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
-        return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
-    return GR_OK;
-}
-
-int gr_h5md_write_result(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)
-{
-    int rc;
-    GR_H5_QUIET(rc = result_impl(h, d, v, err));
-    return rc;
-}
-
 int gr_h5md_flush(gr_h5md *h, gr_err *err)
 {
     int rc = GR_OK;
     GR_H5_QUIET(if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
                     rc = gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file"));
     return rc;
+}
+
+hid_t gr_h5md_file_of(const gr_h5md *h)
+{
+    return h->file;
+}
+
+const char *gr_h5md_path_of(const gr_h5md *h)
+{
+    return h->path ? h->path : "the file";
 }
 
 size_t gr_h5md_frames(const gr_h5md *h)

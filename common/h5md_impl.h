@@ -65,6 +65,20 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
                          const void *data);
 
 int gr_h5_exists(hid_t loc, const char *path); /* link exists (all components) */
+int gr_h5_is_group(hid_t loc, const char *path);
+hid_t gr_h5_mkgroup(hid_t loc, const char *path); /* with intermediate groups */
+/* Complete samples of a time-dependent element group: the fewest rows of
+ * its step, time and value (a writer killed mid-sample leaves them uneven). */
+hsize_t gr_h5_series_rows(hid_t loc, const char *group);
+int gr_h5_read_path(hid_t loc, const char *path, gr_h5_type t, hsize_t first, hsize_t count,
+                    void *buf);
+/* A name usable under results/ or fields/: relative, no "..", no XML specials. */
+int gr_h5_valid_name(const char *s);
+
+/* The file behind a writer or reader, and the writer's path for messages. */
+hid_t gr_h5md_file_of(const gr_h5md *h);
+const char *gr_h5md_path_of(const gr_h5md *h);
+hid_t gr_h5md_reader_file(const gr_h5md_reader *r);
 
 /* Attach the H5MD layout to an open file that the caller keeps owning (the
  * checkpoint store): no rename, no sidecar, the file stays open on free. */

@@ -20,46 +20,6 @@ static const char *const traj_elems[] = {"position", "velocity", "omega", "flags
                                          "mass", "inertia", "species", "id"};
 #define NTRAJ (sizeof traj_elems / sizeof traj_elems[0])
 
-static int is_group(hid_t loc, const char *path)
-{
-    if (!gr_h5_exists(loc, path))
-        return 0;
-    H5O_info_t oi;
-    if (H5Oget_info_by_name(loc, path, &oi, H5P_DEFAULT) < 0)
-        return 0;
-    return oi.type == H5O_TYPE_GROUP;
-}
-
-static hsize_t rows_at(hid_t loc, const char *path)
-{
-    if (!gr_h5_exists(loc, path))
-        return 0;
-    hid_t d = H5Dopen2(loc, path, H5P_DEFAULT);
-    if (d < 0)
-        return 0;
-    hsize_t r = gr_h5_rows(d);
-    H5Dclose(d);
-    return r;
-}
-
-/* Complete samples of a time-dependent element group: every dataset of it
- * holds at least that many rows. */
-static hsize_t series_rows(hid_t loc, const char *group)
-{
-    char p[512];
-    hsize_t r = (hsize_t)-1;
-    const char *parts[] = {"step", "time", "value"};
-    for (int k = 0; k < 3; k++) {
-        snprintf(p, sizeof p, "%s/%s", group, parts[k]);
-        if (k == 1 && !gr_h5_exists(loc, p))
-            continue; /* time is optional in H5MD */
-        hsize_t n = rows_at(loc, p);
-        if (n < r)
-            r = n;
-    }
-    return r == (hsize_t)-1 ? 0 : r;
-}
-
 static void free_info(gr_h5md_info *in)
 {
     free(in->path);
@@ -82,20 +42,20 @@ static int count_frames(gr_h5md_reader *r)
 {
     gr_h5md_info *in = &r->info;
     hid_t f = r->file;
-    if (!is_group(f, "particles/trajectory/position"))
+    if (!gr_h5_is_group(f, "particles/trajectory/position"))
         return 0;
-    hsize_t frames = series_rows(f, "particles/trajectory/position");
+    hsize_t frames = gr_h5_series_rows(f, "particles/trajectory/position");
     char p[256];
     for (size_t k = 1; k < NTRAJ; k++) {
         snprintf(p, sizeof p, "particles/trajectory/%s", traj_elems[k]);
-        if (is_group(f, p)) {
-            hsize_t n = series_rows(f, p);
+        if (gr_h5_is_group(f, p)) {
+            hsize_t n = gr_h5_series_rows(f, p);
             if (n < frames)
                 frames = n;
         }
     }
-    if (is_group(f, "particles/trajectory/box/edges")) {
-        hsize_t n = series_rows(f, "particles/trajectory/box/edges");
+    if (gr_h5_is_group(f, "particles/trajectory/box/edges")) {
+        hsize_t n = gr_h5_series_rows(f, "particles/trajectory/box/edges");
         if (n < frames)
             frames = n;
     }
@@ -150,7 +110,7 @@ static int list_impl(hid_t f, const char *group, char ***names, size_t *n)
 {
     *names = NULL;
     *n = 0;
-    if (!is_group(f, group))
+    if (!gr_h5_is_group(f, group))
         return 0;
     hid_t g = H5Gopen2(f, group, H5P_DEFAULT);
     if (g < 0)
@@ -185,8 +145,8 @@ static int count_obs(gr_h5md_reader *r)
     char p[512];
     for (size_t i = 0; i < n; i++) {
         snprintf(p, sizeof p, "observables/%s", names[i]);
-        if (is_group(r->file, p)) {
-            hsize_t k = series_rows(r->file, p);
+        if (gr_h5_is_group(r->file, p)) {
+            hsize_t k = gr_h5_series_rows(r->file, p);
             if (k < rows)
                 rows = k;
         }
@@ -227,7 +187,7 @@ static gr_h5md_reader *open_impl(const char *path, gr_err *err)
     }
     gr_h5md_info *in = &r->info;
     in->path = strdup(path);
-    hid_t g = is_group(r->file, "h5md/creator") ? H5Gopen2(r->file, "h5md/creator", H5P_DEFAULT) : -1;
+    hid_t g = gr_h5_is_group(r->file, "h5md/creator") ? H5Gopen2(r->file, "h5md/creator", H5P_DEFAULT) : -1;
     in->creator = g >= 0 ? gr_h5_read_attr_str(g, "name") : NULL;
     in->creator_version = g >= 0 ? gr_h5_read_attr_str(g, "version") : NULL;
     gr_h5_close(g);
@@ -243,7 +203,7 @@ static gr_h5md_reader *open_impl(const char *path, gr_err *err)
     if (g >= 0)
         gr_h5_read_attr_int(g, "version", in->h5md_version, 2);
     gr_h5_close(g);
-    g = is_group(r->file, "h5md/author") ? H5Gopen2(r->file, "h5md/author", H5P_DEFAULT) : -1;
+    g = gr_h5_is_group(r->file, "h5md/author") ? H5Gopen2(r->file, "h5md/author", H5P_DEFAULT) : -1;
     in->author = dup_or_empty(g >= 0 ? gr_h5_read_attr_str(g, "name") : NULL);
     gr_h5_close(g);
     in->creator_version = dup_or_empty(in->creator_version);
@@ -253,9 +213,9 @@ static gr_h5md_reader *open_impl(const char *path, gr_err *err)
     in->method = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/method"));
     in->grano_version = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/grano_version"));
     gr_h5_read_dset_u64(r->file, "parameters/seed", &in->seed);
-    in->has_checkpoint = is_group(r->file, "checkpoint");
+    in->has_checkpoint = gr_h5_is_group(r->file, "checkpoint");
     in->box[0] = in->box[1] = NAN;
-    g = is_group(r->file, "particles/trajectory/box")
+    g = gr_h5_is_group(r->file, "particles/trajectory/box")
             ? H5Gopen2(r->file, "particles/trajectory/box", H5P_DEFAULT) : -1;
     if (g >= 0) {
         char *b = NULL;
@@ -311,17 +271,6 @@ const gr_h5md_info *gr_h5md_info_of(const gr_h5md_reader *r)
     return &r->info;
 }
 
-/* Rows [first, first+count) of a dataset by path. */
-static int read_path(hid_t f, const char *path, gr_h5_type t, hsize_t first, hsize_t count, void *buf)
-{
-    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
-    if (d < 0)
-        return -1;
-    int rc = gr_h5_read_rows(d, t, first, count, buf);
-    H5Dclose(d);
-    return rc;
-}
-
 static int times_impl(gr_h5md_reader *r, double *time, uint64_t *step, gr_err *err)
 {
     size_t n = r->info.nframes;
@@ -330,8 +279,8 @@ static int times_impl(gr_h5md_reader *r, double *time, uint64_t *step, gr_err *e
     int64_t *s = step ? malloc(n * sizeof *s) : NULL;
     if (step && !s)
         return gr_fail(err, GR_ERUN, "out of memory");
-    int bad = (time && read_path(r->file, "particles/trajectory/position/time", GR_T_F64, 0, n, time)) ||
-              (s && read_path(r->file, "particles/trajectory/position/step", GR_T_I64, 0, n, s));
+    int bad = (time && gr_h5_read_path(r->file, "particles/trajectory/position/time", GR_T_F64, 0, n, time)) ||
+              (s && gr_h5_read_path(r->file, "particles/trajectory/position/step", GR_T_I64, 0, n, s));
     for (size_t i = 0; s && !bad && i < n; i++)
         step[i] = (uint64_t)s[i];
     free(s);
@@ -353,9 +302,9 @@ static int read_elem(hid_t f, size_t k, size_t frame, gr_h5_type t, void *dst)
     snprintf(p, sizeof p, "particles/trajectory/%s", traj_elems[k]);
     if (!gr_h5_exists(f, p))
         return 1;
-    if (is_group(f, p)) {
+    if (gr_h5_is_group(f, p)) {
         snprintf(p, sizeof p, "particles/trajectory/%s/value", traj_elems[k]);
-        return read_path(f, p, t, frame, 1, dst);
+        return gr_h5_read_path(f, p, t, frame, 1, dst);
     }
     hid_t d = H5Dopen2(f, p, H5P_DEFAULT);
     if (d < 0)
@@ -413,8 +362,8 @@ static int frame_impl(gr_h5md_reader *r, size_t frame, gr_particles *p, uint64_t
         if (absent[8]) p->id[i] = (int64_t)i;
     }
     int64_t s = 0;
-    if ((step && read_path(r->file, "particles/trajectory/position/step", GR_T_I64, frame, 1, &s)) ||
-        (time && read_path(r->file, "particles/trajectory/position/time", GR_T_F64, frame, 1, time)))
+    if ((step && gr_h5_read_path(r->file, "particles/trajectory/position/step", GR_T_I64, frame, 1, &s)) ||
+        (time && gr_h5_read_path(r->file, "particles/trajectory/position/time", GR_T_F64, frame, 1, time)))
         return gr_h5_fail(err, GR_ERUN, "%s: cannot read the time of frame %zu", in->path, frame);
     if (step)
         *step = (uint64_t)s;
@@ -458,13 +407,13 @@ static int obs_impl(gr_h5md_reader *r, gr_obs *obs, gr_err *err)
         snprintf(p, sizeof p, "observables/%s/value", fnames[k]);
         if (!gr_h5_exists(r->file, p))
             continue;
-        bad = read_path(r->file, p, GR_T_F64, 0, n, d) != 0;
+        bad = gr_h5_read_path(r->file, p, GR_T_F64, 0, n, d) != 0;
         for (size_t i = 0; !bad && i < n; i++)
             *(double *)((char *)&obs[i] + foff[k]) = d[i];
         time_src = fnames[k];
     }
     if (!bad && gr_h5_exists(r->file, "observables/momentum/value")) {
-        bad = read_path(r->file, "observables/momentum/value", GR_T_F64, 0, n, d) != 0;
+        bad = gr_h5_read_path(r->file, "observables/momentum/value", GR_T_F64, 0, n, d) != 0;
         for (size_t i = 0; !bad && i < n; i++) {
             obs[i].px = d[2 * i];
             obs[i].py = d[2 * i + 1];
@@ -476,18 +425,18 @@ static int obs_impl(gr_h5md_reader *r, gr_obs *obs, gr_err *err)
         snprintf(p, sizeof p, "observables/%s/value", inames[k]);
         if (!gr_h5_exists(r->file, p))
             continue;
-        bad = read_path(r->file, p, GR_T_I64, 0, n, iv) != 0;
+        bad = gr_h5_read_path(r->file, p, GR_T_I64, 0, n, iv) != 0;
         for (size_t i = 0; !bad && i < n; i++)
             *(k ? &obs[i].outflow : &obs[i].n_mobile) = (uint64_t)iv[i];
         time_src = inames[k];
     }
     if (!bad && time_src) {
         snprintf(p, sizeof p, "observables/%s/time", time_src);
-        bad = read_path(r->file, p, GR_T_F64, 0, n, d) != 0;
+        bad = gr_h5_read_path(r->file, p, GR_T_F64, 0, n, d) != 0;
         for (size_t i = 0; !bad && i < n; i++)
             obs[i].t = d[i];
         snprintf(p, sizeof p, "observables/%s/step", time_src);
-        bad = bad || read_path(r->file, p, GR_T_I64, 0, n, iv) != 0;
+        bad = bad || gr_h5_read_path(r->file, p, GR_T_I64, 0, n, iv) != 0;
         for (size_t i = 0; !bad && i < n; i++)
             obs[i].steps = (uint64_t)iv[i];
     }
@@ -513,15 +462,15 @@ int gr_h5md_list(gr_h5md_reader *r, const char *group, char ***names, size_t *n,
 static int series_impl(gr_h5md_reader *r, const char *path, size_t *samples, double *t0,
                        double *t1, gr_err *err)
 {
-    if (!is_group(r->file, path))
+    if (!gr_h5_is_group(r->file, path))
         return gr_fail(err, GR_EINPUT, "%s has no time series %s", r->info.path, path);
-    hsize_t n = series_rows(r->file, path);
+    hsize_t n = gr_h5_series_rows(r->file, path);
     *samples = n;
     *t0 = *t1 = NAN;
     char p[512];
     snprintf(p, sizeof p, "%s/time", path);
     if (n && gr_h5_exists(r->file, p) &&
-        (read_path(r->file, p, GR_T_F64, 0, 1, t0) || read_path(r->file, p, GR_T_F64, n - 1, 1, t1)))
+        (gr_h5_read_path(r->file, p, GR_T_F64, 0, 1, t0) || gr_h5_read_path(r->file, p, GR_T_F64, n - 1, 1, t1)))
         return gr_h5_fail(err, GR_ERUN, "%s: cannot read %s", r->info.path, p);
     return GR_OK;
 }
@@ -534,115 +483,7 @@ int gr_h5md_series_info(gr_h5md_reader *r, const char *path, size_t *samples, do
     return rc;
 }
 
-static int field_info_impl(gr_h5md_reader *r, const char *name, gr_field_desc *f, size_t *samples,
-                           gr_err *err)
+hid_t gr_h5md_reader_file(const gr_h5md_reader *r)
 {
-    char p[256];
-    snprintf(p, sizeof p, "fields/%s", name);
-    if (!is_group(r->file, p))
-        return gr_fail(err, GR_EINPUT, "%s has no field '%s'", r->info.path, name);
-    hid_t g = H5Gopen2(r->file, p, H5P_DEFAULT);
-    int grid[2], nc = 1;
-    double origin[2], cell[2];
-    int bad = g < 0 || gr_h5_read_attr_int(g, "grid", grid, 2) ||
-              gr_h5_read_attr_f64(g, "origin", origin, 2) || gr_h5_read_attr_f64(g, "cell", cell, 2) ||
-              gr_h5_read_attr_int(g, "components", &nc, 0);
-    gr_h5_close(g);
-    if (bad)
-        return gr_h5_fail(err, GR_ERUN, "%s: malformed field %s", r->info.path, p);
-    f->nx = grid[0];
-    f->ny = grid[1];
-    f->ncomp = nc;
-    f->x0 = origin[0];
-    f->y0 = origin[1];
-    f->dx = cell[0];
-    f->dy = cell[1];
-    if (samples)
-        *samples = series_rows(r->file, p);
-    return GR_OK;
-}
-
-int gr_h5md_field_info(gr_h5md_reader *r, const char *name, gr_field_desc *f, size_t *samples,
-                       gr_err *err)
-{
-    int rc;
-    GR_H5_QUIET(rc = field_info_impl(r, name, f, samples, err));
-    return rc;
-}
-
-static int read_field_impl(gr_h5md_reader *r, const char *name, size_t sample, double *values,
-                           uint64_t *step, double *time, gr_err *err)
-{
-    gr_field_desc f;
-    size_t n;
-    if (field_info_impl(r, name, &f, &n, err))
-        return err->code;
-    if (sample >= n)
-        return gr_fail(err, GR_EINPUT, "field '%s' of %s has %zu samples; there is no sample %zu",
-                       name, r->info.path, n, sample);
-    char p[256];
-    int64_t s = 0;
-    snprintf(p, sizeof p, "fields/%s/value", name);
-    int bad = read_path(r->file, p, GR_T_F64, sample, 1, values);
-    snprintf(p, sizeof p, "fields/%s/step", name);
-    bad = bad || (step && read_path(r->file, p, GR_T_I64, sample, 1, &s));
-    snprintf(p, sizeof p, "fields/%s/time", name);
-    bad = bad || (time && read_path(r->file, p, GR_T_F64, sample, 1, time));
-    if (bad)
-        return gr_h5_fail(err, GR_ERUN, "%s: cannot read field '%s'", r->info.path, name);
-    if (step)
-        *step = (uint64_t)s;
-    return GR_OK;
-}
-
-int gr_h5md_read_field(gr_h5md_reader *r, const char *name, size_t sample, double *values,
-                       uint64_t *step, double *time, gr_err *err)
-{
-    int rc;
-    GR_H5_QUIET(rc = read_field_impl(r, name, sample, values, step, time, err));
-    return rc;
-}
-
-static int result_impl(gr_h5md_reader *r, const char *name, size_t *rows, size_t *cols,
-                       double **v, gr_err *err)
-{
-    char p[256];
-    snprintf(p, sizeof p, "results/%s", name);
-    if (!gr_h5_exists(r->file, p) || is_group(r->file, p))
-        return gr_fail(err, GR_EINPUT, "%s has no result array '%s'", r->info.path, name);
-    hid_t d = H5Dopen2(r->file, p, H5P_DEFAULT);
-    hid_t s = d >= 0 ? H5Dget_space(d) : -1;
-    hsize_t dims[2] = {0, 0};
-    int rank = s >= 0 ? H5Sget_simple_extent_ndims(s) : -1;
-    if (rank == 1 || rank == 2)
-        H5Sget_simple_extent_dims(s, dims, NULL);
-    gr_h5_close(s);
-    int rc = GR_OK;
-    if (rank != 1 && rank != 2) {
-        rc = gr_h5_fail(err, GR_ERUN, "%s: %s is not a table", r->info.path, p);
-    } else {
-        *rows = dims[0];
-        *cols = rank == 2 ? dims[1] : 0;
-        if (v) {
-            size_t total = dims[0] * (rank == 2 ? dims[1] : 1);
-            *v = malloc((total ? total : 1) * sizeof **v);
-            if (!*v)
-                rc = gr_fail(err, GR_ERUN, "out of memory");
-            else if (total && H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, *v) < 0) {
-                free(*v);
-                *v = NULL;
-                rc = gr_h5_fail(err, GR_ERUN, "%s: cannot read %s", r->info.path, p);
-            }
-        }
-    }
-    gr_h5_close(d);
-    return rc;
-}
-
-int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows, size_t *cols,
-                        double **v, gr_err *err)
-{
-    int rc;
-    GR_H5_QUIET(rc = result_impl(r, name, rows, cols, v, err));
-    return rc;
+    return r->file;
 }

@@ -345,10 +345,11 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
         dims[k + 1] = maxd[k + 1] = chunk[k + 1] = item_dims[k];
         rowbytes *= item_dims[k];
     }
-    /* About 64 KiB per chunk: small rows are grouped, a frame of many
-     * grains is one chunk (read back one frame at a time). */
-    size_t rows = rowbytes ? (64 * 1024) / rowbytes : 1024;
-    chunk[0] = rows < 1 ? 1 : rows > 1024 ? 1024 : rows;
+    /* About 16 KiB per chunk: small rows are grouped, a frame of many
+     * grains is one chunk (read back one frame at a time). Chunks are
+     * allocated whole, so larger ones waste space in short runs. */
+    size_t rows = rowbytes ? (16 * 1024) / rowbytes : 512;
+    chunk[0] = rows < 1 ? 1 : rows > 512 ? 512 : rows;
     hid_t s = H5Screate_simple(item_rank + 1, dims, maxd);
     hid_t p = H5Pcreate(H5P_DATASET_CREATE);
     hid_t d = -1;
@@ -470,4 +471,71 @@ int gr_h5_exists(hid_t loc, const char *path)
         }
     }
     return 1;
+}
+
+hid_t gr_h5_mkgroup(hid_t loc, const char *name)
+{
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    if (lcpl < 0)
+        return -1;
+    H5Pset_create_intermediate_group(lcpl, 1);
+    hid_t g = H5Gcreate2(loc, name, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    H5Pclose(lcpl);
+    return g;
+}
+
+int gr_h5_is_group(hid_t loc, const char *path)
+{
+    if (!gr_h5_exists(loc, path))
+        return 0;
+    H5O_info_t oi;
+    if (H5Oget_info_by_name(loc, path, &oi, H5P_DEFAULT) < 0)
+        return 0;
+    return oi.type == H5O_TYPE_GROUP;
+}
+
+static hsize_t rows_at(hid_t loc, const char *path)
+{
+    if (!gr_h5_exists(loc, path))
+        return 0;
+    hid_t d = H5Dopen2(loc, path, H5P_DEFAULT);
+    if (d < 0)
+        return 0;
+    hsize_t r = gr_h5_rows(d);
+    H5Dclose(d);
+    return r;
+}
+
+hsize_t gr_h5_series_rows(hid_t loc, const char *group)
+{
+    char p[512];
+    hsize_t r = (hsize_t)-1;
+    const char *parts[] = {"step", "time", "value"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(p, sizeof p, "%s/%s", group, parts[k]);
+        if (k == 1 && !gr_h5_exists(loc, p))
+            continue; /* time is optional in H5MD */
+        hsize_t n = rows_at(loc, p);
+        if (n < r)
+            r = n;
+    }
+    return r == (hsize_t)-1 ? 0 : r;
+}
+
+int gr_h5_read_path(hid_t f, const char *path, gr_h5_type t, hsize_t first, hsize_t count,
+                    void *buf)
+{
+    hid_t d = H5Dopen2(f, path, H5P_DEFAULT);
+    if (d < 0)
+        return -1;
+    int rc = gr_h5_read_rows(d, t, first, count, buf);
+    H5Dclose(d);
+    return rc;
+}
+
+int gr_h5_valid_name(const char *s)
+{
+    /* Names end up in HDF5 paths and in the XML of the sidecar. */
+    return s && s[0] && s[0] != '/' && s[strlen(s) - 1] != '/' && !strstr(s, "//") &&
+           !strstr(s, "..") && !strpbrk(s, "\"<>&") && strlen(s) < 200;
 }

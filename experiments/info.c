@@ -1,11 +1,203 @@
+/* grano info FILE: what a result (or checkpoint) file holds. */
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "cmd.h"
+#include "h5md.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "usage: grano info FILE\n\n"
+        "Describe what a grano result or checkpoint file (H5MD, docs/output-format.md)\n"
+        "holds: who wrote it, the scene, method and seed, the particles and frames with\n"
+        "their time range, the observables (with the last sample), fields, result\n"
+        "tables, and whether it holds a checkpoint.\n\n"
+        "options:\n"
+        "  -h, --help   this help\n\n"
+        "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
+        "missing file, a file grano did not write, or bad usage.\n");
+}
+
+static size_t count_lines(const char *s)
+{
+    size_t n = 0;
+    for (; *s; s++)
+        n += *s == '\n';
+    return n;
+}
+
+static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
+{
+    printf("box          %g x %g d; boundaries x %s, y %s\n", in->box[0], in->box[1],
+           in->periodic[0] ? "periodic" : "none", in->periodic[1] ? "periodic" : "none");
+    if (!in->nframes) {
+        printf("particles    no trajectory frames\n");
+        return GR_OK;
+    }
+    double *t = malloc(in->nframes * sizeof *t);
+    uint64_t *s = malloc(in->nframes * sizeof *s);
+    gr_particles *p = gr_particles_create(in->nparticles, err);
+    int rc = !t || !s || !p ? gr_fail(err, GR_ERUN, "out of memory") : GR_OK;
+    if (!rc)
+        rc = gr_h5md_read_times(r, t, s, err);
+    if (!rc)
+        rc = gr_h5md_read_frame(r, in->nframes - 1, p, NULL, NULL, err);
+    if (!rc) {
+        size_t fixed = 0, gone = 0;
+        for (size_t i = 0; i < p->n; i++) {
+            fixed += (p->flags[i] & GR_PF_FIXED) != 0;
+            gone += !(p->flags[i] & GR_PF_FIXED) && (p->flags[i] & GR_PF_GONE);
+        }
+        printf("particles    %zu per frame; in the last frame %zu mobile, %zu fixed, %zu gone\n",
+               in->nparticles, p->n - fixed - gone, fixed, gone);
+        printf("frames       %zu, t = %g .. %g tau (steps %llu .. %llu)\n", in->nframes, t[0],
+               t[in->nframes - 1], (unsigned long long)s[0],
+               (unsigned long long)s[in->nframes - 1]);
+    }
+    free(t);
+    free(s);
+    gr_particles_free(p);
+    return rc;
+}
+
+static int print_obs(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
+{
+    char **names;
+    size_t n;
+    int rc = gr_h5md_list(r, "observables", &names, &n, err);
+    if (rc)
+        return rc;
+    if (!n || !in->nobs) {
+        printf("observables  none\n");
+        gr_h5md_names_free(names, n);
+        return GR_OK;
+    }
+    gr_obs *o = malloc(in->nobs * sizeof *o);
+    if (!o || (rc = gr_h5md_read_obs(r, o, err))) {
+        free(o);
+        gr_h5md_names_free(names, n);
+        return rc ? rc : gr_fail(err, GR_ERUN, "out of memory");
+    }
+    printf("observables  %zu samples, t = %g .. %g tau:", in->nobs, o[0].t, o[in->nobs - 1].t);
+    for (size_t i = 0; i < n; i++)
+        printf("%s %s", i ? "," : "", names[i]);
+    const gr_obs *l = &o[in->nobs - 1];
+    printf("\nlast sample  t = %g: %llu mobile, %llu out, ekin %.6g + %.6g (rot), T %.6g",
+           l->t, (unsigned long long)l->n_mobile, (unsigned long long)l->outflow, l->ekin_trans,
+           l->ekin_rot, l->temperature);
+    if (!isnan(l->max_overlap))
+        printf(", max overlap %.3g d", l->max_overlap);
+    printf("\n");
+    free(o);
+    gr_h5md_names_free(names, n);
+    return GR_OK;
+}
+
+static int print_fields(gr_h5md_reader *r, gr_err *err)
+{
+    char **names;
+    size_t n;
+    int rc = gr_h5md_list(r, "fields", &names, &n, err);
+    if (rc)
+        return rc;
+    if (!n)
+        printf("fields       none\n");
+    for (size_t i = 0; i < n && !rc; i++) {
+        gr_field_desc f;
+        size_t samples;
+        char path[300];
+        double t0, t1;
+        snprintf(path, sizeof path, "fields/%s", names[i]);
+        if (!(rc = gr_h5md_field_info(r, names[i], &f, &samples, err)) &&
+            !(rc = gr_h5md_series_info(r, path, &samples, &t0, &t1, err)))
+            printf("%-12s %s: %d x %d cells of %g x %g d%s, %zu samples, t = %g .. %g\n",
+                   i ? "" : "fields", names[i], f.nx, f.ny, f.dx, f.dy,
+                   f.ncomp > 1 ? ", vector" : "", samples, t0, t1);
+    }
+    gr_h5md_names_free(names, n);
+    return rc;
+}
+
+/* results/ may hold subgroups: walk them. */
+static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_err *err)
+{
+    char **names;
+    size_t n;
+    int rc = gr_h5md_list(r, group, &names, &n, err);
+    for (size_t i = 0; i < n && !rc; i++) {
+        char path[600];
+        snprintf(path, sizeof path, "%s/%s", group, names[i]);
+        size_t rows, cols;
+        gr_err e2 = {0};
+        if (gr_h5md_read_result(r, path + strlen("results/"), &rows, &cols, NULL, &e2)) {
+            rc = print_results(r, path, shown, err); /* a subgroup */
+            continue;
+        }
+        if (cols)
+            printf("%-12s %s [%zu x %zu]\n", *shown ? "" : "results", path + 8, rows, cols);
+        else
+            printf("%-12s %s [%zu]\n", *shown ? "" : "results", path + 8, rows);
+        (*shown)++;
+    }
+    gr_h5md_names_free(names, n);
+    return rc;
+}
 
 int cmd_info(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
-    fprintf(stderr, "grano info: the H5MD reader is not built yet\n");
-    return 1;
+    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        usage(stdout);
+        return 0;
+    }
+    if (argc != 2 || argv[1][0] == '-') {
+        if (argc >= 2 && argv[1][0] == '-')
+            fprintf(stderr, "grano info: unknown option '%s'\n", argv[1]);
+        else
+            fprintf(stderr, "grano info: expected one FILE\n");
+        usage(stderr);
+        return 2;
+    }
+    gr_err err = {0};
+    gr_h5md_reader *r = gr_h5md_open(argv[1], &err);
+    if (!r) {
+        fprintf(stderr, "grano info: %s\n", err.msg);
+        return err.code ? err.code : 1;
+    }
+    const gr_h5md_info *in = gr_h5md_info_of(r);
+    printf("file         %s\n", in->path);
+    printf("creator      %s %s (H5MD %d.%d), author %s\n", in->creator, in->creator_version,
+           in->h5md_version[0], in->h5md_version[1], in->author);
+    printf("scene        %s (from %s, %zu lines stored)\n", in->scene_name[0] ? in->scene_name : "?",
+           in->scene_path[0] ? in->scene_path : "?", count_lines(in->scene_text));
+    printf("method       %s, seed %llu\n", in->method[0] ? in->method : "?",
+           (unsigned long long)in->seed);
+    int rc = print_frames(r, in, &err);
+    if (!rc)
+        rc = print_obs(r, in, &err);
+    if (!rc)
+        rc = print_fields(r, &err);
+    int shown = 0;
+    if (!rc)
+        rc = print_results(r, "results", &shown, &err);
+    if (!rc && !shown)
+        printf("results      none\n");
+    if (!rc) {
+        char **names;
+        size_t n;
+        if (in->has_checkpoint && !(rc = gr_h5md_list(r, "checkpoint", &names, &n, &err))) {
+            printf("checkpoint   yes: %zu entries (restart with grano run --restart %s)\n", n, in->path);
+            gr_h5md_names_free(names, n);
+        } else if (!rc) {
+            printf("checkpoint   no\n");
+        }
+    }
+    gr_h5md_reader_free(r);
+    if (rc) {
+        fprintf(stderr, "grano info: %s\n", err.msg);
+        return rc;
+    }
+    return 0;
 }
