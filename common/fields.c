@@ -153,6 +153,12 @@ int gr_field_add(gr_field *f, const gr_particles *p, uint32_t skip_flags, double
         if (!cell_span(x - r, x + r, f->x0, f->cx, f->nx, &ia, &ib) ||
             !cell_span(y - r, y + r, f->y0, f->cy, f->ny, &ja, &jb))
             continue;
+        double cx1 = f->x0 + ia * f->cx, cy1 = f->y0 + ja * f->cy;
+        if (ia == ib && ja == jb && x - r >= cx1 && x + r <= cx1 + f->cx && y - r >= cy1 &&
+            y + r <= cy1 + f->cy) {
+            f->area[(size_t)ja * f->nx + ia] += w * M_PI * r * r; /* inside one cell */
+            continue;
+        }
         for (int jy = ja; jy <= jb; jy++) {
             double y1 = f->y0 + jy * f->cy, y2 = y1 + f->cy;
             for (int ix = ia; ix <= ib; ix++) {

@@ -127,6 +127,17 @@ static void lattice_packing_fraction(void **state)
     assert_true(worst < 0.015);
     /* every disk is inside the grid: the areas add up to N pi r^2 */
     assert_rel(sum, (double)p->n * M_PI * 0.25, 1e-12);
+    /* a grid that cuts the packing counts only the part inside it: one
+     * cell [0, 0.5) x [0, 0.6) over the corner disk centred (0.5, 0.5) */
+    gr_field *cut = gr_field_create(1, 1, 0.0, 0.0, 0.5, 0.6, &e);
+    gr_particles *one = gr_particles_create(1, &e);
+    gr_particles_push(one, 0.5, 0.5, 0.5, 1.0, 0, 0, &e);
+    assert_int_equal(gr_field_add(cut, one, 0, 1.0, &e), GR_OK);
+    gr_field_packing(cut, phi);
+    assert_close(phi[0] * 0.3, gr_disk_rect_area(0.5, 0.5, 0.5, 0.0, 0.5, 0.0, 0.6), 1e-15);
+    assert_true(phi[0] * 0.3 < M_PI / 4 * 0.5 + 1e-12 && phi[0] * 0.3 > M_PI / 16);
+    gr_particles_free(one);
+    gr_field_free(cut);
 
     /* centre binning: a cell can gain or lose a lattice row (5 disks of
      * 26), only the mean over cells is right */
