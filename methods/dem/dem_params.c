@@ -78,8 +78,19 @@ int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params 
                       sc->mat.tangential == GR_TANG_SPRING;
     double tdt = tang_damped && sc->mat.gamma_t > 0 ? me / 3.0 / sc->mat.gamma_t : INFINITY;
     double lim_d = fmin(tdn, tdt);
-    if (p->dt <= 0)
-        p->dt = 0.2 * fmin(limit, lim_d);
+    if (p->dt <= 0) {
+        /* a fifth of the limit, rounded down to 1, 2, 2.5, 4, 5 or 8 x 10^k so
+         * that usual output times are whole numbers of steps */
+        double raw = 0.2 * fmin(limit, lim_d), dec = pow(10.0, floor(log10(raw)));
+        static const double nice[] = {8, 5, 4, 2.5, 2, 1};
+        p->dt = dec;
+        for (int k = 0; k < 6; k++) {
+            if (nice[k] * dec <= raw) {
+                p->dt = nice[k] * dec;
+                break;
+            }
+        }
+    }
     char where[1200];
     gr_scene_where(sc, "dem", "dt", where, sizeof where);
     if (p->dt > limit)
