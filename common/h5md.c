@@ -60,6 +60,7 @@ struct gr_h5md {
     char *path, *xdmf, *h5name;
     hid_t traj, box;
     size_t n, frames;
+    size_t xdmf_frames;   /* frames in the sidecar on disk */
     hid_t step, time, edges;
     elem pe[NPE];
     double width, height;
@@ -193,8 +194,22 @@ static int write_sidecar(gr_h5md *h, gr_err *err)
     gr_xdmf_attr a[NPE - 1];
     size_t na = 0;
     for (int k = E_VEL; k < NPE; k++)
-        a[na++] = (gr_xdmf_attr){pdefs[k].name, h->pe[k].series, pdefs[k].ncomp, pdefs[k].type};
-    return gr_xdmf_write(h->xdmf, h->h5name, h->n, h->frames, h->times, a, na, err);
+        if (k != E_MASS && k != E_INERTIA) /* derived, and the XML grows per frame */
+            a[na++] = (gr_xdmf_attr){pdefs[k].name, h->pe[k].series, pdefs[k].ncomp, pdefs[k].type};
+    int rc = gr_xdmf_write(h->xdmf, h->h5name, h->file, h->n, h->frames, h->times, a, na, err);
+    if (!rc)
+        h->xdmf_frames = h->frames;
+    return rc;
+}
+
+/* The sidecar holds one grid per frame and is rewritten whole: after each
+ * of the first 100 frames, then each time the count has grown by 5 %, so
+ * the total cost stays proportional to the number of frames (amortised). */
+static int update_sidecar(gr_h5md *h, gr_err *err)
+{
+    if (h->frames <= 100 || h->frames - h->xdmf_frames >= h->frames / 20)
+        return write_sidecar(h, err);
+    return GR_OK;
 }
 
 static char *catstr(const char *a, const char *b)
@@ -507,7 +522,7 @@ static int frame_impl(gr_h5md *h, uint64_t step, double time, const gr_particles
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
     h->broken = 0;
-    return write_sidecar(h, err);
+    return update_sidecar(h, err);
 }
 
 int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time, const gr_particles *p,

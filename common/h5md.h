@@ -124,6 +124,10 @@ int gr_h5md_read_frame(gr_h5md_reader *r, size_t frame, gr_particles *p,
  * is NaN (counts: 0). */
 int gr_h5md_read_obs(gr_h5md_reader *r, gr_obs *obs, gr_err *err);
 
+/* (Re)write the XDMF sidecar <path>.xdmf of an opened file from what it
+ * holds, e.g. after a killed run (the writer updates it in steps). */
+int gr_h5md_write_xdmf(gr_h5md_reader *r, gr_err *err);
+
 /* Members of a group ("observables", "fields", "results", "checkpoint",
  * "results/sub"...), sorted; an absent group gives n = 0. Free with
  * gr_h5md_names_free. */

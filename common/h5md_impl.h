@@ -86,7 +86,8 @@ gr_h5md *gr_h5md_attach(hid_t file, const struct gr_scene *sc, const gr_h5md_opt
                         gr_err *err);
 
 /* XDMF sidecar: rewrite xdmf_path (via a temporary and rename) for the
- * trajectory in h5_name (a path relative to the sidecar). */
+ * trajectory in h5_name (a path relative to the sidecar), and for every
+ * field found in file (skipped if file < 0). */
 typedef struct {
     const char *name;      /* element under particles/trajectory */
     int series;            /* time-dependent (group with value) or a dataset */
@@ -94,7 +95,7 @@ typedef struct {
     gr_h5_type type;
 } gr_xdmf_attr;
 
-int gr_xdmf_write(const char *xdmf_path, const char *h5_name, size_t n,
+int gr_xdmf_write(const char *xdmf_path, const char *h5_name, hid_t file, size_t n,
                   size_t frames, const double *times, const gr_xdmf_attr *attrs,
                   size_t nattrs, gr_err *err);
 

@@ -487,3 +487,45 @@ hid_t gr_h5md_reader_file(const gr_h5md_reader *r)
 {
     return r->file;
 }
+
+static int xdmf_impl(gr_h5md_reader *r, gr_err *err)
+{
+    const gr_h5md_info *in = &r->info;
+    double *t = malloc((in->nframes ? in->nframes : 1) * sizeof *t);
+    size_t len = strlen(in->path);
+    char *x = malloc(len + 6);
+    if (!t || !x) {
+        free(t);
+        free(x);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    memcpy(x, in->path, len);
+    memcpy(x + len, ".xdmf", 6);
+    static const gr_h5_type types[NTRAJ] = {GR_T_F64, GR_T_F64, GR_T_F64, GR_T_U32, GR_T_F64,
+                                            GR_T_F64, GR_T_F64, GR_T_I32, GR_T_I64};
+    gr_xdmf_attr a[NTRAJ];
+    size_t na = 0;
+    char p[128];
+    for (size_t k = 1; k < NTRAJ; k++) {
+        if (k == 5 || k == 6) /* mass, inertia: as the writer, left out */
+            continue;
+        snprintf(p, sizeof p, "particles/trajectory/%s", traj_elems[k]);
+        if (gr_h5_exists(r->file, p))
+            a[na++] = (gr_xdmf_attr){traj_elems[k], gr_h5_is_group(r->file, p), k == 1 ? 2 : 1,
+                                     types[k]};
+    }
+    const char *slash = strrchr(in->path, '/');
+    int rc = times_impl(r, t, NULL, err);
+    if (!rc)
+        rc = gr_xdmf_write(x, slash ? slash + 1 : in->path, r->file, in->nparticles, in->nframes, t, a, na, err);
+    free(t);
+    free(x);
+    return rc;
+}
+
+int gr_h5md_write_xdmf(gr_h5md_reader *r, gr_err *err)
+{
+    int rc;
+    GR_H5_QUIET(rc = xdmf_impl(r, err));
+    return rc;
+}

@@ -10,12 +10,14 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-        "usage: grano info FILE\n\n"
+        "usage: grano info [--xdmf] FILE\n\n"
         "Describe what a grano result or checkpoint file (H5MD, docs/output-format.md)\n"
         "holds: who wrote it, the scene, method and seed, the particles and frames with\n"
         "their time range, the observables (with the last sample), fields, result\n"
         "tables, and whether it holds a checkpoint.\n\n"
         "options:\n"
+        "  --xdmf       also (re)write the ParaView sidecar FILE.xdmf from what the file\n"
+        "               holds (a killed run's sidecar may miss its last frames)\n"
         "  -h, --help   this help\n\n"
         "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
         "missing file, a file grano did not write, or bad usage.\n");
@@ -148,20 +150,30 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
 
 int cmd_info(int argc, char **argv)
 {
-    if (argc == 2 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        usage(stdout);
-        return 0;
+    const char *file = NULL;
+    int xdmf = 0, nfiles = 0;
+    for (int i = 1; i < argc; i++) {
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(argv[i], "--xdmf")) {
+            xdmf = 1;
+        } else if (argv[i][0] == '-' && argv[i][1]) {
+            fprintf(stderr, "grano info: unknown option '%s'\n", argv[i]);
+            usage(stderr);
+            return 2;
+        } else {
+            file = argv[i];
+            nfiles++;
+        }
     }
-    if (argc != 2 || argv[1][0] == '-') {
-        if (argc >= 2 && argv[1][0] == '-')
-            fprintf(stderr, "grano info: unknown option '%s'\n", argv[1]);
-        else
-            fprintf(stderr, "grano info: expected one FILE\n");
+    if (nfiles != 1) {
+        fprintf(stderr, "grano info: expected one FILE\n");
         usage(stderr);
         return 2;
     }
     gr_err err = {0};
-    gr_h5md_reader *r = gr_h5md_open(argv[1], &err);
+    gr_h5md_reader *r = gr_h5md_open(file, &err);
     if (!r) {
         fprintf(stderr, "grano info: %s\n", err.msg);
         return err.code ? err.code : 1;
@@ -194,6 +206,8 @@ int cmd_info(int argc, char **argv)
             printf("checkpoint   no\n");
         }
     }
+    if (!rc && xdmf && !(rc = gr_h5md_write_xdmf(r, &err)))
+        printf("wrote        %s.xdmf\n", in->path);
     gr_h5md_reader_free(r);
     if (rc) {
         fprintf(stderr, "grano info: %s\n", err.msg);

@@ -3,9 +3,12 @@
 
 The file is written by `test_h5md --sample FILE` (5 frames of 40 grains, 7
 observable samples, a field, a result table). Exits 77 (skipped) when h5py
-is missing. Usage: check_h5md.py [TEST_H5MD_EXE]
+is missing. With --paraview, opens the XDMF sidecar in ParaView's XDMF
+reader instead (pvpython; skipped when absent).
+Usage: check_h5md.py [--paraview] [TEST_H5MD_EXE]
 """
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -184,17 +187,77 @@ def check_xdmf(path):
     check(ok, "every XDMF data item names an existing dataset with its shape")
     names = {a.get("Name") for a in g.findall("Attribute")}
     check({"velocity", "radius", "flags", "id"} <= names, "XDMF attributes include velocity and radius")
+    fields = [c for c in root.findall("Domain/Grid") if c.get("Name") == "field packing_fraction"]
+    check(len(fields) == 1 and len(fields[0].findall("Grid")) == 2 and
+          fields[0].find("Grid/Topology").get("Dimensions") == "2 3 5",
+          "XDMF field collection: 2 samples on a one-cell-thick 4 x 2 image")
+    f.close()
+
+
+PV_PROBE = r"""
+import sys
+from paraview.simple import XDMFReader
+from paraview import servermanager as sm
+from paraview.vtk.numpy_interface import dataset_adapter as dsa
+r = XDMFReader(FileNames=[sys.argv[1]])
+r.UpdatePipelineInformation()
+print("TIMES", " ".join(repr(t) for t in r.TimestepValues))
+r.UpdatePipeline(1.0)
+d = sm.Fetch(r)
+blocks = [d.GetBlock(i) for i in range(d.GetNumberOfBlocks())]
+for b in blocks:
+    if b is None:
+        continue
+    w = dsa.WrapDataObject(b)
+    if b.IsA("vtkUnstructuredGrid"):
+        print("POINTS", b.GetNumberOfPoints(), b.GetNumberOfCells(), " ".join(sorted(w.PointData.keys())))
+        print("P3", repr(w.Points[3][0]), repr(w.Points[3][1]), repr(w.PointData["velocity"][3][0]),
+              repr(w.PointData["radius"][3]))
+    else:
+        print("IMAGE", b.GetNumberOfCells(), " ".join(repr(x) for x in b.GetBounds()),
+              repr(w.CellData["packing_fraction"][5]))
+"""
+
+
+def check_paraview(path):
+    pv = shutil.which("pvpython")
+    if not pv:
+        print("pvpython (ParaView) is not installed: skipped")
+        sys.exit(77)
+    out = subprocess.run([pv, "-c", PV_PROBE, os.path.abspath(path + ".xdmf")],
+                         capture_output=True, text=True, timeout=300).stdout
+    lines = {l.split()[0]: l.split()[1:] for l in out.splitlines() if l.split()}
+    check("TIMES" in lines and [float(t) for t in lines["TIMES"]] == [0.5 * k for k in range(NFR)],
+          "ParaView's XDMF reader sees the frame times")
+    pts = lines.get("POINTS", [])
+    check(pts[:2] == [str(NP), str(NP)] and {"velocity", "radius", "flags", "id"} <= set(pts[2:]),
+          "ParaView reads N vertices with velocity, radius, flags, id")
+    f = h5py.File(path, "r")
+    t = f["particles/trajectory"]
+    want = [t["position/value"][2, 3, 0], t["position/value"][2, 3, 1],
+            t["velocity/value"][2, 3, 0], t["radius"][3]]
+    got = [float(v) for v in lines.get("P3", [])]
+    check(got == [float(v) for v in want], "ParaView values of grain 3 at t = 1 equal the file's")
+    img = [float(v) for v in lines.get("IMAGE", [])]
+    check(len(img) == 8 and img[0] == 8 and img[1:5] == [0.0, 20.0, 0.0, 10.0] and
+          img[7] == f["fields/packing_fraction/value"][1, 1, 1],
+          "ParaView reads the field as a 4 x 2 image over [0, 20] x [0, 10], cell (1, 1) right")
     f.close()
 
 
 def main():
-    exe = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+    args = [a for a in sys.argv[1:] if a != "--paraview"]
+    paraview = len(args) != len(sys.argv) - 1
+    exe = args[0] if args else os.path.join(
         os.environ.get("GRANO_BUILD_ROOT", "../.."), "tests", "unit", "test_h5md")
     with tempfile.TemporaryDirectory(prefix="h5md-layout-", dir=".") as d:
         path = os.path.join(d, "sample.h5")
         subprocess.run([exe, "--sample", path], check=True)
-        check_file(path)
-        check_xdmf(path)
+        if paraview:
+            check_paraview(path)
+        else:
+            check_file(path)
+            check_xdmf(path)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1

@@ -301,7 +301,7 @@ static void changing_radius_becomes_time_dependent(void **state)
     gr_h5md_reader_free(r);
     char *x = read_text("promote.h5.xdmf");
     assert_non_null(strstr(x, "/particles/trajectory/radius/value"));
-    assert_non_null(strstr(x, ":/particles/trajectory/mass<"));
+    assert_non_null(strstr(x, ":/particles/trajectory/species<"));
     free(x);
     gr_particles_free(first);
     gr_particles_free(p);
