@@ -1,6 +1,8 @@
-/* H5MD writer/reader and checkpoint store: exact round trips, refusals,
- * and a writer killed without closing. Run with `--sample FILE` it only
- * writes a small result file for check_h5md.py. */
+/* H5MD writer and reader: exact round trips, refusals, and a writer killed
+ * without closing. Other modes (docs/output-format.md):
+ *   --sample FILE         write a small result file for check_h5md.py
+ *   --bench N FRAMES      cost of writing and reading frames of N grains
+ *   --kill TRIALS N       SIGKILL a writer at random moments, read what is left */
 #include "test.h"
 
 #include <hdf5.h>
@@ -10,6 +12,8 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <signal.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "ckpt.h"
@@ -147,6 +151,7 @@ static void rm(const char *base)
  * written are kept in want[] when given. Returns the writer if left open. */
 static gr_h5md *write_sample(const char *path, gr_particles **want, int close_it)
 {
+    rm(path); /* left over by an earlier failed run */
     gr_err e = {0};
     gr_scene sc = make_scene();
     gr_h5md_opts o = {.method = "dem", .seed = 12345678901234567ull, .version = "0.1.0-test",
@@ -487,138 +492,117 @@ static void not_a_grano_file(void **state)
     unlink("other.h5");
 }
 
-static void checkpoint_arrays_round_trip(void **state)
+
+static double now(void)
 {
-    (void)state;
-    const char *path = "state.ckpt";
-    unlink(path);
-    gr_err e = {0};
-    double f64[5] = {1.0 / 3.0, -0.0, NAN, INFINITY, 0x1.fffffffffffffp+1023};
-    int64_t i64[3] = {INT64_MIN, -1, INT64_MAX};
-    uint64_t u64[2] = {0, UINT64_MAX};
-    uint32_t u32[4] = {0, 1, 0xdeadbeefu, UINT32_MAX};
-    unsigned char bytes[6] = {0, 255, 'g', 'r', 0, 7};
-    gr_ckpt *c = gr_ckpt_create(path, &e);
-    assert_non_null(c);
-    assert_false(file_exists(path)); /* published only on close */
-    assert_int_equal(gr_ckpt_put_f64(c, "dem/pos", f64, 5, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_i64(c, "i64", i64, 3, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_u64(c, "rng/state", u64, 2, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_u32(c, "u32", u32, 4, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_bytes(c, "bytes", bytes, 6, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_f64(c, "empty", NULL, 0, &e), GR_OK);
-    gr_scene sc = make_scene();
-    gr_particles *p = make_particles(12, 9);
-    gr_h5md_opts o = {.method = "edmd", .seed = 5};
-    assert_int_equal(gr_ckpt_put_h5md(c, &sc, &o, 77, 3.5, p, &e), GR_OK);
-    assert_int_equal(gr_ckpt_close(c, &e), GR_OK);
-    assert_true(file_exists(path));
-    assert_false(file_exists("state.ckpt.tmp"));
-
-    c = gr_ckpt_open(path, &e);
-    assert_non_null(c);
-    double g64[5];
-    int64_t gi64[3];
-    uint64_t gu64[2];
-    uint32_t gu32[4];
-    unsigned char gb[6];
-    size_t n;
-    assert_int_equal(gr_ckpt_get_f64(c, "dem/pos", g64, 5, &e), GR_OK);
-    assert_memory_equal(g64, f64, sizeof f64);
-    assert_int_equal(gr_ckpt_get_i64(c, "i64", gi64, 3, &e), GR_OK);
-    assert_memory_equal(gi64, i64, sizeof i64);
-    assert_int_equal(gr_ckpt_get_u64(c, "rng/state", gu64, 2, &e), GR_OK);
-    assert_memory_equal(gu64, u64, sizeof u64);
-    assert_int_equal(gr_ckpt_get_u32(c, "u32", gu32, 4, &e), GR_OK);
-    assert_memory_equal(gu32, u32, sizeof u32);
-    assert_int_equal(gr_ckpt_get_bytes(c, "bytes", gb, 6, &e), GR_OK);
-    assert_memory_equal(gb, bytes, sizeof bytes);
-    assert_int_equal(gr_ckpt_len(c, "u32", &n, &e), GR_OK);
-    assert_int_equal(n, 4);
-    assert_int_equal(gr_ckpt_len(c, "empty", &n, &e), GR_OK);
-    assert_int_equal(n, 0);
-    assert_int_equal(gr_ckpt_get_f64(c, "empty", NULL, 0, &e), GR_OK);
-    /* Wrong length, wrong type, absent name. */
-    assert_int_equal(gr_ckpt_get_f64(c, "dem/pos", g64, 4, &e), GR_ERUN);
-    assert_non_null(strstr(e.msg, "holds 5 elements, 4 expected"));
-    assert_int_equal(gr_ckpt_get_u64(c, "i64", gu64, 3, &e), GR_ERUN);
-    assert_non_null(strstr(e.msg, "holds i64, not u64"));
-    assert_int_equal(gr_ckpt_get_u32(c, "bytes", gu32, 6, &e), GR_ERUN);
-    assert_int_equal(gr_ckpt_get_f64(c, "nope", g64, 1, &e), GR_ERUN);
-    assert_non_null(strstr(e.msg, "no array 'nope'"));
-    assert_int_equal(gr_ckpt_put_f64(c, "x", f64, 1, &e), GR_ERUN); /* read-only */
-    assert_int_equal(gr_ckpt_close(c, &e), GR_OK);
-
-    /* The checkpoint is an H5MD file with the scene and its one frame. */
-    gr_h5md_reader *r = gr_h5md_open(path, &e);
-    assert_non_null(r);
-    const gr_h5md_info *in = gr_h5md_info_of(r);
-    assert_int_equal(in->has_checkpoint, 1);
-    assert_int_equal(in->nframes, 1);
-    assert_string_equal(in->scene_text, scene_text);
-    assert_string_equal(in->method, "edmd");
-    gr_particles *got = gr_particles_create(1, &e);
-    uint64_t st;
-    double t;
-    assert_int_equal(gr_h5md_read_frame(r, 0, got, &st, &t, &e), GR_OK);
-    assert_true(st == 77 && t == 3.5);
-    assert_same_particles(got, p);
-    gr_particles_free(got);
-    gr_h5md_reader_free(r);
-    gr_particles_free(p);
-    unlink(path);
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void checkpoint_replaced_only_when_complete(void **state)
+/* --bench N FRAMES: write then read FRAMES frames of N grains (and one
+ * observable sample per frame); prints the cost per frame and the size. */
+static int bench(size_t n, int frames)
 {
-    (void)state;
-    const char *path = "atomic.ckpt";
-    unlink(path);
     gr_err e = {0};
-    uint64_t one = 1, two = 2, got = 0;
-    gr_ckpt *c = gr_ckpt_create(path, &e);
-    assert_int_equal(gr_ckpt_put_u64(c, "v", &one, 1, &e), GR_OK);
-    assert_int_equal(gr_ckpt_close(c, &e), GR_OK);
+    gr_scene sc = make_scene();
+    gr_h5md_opts o = {.force = 1};
+    gr_particles *p = make_particles(n, 1);
+    gr_obs ob = make_obs(0);
+    double t0 = now();
+    gr_h5md *h = gr_h5md_create("bench.h5", &sc, &o, &e);
+    for (int f = 0; h && f < frames; f++) {
+        move(p, f % 3);
+        ob.t = 0.1 * f;
+        if (gr_h5md_write_frame(h, (uint64_t)f, 0.1 * f, p, &e) || gr_h5md_write_obs(h, &ob, &e))
+            break;
+    }
+    if (!h || e.code || gr_h5md_close(h, &e)) {
+        fprintf(stderr, "%s\n", e.msg);
+        return 1;
+    }
+    double t1 = now();
+    gr_h5md_reader *r = gr_h5md_open("bench.h5", &e);
+    for (int f = 0; r && f < frames; f++)
+        gr_h5md_read_frame(r, (size_t)f, p, NULL, NULL, &e);
+    gr_h5md_reader_free(r);
+    double t2 = now();
+    struct stat st, sx;
+    stat("bench.h5", &st);
+    stat("bench.h5.xdmf", &sx);
+    /* Per grain and frame: position, velocity 32 B, omega 8, flags 4. */
+    double raw = (double)n * frames * 44.0 + (double)n * 36.0;
+    printf("N %zu, %d frames: write %.3f ms/frame (%.0f MB/s), read %.3f ms/frame, "
+           "file %.1f MB (%.1f %% over the raw data), sidecar %.0f kB\n",
+           n, frames, 1e3 * (t1 - t0) / frames, raw / (t1 - t0) / 1e6, 1e3 * (t2 - t1) / frames,
+           (double)st.st_size / 1e6, 100.0 * ((double)st.st_size / raw - 1.0), (double)sx.st_size / 1e3);
+    gr_particles_free(p);
+    rm("bench.h5");
+    return 0;
+}
 
-    /* Abandoned: the old one stays, no temporary is left. */
-    c = gr_ckpt_create(path, &e);
-    assert_int_equal(gr_ckpt_put_u64(c, "v", &two, 1, &e), GR_OK);
-    gr_ckpt *old = gr_ckpt_open(path, &e); /* readable while the next is written */
-    assert_non_null(old);
-    assert_int_equal(gr_ckpt_get_u64(old, "v", &got, 1, &e), GR_OK);
-    assert_true(got == 1);
-    gr_ckpt_close(old, &e);
-    gr_ckpt_discard(c);
-    assert_false(file_exists("atomic.ckpt.tmp"));
-
-    /* A store failed: close refuses to publish. */
-    c = gr_ckpt_create(path, &e);
-    assert_int_equal(gr_ckpt_put_u64(c, "v", &two, 1, &e), GR_OK);
-    assert_int_equal(gr_ckpt_put_u64(c, "v", &two, 1, &e), GR_ERUN); /* twice */
-    assert_int_equal(gr_ckpt_close(c, &e), GR_ERUN);
-    assert_non_null(strstr(e.msg, "previous checkpoint"));
-    assert_false(file_exists("atomic.ckpt.tmp"));
-
-    c = gr_ckpt_open(path, &e);
-    assert_int_equal(gr_ckpt_get_u64(c, "v", &got, 1, &e), GR_OK);
-    assert_true(got == 1);
-    gr_ckpt_close(c, &e);
-
-    /* A complete one replaces it. */
-    c = gr_ckpt_create(path, &e);
-    assert_int_equal(gr_ckpt_put_u64(c, "v", &two, 1, &e), GR_OK);
-    assert_int_equal(gr_ckpt_close(c, &e), GR_OK);
-    c = gr_ckpt_open(path, &e);
-    assert_int_equal(gr_ckpt_get_u64(c, "v", &got, 1, &e), GR_OK);
-    assert_true(got == 2);
-    gr_ckpt_close(c, &e);
-    unlink(path);
-    assert_null(gr_ckpt_open(path, &e));
-    assert_int_equal(e.code, GR_EINPUT);
+/* --kill TRIALS N: a child writes frames of N grains, observables and a
+ * field without end; it is SIGKILLed after a random 20-420 ms; every file
+ * left must open and read back every frame it reports. */
+static int kill_stress(int trials, size_t n)
+{
+    int bad = 0;
+    uint64_t s = 12345;
+    for (int t = 0; t < trials; t++) {
+        rm("killed-stress.h5");
+        pid_t pid = fork();
+        if (pid < 0)
+            return 1;
+        if (pid == 0) {
+            gr_err e = {0};
+            gr_scene sc = make_scene();
+            gr_h5md *h = gr_h5md_create("killed-stress.h5", &sc, NULL, &e);
+            gr_particles *p = make_particles(n, 2);
+            gr_field_desc fd = {"rho", "1", 8, 4, 1, 0, 0, 2.5, 2.5};
+            double v[32] = {0};
+            for (int f = 0; h; f++) {
+                move(p, f);
+                if (f % 50 == 49)
+                    p->radius[0] *= 1.01; /* a promotion now and then */
+                gr_obs ob = make_obs(f);
+                if (gr_h5md_write_frame(h, (uint64_t)f, 0.1 * f, p, &e) ||
+                    gr_h5md_write_obs(h, &ob, &e) ||
+                    gr_h5md_write_field(h, &fd, (uint64_t)f, 0.1 * f, v, &e))
+                    _exit(3);
+            }
+            _exit(4);
+        }
+        struct timespec ts = {0, 20000000L + (long)(next_u(&s) * 400e6)};
+        nanosleep(&ts, NULL);
+        kill(pid, SIGKILL);
+        int status;
+        waitpid(pid, &status, 0);
+        gr_err e = {0};
+        gr_h5md_reader *r = gr_h5md_open("killed-stress.h5", &e);
+        int ok = r != NULL;
+        size_t frames = 0;
+        if (r) {
+            frames = gr_h5md_info_of(r)->nframes;
+            gr_particles *p = gr_particles_create(1, &e);
+            for (size_t f = 0; ok && f < frames; f++)
+                ok = gr_h5md_read_frame(r, f, p, NULL, NULL, &e) == GR_OK;
+            gr_particles_free(p);
+            gr_h5md_reader_free(r);
+        }
+        printf("trial %d: %zu frames readable%s%s\n", t, frames, ok ? "" : ", FAILED: ", ok ? "" : e.msg);
+        bad += !ok;
+    }
+    rm("killed-stress.h5");
+    printf("%d of %d killed files unreadable\n", bad, trials);
+    return bad != 0;
 }
 
 int main(int argc, char **argv)
 {
+    if (argc == 4 && !strcmp(argv[1], "--bench"))
+        return bench((size_t)atol(argv[2]), atoi(argv[3]));
+    if (argc == 4 && !strcmp(argv[1], "--kill"))
+        return kill_stress(atoi(argv[2]), (size_t)atol(argv[3]));
     if (argc == 3 && !strcmp(argv[1], "--sample")) {
         /* A small file for check_h5md.py: frames, observables, a field and a
          * result table. */
@@ -645,8 +629,6 @@ int main(int argc, char **argv)
         cmocka_unit_test(killed_writer_leaves_readable_file),
         cmocka_unit_test(fields_and_results),
         cmocka_unit_test(not_a_grano_file),
-        cmocka_unit_test(checkpoint_arrays_round_trip),
-        cmocka_unit_test(checkpoint_replaced_only_when_complete),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
