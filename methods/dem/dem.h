@@ -137,7 +137,14 @@ typedef struct gr_dem {
     gr_particles *scratch;
     void *cv;                /* CVODE reference integrator, or NULL */
     uint64_t since_sort;
+    int f_zeroed;            /* the predictor already zeroed the new forces */
+    double *blk;             /* per-block partial results */
+    size_t blk_cap;
 } gr_dem;
+
+/* Grains per block of the per-grain loops (fixed: sums do not depend on
+ * the number of threads). */
+#define DEM_BLOCK 4096
 
 /* Parameters: defaults, then the scene's [dem] section; checks the time
  * step against the contact time (GR_EINPUT naming the key). */
@@ -169,6 +176,8 @@ long gr_dem_index(const gr_dem *d, long tag);
 /* Tests: an external force on a grain, and locking its rotation. */
 int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err);
 void gr_dem_lock_rotation(gr_dem *d, long tag);
+/* Bytes held by the state (arrays, lists, history, records). */
+double gr_dem_memory(const gr_dem *d);
 /* Force exerted by the grains on segment s during the last evaluation. */
 void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy);
 

@@ -334,10 +334,13 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         }
     }
     size_t n = d->n;
-    memset(d->f[F_FX][q], 0, n * sizeof(double));
-    memset(d->f[F_FY][q], 0, n * sizeof(double));
-    if (d->rot)
-        memset(d->f[F_TQ][q], 0, n * sizeof(double));
+    if (!d->f_zeroed) {
+        memset(d->f[F_FX][q], 0, n * sizeof(double));
+        memset(d->f[F_FY][q], 0, n * sizeof(double));
+        if (d->rot)
+            memset(d->f[F_TQ][q], 0, n * sizeof(double));
+    }
+    d->f_zeroed = 0;
     dem_ctx c = {
         .d = d,
         .x = d->f[F_X][q], .y = d->f[F_Y][q],

@@ -62,6 +62,12 @@ int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
 #undef GROWH
     }
 #undef GROW
+    size_t nb = 2 * (cap / DEM_BLOCK + 1);
+    double *blk = realloc(d->blk, nb * sizeof *blk);
+    if (!blk)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    d->blk = blk;
+    d->blk_cap = nb;
     d->cap = cap;
     return GR_OK;
 }
@@ -83,6 +89,7 @@ void gr_dem_free(gr_dem *d)
     free(d->tag_id);
     free(d->seg);
     free(d->seg_force);
+    free(d->blk);
     free(d->cells.start), free(d->cells.idx), free(d->cells.cell);
     free(d->cells.cell_seg_start), free(d->cells.cell_seg);
     free(d->strips.row0), free(d->strips.i0);
@@ -495,4 +502,24 @@ void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy)
 {
     *fx = d->seg_force[3 * s];
     *fy = d->seg_force[3 * s + 1];
+}
+
+double gr_dem_memory(const gr_dem *d)
+{
+    double b = 0;
+    for (int f = 0; f < F_NFIELDS; f++)
+        for (int p = 0; p < 2; p++)
+            b += d->f[f][p] ? (double)d->cap * sizeof(double) : 0;
+    const double *arr[] = {d->ux, d->uy, d->uw, d->rad, d->im, d->iI, d->gf, d->mass, d->inertia,
+                           d->xref, d->yref, d->ext_fx, d->ext_fy};
+    for (size_t k = 0; k < sizeof arr / sizeof *arr; k++)
+        b += arr[k] ? (double)d->cap * sizeof(double) : 0;
+    b += (double)d->cap * (sizeof(int32_t) * 2 + sizeof(uint32_t));
+    b += (double)(d->nb_cap + d->sg_cap + 2 * (d->n + 1)) * sizeof(int32_t);
+    b += (double)d->cells.cap * 2 * sizeof(int32_t);
+    b += (double)(d->cells.nx * d->cells.ny + 1) * sizeof(int32_t);
+    if (d->hist_on)
+        b += (double)d->cap * d->hist.cap * (2 * sizeof(int32_t) + 2 * sizeof(double) + 2 * sizeof(uint64_t));
+    b += (double)d->ntag * (sizeof(double) * 8 + sizeof(uint32_t) + sizeof(int64_t) * 2 + sizeof(int32_t));
+    return b;
 }

@@ -36,59 +36,149 @@ static inline double wrap(double x, double L)
     return x;
 }
 
-static void predict_verlet(gr_dem *d, int p, int q)
+/* Per-particle loops run over fixed blocks, threads taking whole blocks;
+ * block results are combined in block order, so sums do not depend on the
+ * number of threads. */
+
+/* gr_dem_grow keeps room for two results per block of the capacity */
+static double *block_scratch(gr_dem *d, size_t nb)
+{
+    return nb * 2 <= d->blk_cap ? d->blk : NULL;
+}
+
+static int nthreads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
+
+/* Drift and first kick; returns the sum of the two largest displacements
+ * since the list build when track != 0 (section 2.4.1), else 0. */
+static double predict_verlet(gr_dem *d, int p, int q, int track)
 {
     double dt = d->par.dt, h = 0.5 * dt;
-    size_t n = d->n;
+    size_t n = d->n, nb = (n + DEM_BLOCK - 1) / DEM_BLOCK;
+    double *blk = block_scratch(d, nb);
     const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
     const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
     const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
     double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
     double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
     double *restrict ux = d->ux, *restrict uy = d->uy;
-    const double *restrict im = d->im, *restrict gf = d->gf;
+    const double *restrict im = d->im;
+    const double *restrict xr = d->xref, *restrict yr = d->yref;
+    double *restrict fxn = d->f[F_FX][q], *restrict fyn = d->f[F_FY][q], *restrict tqn = d->f[F_TQ][q];
+    double g = d->g;
+    const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
+    double *restrict wn = d->f[F_W][q], *restrict uw = d->uw;
+    const double *restrict iI = d->iI;
     double Lx = d->Lx, Ly = d->Ly;
-    for (size_t i = 0; i < n; i++) {
-        double ax = fx[i] * im[i], ay = fy[i] * im[i] - gf[i];
-        double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
-        xn[i] = wrap(x[i] + dt * hx, Lx);
-        yn[i] = wrap(y[i] + dt * hy, Ly);
-        vxn[i] = hx;
-        vyn[i] = hy;
-        /* the damping sees v(t+dt) predicted to second order, not the
-         * half-step velocity, so the dissipation is second order too */
-        ux[i] = hx + h * ax;
-        uy[i] = hy + h * ay;
+    int rot = d->rot, nth = nthreads(d);
+    (void)nth;
+#pragma omp parallel for schedule(static) num_threads(nth) if (nth > 1 && nb > 1)
+    for (size_t b = 0; b < nb; b++) {
+        size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
+        double m1 = 0, m2 = 0;
+        for (size_t i = i0; i < i1; i++) {
+            /* fixed grains (im = 0) feel no gravity */
+            double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
+            double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
+            double nx = wrap(x[i] + dt * hx, Lx), ny = wrap(y[i] + dt * hy, Ly);
+            /* the new forces start from zero here, saving a pass */
+            fxn[i] = 0.0;
+            fyn[i] = 0.0;
+            xn[i] = nx;
+            yn[i] = ny;
+            vxn[i] = hx;
+            vyn[i] = hy;
+            /* the damping sees v(t+dt) predicted to second order, not the
+             * half-step velocity, so the dissipation is second order too */
+            ux[i] = hx + h * ax;
+            uy[i] = hy + h * ay;
+            if (rot) {
+                double a = tq[i] * iI[i];
+                wn[i] = w[i] + h * a;
+                uw[i] = wn[i] + h * a;
+                tqn[i] = 0.0;
+            }
+            if (track) {
+                double dx = gr_dem_image(nx - xr[i], Lx), dy = gr_dem_image(ny - yr[i], Ly);
+                double s2 = dx * dx + dy * dy;
+                if (s2 > m2) {
+                    if (s2 > m1) {
+                        m2 = m1;
+                        m1 = s2;
+                    } else {
+                        m2 = s2;
+                    }
+                }
+            }
+        }
+        blk[2 * b] = m1;
+        blk[2 * b + 1] = m2;
     }
-    if (d->rot) {
-        const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
-        double *restrict wn = d->f[F_W][q], *restrict uw = d->uw;
-        const double *restrict iI = d->iI;
-        for (size_t i = 0; i < n; i++) {
-            double a = tq[i] * iI[i];
-            wn[i] = w[i] + h * a;
-            uw[i] = wn[i] + h * a;
+    if (!track)
+        return 0.0;
+    double m1 = 0, m2 = 0;
+    for (size_t k = 0; k < 2 * nb; k++) {
+        double s2 = blk[k];
+        if (s2 > m2) {
+            if (s2 > m1) {
+                m2 = m1;
+                m1 = s2;
+            } else {
+                m2 = s2;
+            }
         }
     }
+    return sqrt(m1) + sqrt(m2);
 }
 
-static void correct_verlet(gr_dem *d, int q)
+/* Second kick; returns the kinetic energy of the new state. */
+static double correct_verlet(gr_dem *d, int q)
 {
     double h = 0.5 * d->par.dt;
-    size_t n = d->n;
+    size_t n = d->n, nb = (n + DEM_BLOCK - 1) / DEM_BLOCK;
+    double *blk = block_scratch(d, nb);
+    if (!blk)
+        return NAN;
     double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
     const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
-    const double *restrict im = d->im, *restrict gf = d->gf;
-    for (size_t i = 0; i < n; i++) {
-        vx[i] += h * fx[i] * im[i];
-        vy[i] += h * (fy[i] * im[i] - gf[i]);
+    const double *restrict im = d->im, *restrict m = d->mass;
+    double g = d->g;
+    double *restrict w = d->f[F_W][q];
+    const double *restrict tq = d->f[F_TQ][q], *restrict iI = d->iI, *restrict I = d->inertia;
+    int rot = d->rot, nth = nthreads(d);
+    (void)nth;
+#pragma omp parallel for schedule(static) num_threads(nth) if (nth > 1 && nb > 1)
+    for (size_t b = 0; b < nb; b++) {
+        size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
+        double ek = 0;
+        for (size_t i = i0; i < i1; i++) {
+            double a = vx[i] + h * fx[i] * im[i], c = vy[i] + h * (fy[i] * im[i] - g * (im[i] != 0));
+            vx[i] = a;
+            vy[i] = c;
+            ek += (im[i] != 0) * 0.5 * m[i] * (a * a + c * c);
+            if (rot) {
+                double ww = w[i] + h * tq[i] * iI[i];
+                w[i] = ww;
+                ek += (iI[i] != 0) * 0.5 * I[i] * ww * ww;
+            }
+        }
+        blk[b] = ek;
     }
-    if (d->rot) {
-        double *restrict w = d->f[F_W][q];
-        const double *restrict tq = d->f[F_TQ][q], *restrict iI = d->iI;
-        for (size_t i = 0; i < n; i++)
-            w[i] += h * tq[i] * iI[i];
+    double ek = 0;
+    for (size_t b = 0; b < nb; b++)
+        ek += blk[b];
+    return ek;
+}
+
+static double kinetic(gr_dem *d, int q)
+{
+    double ek = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        double vx = d->f[F_VX][q][i], vy = d->f[F_VY][q][i];
+        ek += (d->im[i] != 0) * 0.5 * d->mass[i] * (vx * vx + vy * vy);
+        if (d->rot)
+            ek += (d->iI[i] != 0) * 0.5 * d->inertia[i] * d->f[F_W][q][i] * d->f[F_W][q][i];
     }
+    return ek;
 }
 
 static void predict_euler(gr_dem *d, int p, int q)
@@ -160,26 +250,6 @@ static void correct_gear(gr_dem *d, int q)
             B5[i] += gear_c[5] * del;
         }
     }
-}
-
-/* Two largest displacements since the list build (section 2.4.1). */
-static int needs_rebuild(const gr_dem *d, int q)
-{
-    const double *x = d->f[F_X][q], *y = d->f[F_Y][q];
-    double m1 = 0, m2 = 0;
-    for (size_t i = 0; i < d->n; i++) {
-        double dx = gr_dem_image(x[i] - d->xref[i], d->Lx), dy = gr_dem_image(y[i] - d->yref[i], d->Ly);
-        double s = dx * dx + dy * dy;
-        if (s > m2) {
-            if (s > m1) {
-                m2 = m1;
-                m1 = s;
-            } else {
-                m2 = s;
-            }
-        }
-    }
-    return sqrt(m1) + sqrt(m2) > d->par.skin;
 }
 
 static int open_gates(gr_dem *d, gr_err *err)
@@ -276,13 +346,25 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     double dt = d->par.dt;
     uint64_t E = d->step + 1;
     double tn = d->t0 + (double)E * dt;
+    int mode = d->par.neighbour;
+    double moved = 0;
     switch (d->par.integrator) {
     case GR_DEM_GEAR: predict_gear(d, p, q); break;
     case GR_DEM_EULER: predict_euler(d, p, q); break;
-    default: predict_verlet(d, p, q); break;
+    default:
+        moved = predict_verlet(d, p, q, mode == GR_DEM_NB_VERLET && !d->need_build);
+        break;
     }
-    int mode = d->par.neighbour;
-    if (mode == GR_DEM_NB_VERLET && (d->need_build || needs_rebuild(d, q))) {
+    if (mode == GR_DEM_NB_VERLET && d->par.integrator != GR_DEM_VERLET && !d->need_build) {
+        for (size_t i = 0; i < d->n; i++) {
+            double dx = gr_dem_image(d->f[F_X][q][i] - d->xref[i], d->Lx);
+            double dy = gr_dem_image(d->f[F_Y][q][i] - d->yref[i], d->Ly);
+            /* twice the largest displacement bounds the sum of the two
+             * largest; Verlet's fused loop has the exact rule */
+            moved = fmax(moved, 2 * sqrt(dx * dx + dy * dy));
+        }
+    }
+    if (mode == GR_DEM_NB_VERLET && (d->need_build || moved > d->par.skin)) {
         /* sort and build on the new positions; both buffers move along */
         d->cur = q;
         int rc = gr_dem_sort(d, err) || gr_dem_build_list(d, d->f[F_X][q], d->f[F_Y][q], err);
@@ -297,22 +379,19 @@ int gr_dem_step(gr_dem *d, gr_err *err)
             return err->code;
         d->need_build = 0;
     }
+    d->f_zeroed = d->par.integrator == GR_DEM_VERLET;
     if (gr_dem_eval_at(d, q, tn, E, dt, mode, d->seg_force, err)) {
         gr_dem_hist_undo_at(d, E);
         return err->code;
     }
-    if (d->par.integrator == GR_DEM_GEAR)
-        correct_gear(d, q);
-    else if (d->par.integrator == GR_DEM_VERLET)
-        correct_verlet(d, q);
-    double ek = 0;
-    for (size_t i = 0; i < d->n; i++) {
-        double vx = d->f[F_VX][q][i], vy = d->f[F_VY][q][i];
-        ek += (d->im[i] != 0) * 0.5 * d->mass[i] * (vx * vx + vy * vy);
+    double ek;
+    if (d->par.integrator == GR_DEM_VERLET) {
+        ek = correct_verlet(d, q);
+    } else {
+        if (d->par.integrator == GR_DEM_GEAR)
+            correct_gear(d, q);
+        ek = kinetic(d, q);
     }
-    if (d->rot)
-        for (size_t i = 0; i < d->n; i++)
-            ek += 0.5 * d->inertia[i] * d->f[F_W][q][i] * d->f[F_W][q][i] * (d->iI[i] != 0);
     if (!isfinite(ek)) {
         gr_dem_hist_undo_at(d, E);
         return report_nonfinite(d, q, err);

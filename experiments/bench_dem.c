@@ -1,0 +1,514 @@
+/* grano bench dem: throughput of the soft DEM backend on a dense settled
+ * bed (Hertz, regularised friction, the thesis's constants) against N, the
+ * same bed in LAMMPS when asked (--peer lammps), and the speed-against-error
+ * sweep (--accuracy). */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cmd.h"
+#include "dem/dem.h"
+#include "init.h"
+#include "plot.h"
+
+static double bench_dem_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* CPU time of the process: on a shared machine it tells what the run cost
+ * when other jobs take the cores away (wall time is the headline figure). */
+static double bench_dem_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static gr_scene *bench_dem_scene(const char *text, gr_err *err)
+{
+    static const char *const ext[] = {"dem", NULL};
+    return gr_scene_parse(text, "bench-dem", ext, err);
+}
+
+/* A hexagonal bed of n unit grains, about as wide as tall, in a box of
+ * fixed grains (bottom row and two side columns), shifted by 2 so that the
+ * domain's own walls stay clear. */
+static gr_particles *make_bed(long n, double *width, double *height, gr_err *err)
+{
+    gr_particles *p = gr_particles_create((size_t)n + 4096, err);
+    if (!p)
+        return NULL;
+    long cols = (long)ceil(sqrt((double)n * 1.1547));
+    long rows = (n + cols - 1) / cols;
+    double s = 1.0 + 1e-4, h = 0.5 * sqrt(3.0) * s, o = 2.0;
+    double xr = 1.0 + (double)(cols - 1) * s + 0.5 * s + 1.0;
+    double top = 1.0 + (double)rows * h + 2.0;
+    long k = 0;
+    for (long r = 0; r < rows && k < n; r++)
+        for (long c = 0; c < cols && k < n; c++, k++)
+            if (gr_particles_push(p, o + 1.0 + (double)c * s + (r % 2 ? 0.5 * s : 0.0),
+                                  o + 1.0 + (double)r * h, 0.5, 1.0, 0, 0, err) < 0)
+                goto fail;
+    long nb = (long)ceil(xr);
+    for (long c = 0; c <= nb; c++)
+        if (gr_particles_push(p, o + xr * (double)c / (double)nb, o, 0.5, 1.0, GR_PF_FIXED, 0, err) < 0)
+            goto fail;
+    for (double y = 1.0; y <= top; y += 1.0)
+        if (gr_particles_push(p, o, o + y, 0.5, 1.0, GR_PF_FIXED, 0, err) < 0 ||
+            gr_particles_push(p, o + xr, o + y, 0.5, 1.0, GR_PF_FIXED, 0, err) < 0)
+            goto fail;
+    for (size_t i = 0; i < p->n; i++)
+        p->id[i] = (int64_t)i;
+    *width = xr + 2 * o;
+    *height = top + 2 * o;
+    return p;
+fail:
+    gr_particles_free(p);
+    return NULL;
+}
+
+/* The bed's state after the settling steps, in id order. */
+typedef struct {
+    long n;
+    double rate;          /* mobile particle-steps per second */
+    double seconds;
+    double cpu_rate;      /* per second of CPU time */
+    double bytes_per_grain;
+    double lammps_rate;
+    double lammps_seconds;
+    double lammps_cpu_rate;
+} bed_result;
+
+static int lammps_run(const gr_particles *p, double width, double height, long steps, double skin,
+                      const char *dir, bed_result *r, gr_err *err)
+{
+    char data[1200], in[1200], log[1200], cmd[4096];
+    snprintf(data, sizeof data, "%s/bed-%ld.data", dir, r->n);
+    snprintf(in, sizeof in, "%s/bed-%ld.in", dir, r->n);
+    snprintf(log, sizeof log, "%s/bed-%ld.log", dir, r->n);
+    FILE *f = fopen(data, "w");
+    if (!f)
+        return gr_fail(err, GR_EINPUT, "%s: %s", data, strerror(errno));
+    size_t live = 0;
+    for (size_t i = 0; i < p->n; i++)
+        live += !(p->flags[i] & GR_PF_GONE);
+    fprintf(f, "grano dense bed, %ld mobile grains (grano bench dem)\n\n%zu atoms\n2 atom types\n\n"
+               "0 %.17g xlo xhi\n0 %.17g ylo yhi\n-0.5 0.5 zlo zhi\n\nAtoms # sphere\n\n",
+            r->n, live, width, height);
+    /* diameter, and a density giving m = 1 for a unit sphere: masses are
+     * then set to 1 in the input, since the data file's density is 3D */
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->flags[i] & GR_PF_GONE))
+            fprintf(f, "%zu %d %.17g %.17g %.17g %.17g 0\n", i + 1, p->flags[i] & GR_PF_FIXED ? 2 : 1,
+                    2 * p->radius[i], 6.0 / M_PI, p->x[i], p->y[i]);
+    fprintf(f, "\nVelocities\n\n");
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->flags[i] & GR_PF_GONE))
+            fprintf(f, "%zu %.17g %.17g 0 0 0 %.17g\n", i + 1, p->vx[i], p->vy[i], p->omega[i]);
+    fclose(f);
+    f = fopen(in, "w");
+    if (!f)
+        return gr_fail(err, GR_EINPUT, "%s: %s", in, strerror(errno));
+    fprintf(f,
+            "# The bed of grano bench dem: Hertz kn = 1e5 (LAMMPS scales by sqrt(R_eff) = 1/2),\n"
+            "# gamma_n = 100, regularised friction gamma_t = 300, mu = 0.5, dt = 1.25e-4.\n"
+            "units lj\ndimension 2\natom_style sphere\nboundary f f p\ncomm_modify vel yes\n"
+            "read_data %s\nset group all mass 1.0\n"
+            "group mobile type 1\ngroup wall type 2\n"
+            "pair_style granular\n"
+            "pair_coeff * * hertz 2.0e5 100.0 damping velocity tangential linear_nohistory 3.0 0.5\n"
+            "neighbor %.17g bin\nneigh_modify delay 0 every 1 check yes exclude type 2 2\n"
+            "fix 1 mobile nve/sphere disc\nfix 2 all enforce2d\nfix 3 mobile gravity 1.0 vector 0 -1 0\n"
+            "timestep 1.25e-4\nthermo %ld\nrun %ld\n",
+            data, skin, steps, steps);
+    fclose(f);
+    snprintf(cmd, sizeof cmd, "OMP_NUM_THREADS=1 lmp -in '%s' -log '%s' -screen none > /dev/null 2>&1", in, log);
+    int rc = system(cmd);
+    if (rc != 0)
+        return gr_fail(err, GR_ERUN, "lmp failed (exit %d); its log is %s (is Debian's lammps installed?)", rc, log);
+    f = fopen(log, "r");
+    if (!f)
+        return gr_fail(err, GR_ERUN, "%s: %s", log, strerror(errno));
+    char line[1024];
+    double loop = -1, cpu_pct = 100;
+    long st = 0, atoms = 0;
+    while (fgets(line, sizeof line, f)) {
+        double tl, pc;
+        int procs;
+        if (sscanf(line, "Loop time of %lf on %d procs for %ld steps with %ld atoms", &tl, &procs, &st, &atoms) == 4)
+            loop = tl;
+        if (sscanf(line, "%lf%% CPU use", &pc) == 1)
+            cpu_pct = pc;
+    }
+    fclose(f);
+    if (loop <= 0 || st != steps)
+        return gr_fail(err, GR_ERUN, "%s: no 'Loop time' line for %ld steps", log, steps);
+    r->lammps_seconds = loop;
+    r->lammps_rate = (double)r->n * (double)steps / loop;
+    r->lammps_cpu_rate = r->lammps_rate * 100.0 / cpu_pct;
+    return GR_OK;
+}
+
+static int bed(long n, long steps, long settle, long threads, double skin, const char *peer,
+               const char *dir, bed_result *r, gr_err *err)
+{
+    double width, height;
+    gr_particles *p = make_bed(n, &width, &height, err);
+    if (!p)
+        return err->code;
+    char text[2048];
+    snprintf(text, sizeof text,
+             "[domain]\nwidth = %.17g\nheight = %.17g\ngravity = 1\n"
+             "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
+             "gamma_t = 300\nmu = 0.5\n"
+             /* the grains come from make_bed, not from the scene's [init] */
+             "[species]\ncount = 1\n"
+             "[dem]\ndt = 1.25e-4\nthreads = %ld\nskin = %.17g\n",
+             width, height, threads, skin);
+    gr_scene *sc = bench_dem_scene(text, err);
+    gr_dem *d = NULL;
+    int rc = GR_OK;
+    gr_dem_params par;
+    if (!sc || gr_dem_params_read(sc, &par, err) || gr_dem_check_dt(sc, p, &par, err) ||
+        gr_dem_create(sc, p, &par, &d, err)) {
+        rc = err->code;
+        goto done;
+    }
+    /* settle (untimed), then time the steps */
+    for (long k = 0; k < settle && !rc; k++)
+        rc = gr_dem_step(d, err);
+    if (rc)
+        goto done;
+    uint64_t b0 = d->builds;
+    double t0 = bench_dem_now(), c0 = bench_dem_cpu();
+    for (long k = 0; k < steps && !rc; k++)
+        rc = gr_dem_step(d, err);
+    double t1 = bench_dem_now(), c1 = bench_dem_cpu();
+    if (rc)
+        goto done;
+    r->n = n;
+    r->seconds = t1 - t0;
+    r->rate = (double)d->nmobile * (double)steps / (t1 - t0);
+    r->cpu_rate = (double)d->nmobile * (double)steps / (c1 - c0) * (double)threads;
+    r->bytes_per_grain = gr_dem_memory(d) / (double)d->n;
+    fprintf(stderr, "dem n=%ld: %.3f s for %ld steps, %llu list builds, largest overlap %.4f d\n", n,
+            r->seconds, steps, (unsigned long long)(d->builds - b0), d->max_ovl);
+    if (peer) {
+        if ((rc = gr_dem_snapshot(d, p, err)))
+            goto done;
+        rc = lammps_run(p, width, height, steps, skin, dir, r, err);
+    }
+done:
+    gr_dem_free(d);
+    gr_scene_free(sc);
+    gr_particles_free(p);
+    return rc;
+}
+
+/* ---- speed against error ---------------------------------------------- */
+
+static const char *const integ_names[] = {"verlet", "gear", "euler"};
+
+static gr_dem *acc_create(const char *text, const gr_particles *p, gr_err *err)
+{
+    gr_scene *sc = bench_dem_scene(text, err);
+    if (!sc)
+        return NULL;
+    gr_dem_params par;
+    gr_dem *d = NULL;
+    gr_particles *init = (gr_particles *)p;
+    if (!init) {
+        init = gr_particles_create(0, err);
+        if (!init || gr_init_particles(sc, init, err)) {
+            gr_particles_free(init);
+            gr_scene_free(sc);
+            return NULL;
+        }
+    }
+    if (!gr_dem_params_read(sc, &par, err) && !gr_dem_check_dt(sc, init, &par, err))
+        gr_dem_create(sc, init, &par, &d, err);
+    if (init != p)
+        gr_particles_free(init);
+    gr_scene_free(sc);
+    return d;
+}
+
+/* Two unit disks touching at t = 0 and approaching at speed 1: Hertz with
+ * the thesis's damping; restitution and contact time. The reference
+ * (CVODE) is sampled every h and the crossings interpolated. */
+static int collision(const char *integ, double dt, double h, double *e, double *tc, double *secs,
+                     long *steps, gr_err *err)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[domain]\nwidth = 20\nheight = 20\n"
+             "[material]\nnormal = hertz\nkn = 1e5\ngamma_n = 100\n[species]\ncount = 2\n"
+             "[dem]\ndt = %.17g\ndt_fraction = 1\nintegrator = %s\nneighbour = brute\nv_impact = 1\n"
+             "cvode_rtol = 1e-12\ncvode_atol = 1e-14\n", dt, integ);
+    gr_particles *p = gr_particles_create(2, err);
+    if (!p)
+        return err->code;
+    gr_particles_push(p, 9.5, 10, 0.5, 1.0, 0, 0, err);
+    gr_particles_push(p, 10.5, 10, 0.5, 1.0, 0, 0, err);
+    p->vx[0] = 0.5;
+    p->vx[1] = -0.5;
+    int rc = GR_OK;
+    double c0 = bench_dem_cpu();
+    int reps = 0;
+    /* repeat short runs so that their time is measurable */
+    do {
+        gr_dem *d = acc_create(text, p, err);
+        if (!d) {
+            rc = err->code;
+            break;
+        }
+        int cv = !strcmp(integ, "cvode");
+        double xi_prev = 0, t_prev = 0, t_off = -1;
+        while (t_off < 0 && d->t < 1.0 && !rc) {
+            rc = cv ? gr_dem_advance(d, d->t + h, 0, err) : gr_dem_step(d, err);
+            long i0 = gr_dem_index(d, 0), i1 = gr_dem_index(d, 1);
+            double xi = 1.0 - (d->f[F_X][d->cur][i1] - d->f[F_X][d->cur][i0]);
+            if (xi_prev > 0 && xi <= 0)
+                t_off = t_prev + (d->t - t_prev) * xi_prev / (xi_prev - xi);
+            xi_prev = xi;
+            t_prev = d->t;
+        }
+        if (!rc && !cv)
+            rc = gr_dem_step(d, err);
+        if (!rc) {
+            long i0 = gr_dem_index(d, 0), i1 = gr_dem_index(d, 1);
+            *e = d->f[F_VX][d->cur][i1] - d->f[F_VX][d->cur][i0];
+            *tc = t_off;
+            *steps = (long)d->step;
+        }
+        gr_dem_free(d);
+        reps++;
+    } while (!rc && bench_dem_cpu() - c0 < 0.02);
+    *secs = (bench_dem_cpu() - c0) / reps;
+    gr_particles_free(p);
+    return rc;
+}
+
+/* Forty grains falling in a small box for one tau (Hertz, regularised
+ * friction, the thesis's constants): positions by id at the end. */
+static int packing(const char *integ, double dt, double T, int n, double *xy, double *secs, long *steps,
+                   gr_err *err)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[scene]\nseed = 17\n[domain]\nwidth = 8\nheight = 16\ngravity = 1\n"
+             "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
+             "gamma_t = 300\nmu = 0.5\n[species]\ncount = %d\n"
+             "[init]\nkind = random\nregion = 0 0 8 16\nvelocity = gaussian\nv0 = 0.5\n"
+             "[dem]\ndt = %.17g\ndt_fraction = 1\nintegrator = %s\nneighbour = brute\n"
+             "cvode_rtol = 1e-11\ncvode_atol = 1e-13\n", n, dt, integ);
+    double c0 = bench_dem_cpu();
+    gr_dem *d = acc_create(text, NULL, err);
+    if (!d)
+        return err->code;
+    int rc = gr_dem_advance(d, T, 0, err);
+    if (!rc) {
+        for (size_t i = 0; i < d->n; i++) {
+            xy[2 * d->tag[i]] = d->f[F_X][d->cur][i];
+            xy[2 * d->tag[i] + 1] = d->f[F_Y][d->cur][i];
+        }
+        *steps = (long)d->step;
+    }
+    *secs = bench_dem_cpu() - c0;
+    gr_dem_free(d);
+    return rc;
+}
+
+static int bench_dem_accuracy(const char *dir, int quick, gr_err *err)
+{
+    char dat[1200], png[1200];
+    snprintf(dat, sizeof dat, "%s/dem_accuracy.dat", dir);
+    snprintf(png, sizeof png, "%s/dem_accuracy.png", dir);
+    double tc0 = 3.21 * pow(0.5 / 1e5, 0.4); /* eq. 2.5 at v = 1 */
+    double e_ref, tc_ref, sref;
+    long st;
+    printf("# reference: CVODE (Adams), rtol 1e-12 (collision), 1e-11 (packing)\n");
+    if (collision("cvode", tc0 / 100, tc0 / 20000, &e_ref, &tc_ref, &sref, &st, err))
+        return err->code;
+    int n = quick ? 12 : 40;
+    double T = quick ? 0.3 : 1.0;
+    double *xref = malloc(sizeof(double) * 2 * (size_t)n), *xy = malloc(sizeof(double) * 2 * (size_t)n);
+    if (!xref || !xy) {
+        free(xref), free(xy);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    double pref_secs;
+    if (packing("cvode", 1e-4, T, n, xref, &pref_secs, &st, err)) {
+        free(xref), free(xy);
+        return err->code;
+    }
+    printf("# collision reference: e = %.12f, t_c = %.12f (eq. 2.5: %.6f); packing of %d grains to t = %g: %.3g s\n",
+           e_ref, tc_ref, tc0, n, T, pref_secs);
+    FILE *f = fopen(dat, "w");
+    if (!f) {
+        free(xref), free(xy);
+        return gr_fail(err, GR_EINPUT, "%s: %s", dat, strerror(errno));
+    }
+    fprintf(f, "# grano bench dem --accuracy: error against the CVODE reference and cost\n"
+               "# problem integrator dt steps cpu_seconds err_restitution err_contact_time err_position\n");
+    int nk = quick ? 3 : 6;
+    for (int g = 0; g < 3; g++) {
+        for (int k = 0; k < nk; k++) {
+            double dt = tc0 / 10 / pow(2, k), e, tc, secs;
+            long steps;
+            gr_err e2 = {0};
+            if (collision(integ_names[g], dt, 0, &e, &tc, &secs, &steps, &e2)) {
+                printf("collision %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
+                continue;
+            }
+            double ee = fabs(e / e_ref - 1), et = fabs(tc / tc_ref - 1);
+            fprintf(f, "collision %s %.6g %ld %.6g %.6g %.6g nan\n", integ_names[g], dt, steps, secs, ee, et);
+            printf("collision %-6s dt = t_c/%-5.0f: e error %.3e, t_c error %.3e, %.3g s\n", integ_names[g],
+                   tc0 / dt, ee, et, secs);
+        }
+        fprintf(f, "\n\n");
+    }
+    for (int g = 0; g < 3; g++) {
+        for (int k = 0; k < nk; k++) {
+            double dt = 4e-4 / pow(2, k), secs;
+            long steps;
+            gr_err e2 = {0};
+            if (packing(integ_names[g], dt, T, n, xy, &secs, &steps, &e2)) {
+                printf("packing %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
+                continue;
+            }
+            double worst = 0;
+            for (int i = 0; i < 2 * n; i++)
+                worst = fmax(worst, fabs(xy[i] - xref[i]));
+            fprintf(f, "packing %s %.6g %ld %.6g nan nan %.6g\n", integ_names[g], dt, steps, secs, worst);
+            printf("packing   %-6s dt = %-9.4g: position error %.3e d, %.3g s\n", integ_names[g], dt, worst, secs);
+        }
+        fprintf(f, "\n\n");
+    }
+    fclose(f);
+    free(xref), free(xy);
+    FILE *gp = gr_plot_open(png, 1100, 480, err);
+    if (!gp)
+        return err->code;
+    fprintf(gp, "set multiplot layout 1,2\nset logscale xy\nset format y '10^{%%L}'\nset grid\n"
+                "set key bottom left\nset xlabel 'CPU seconds per run'\n"
+                "set title 'two-disk collision (Hertz, {/Symbol g}_n = 100, v = 1)'\n"
+                "set ylabel 'relative error against CVODE'\n"
+                "plot for [g=0:2] '%s' index g using 5:6 with linespoints title word('verlet gear euler', g+1).' e', "
+                "for [g=0:2] '%s' index g using 5:7 with linespoints dashtype 2 title word('verlet gear euler', g+1).' t_c'\n"
+                "set title 'settling packing (%d grains, t = %g)'\nset ylabel 'largest position error / d'\n"
+                "plot for [g=3:5] '%s' index g using 5:8 with linespoints title word('verlet gear euler', g-2)\n"
+                "unset multiplot\n",
+            dat, dat, n, T, dat);
+    if (gr_plot_close(gp, png, err))
+        return err->code;
+    printf("wrote %s and %s\n", dat, png);
+    return GR_OK;
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: grano bench dem [--n N[,N...]] [--steps S] [--settle S] [--threads T] [--skin S]\n"
+            "                       [--peer lammps] [--dir DIR]\n"
+            "       grano bench dem --accuracy [--quick] [--dir DIR]\n\n"
+            "Throughput (mobile particle-steps per second) on a dense settled bed of unit\n"
+            "grains in a box of wall grains: Hertz kn = 1e5, gamma_n = 100, regularised\n"
+            "friction gamma_t = 300, mu = 0.5, dt = 1.25e-4 (the thesis). Defaults: N =\n"
+            "5000,20000,80000, 2000 timed steps after 1000 settling steps, 1 thread, skin 0.2.\n"
+            "--peer lammps runs the same bed in Debian's lmp and prints the ratio.\n"
+            "--accuracy sweeps dt for each integrator against the CVODE reference and writes\n"
+            "DIR/dem_accuracy.dat and DIR/dem_accuracy.png (default DIR: .).\n");
+}
+
+int bench_dem(int argc, char **argv)
+{
+    long ns[16] = {5000, 20000, 80000};
+    int nn = 3;
+    long steps = 2000, settle = 1000, threads = 1;
+    double skin = 0.2;
+    const char *peer = NULL, *dir = ".";
+    int accuracy = 0, quick = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(a, "--accuracy")) {
+            accuracy = 1;
+        } else if (!strcmp(a, "--quick")) {
+            quick = 1;
+        } else if (v && !strcmp(a, "--n")) {
+            nn = 0;
+            for (char *s = argv[++i], *end; *s && nn < 16; s = *end ? end + 1 : end) {
+                ns[nn++] = strtol(s, &end, 10);
+                if (end == s || ns[nn - 1] < 1 || (*end && *end != ',')) {
+                    fprintf(stderr, "grano bench dem: --n wants positive integers separated by commas\n");
+                    return 2;
+                }
+            }
+        } else if (v && !strcmp(a, "--steps")) {
+            steps = atol(argv[++i]);
+        } else if (v && !strcmp(a, "--settle")) {
+            settle = atol(argv[++i]);
+        } else if (v && !strcmp(a, "--threads")) {
+            threads = atol(argv[++i]);
+        } else if (v && !strcmp(a, "--skin")) {
+            skin = atof(argv[++i]);
+        } else if (v && !strcmp(a, "--peer")) {
+            peer = argv[++i];
+            if (strcmp(peer, "lammps")) {
+                fprintf(stderr, "grano bench dem: unknown peer '%s' (known: lammps)\n", peer);
+                return 2;
+            }
+        } else if (v && !strcmp(a, "--dir")) {
+            dir = argv[++i];
+        } else {
+            fprintf(stderr, "grano bench dem: unknown or incomplete option '%s'\n", a);
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (steps < 1 || settle < 0 || threads < 1 || !(skin >= 0)) {
+        fprintf(stderr, "grano bench dem: --steps and --threads must be positive, --settle and --skin not negative\n");
+        return 2;
+    }
+    if (mkdir(dir, 0777) && errno != EEXIST) {
+        fprintf(stderr, "grano bench dem: cannot create %s: %s\n", dir, strerror(errno));
+        return 2;
+    }
+    gr_err err = {0};
+    if (accuracy) {
+        int rc = bench_dem_accuracy(dir, quick, &err);
+        if (rc)
+            fprintf(stderr, "grano bench dem: %s\n", err.msg);
+        return rc;
+    }
+    for (int k = 0; k < nn; k++) {
+        bed_result r = {0};
+        if (bed(ns[k], steps, settle, threads, skin, peer, dir, &r, &err)) {
+            fprintf(stderr, "grano bench dem: n = %ld: %s\n", ns[k], err.msg);
+            return err.code;
+        }
+        printf("dem n=%ld threads=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second x threads), %.1f bytes per grain\n",
+               r.n, threads, r.seconds, r.rate, r.cpu_rate, r.bytes_per_grain);
+        if (peer)
+            printf("lammps n=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second; CPU-time ratio %.3f)\n", r.n,
+                   r.lammps_seconds, r.lammps_rate, r.lammps_cpu_rate, r.cpu_rate / r.lammps_cpu_rate);
+        printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g", r.n, steps, r.rate);
+        if (peer)
+            printf(" lammps_particle_steps_per_s=%.6g ratio=%.3f", r.lammps_rate, r.rate / r.lammps_rate);
+        printf("\n");
+        fflush(stdout);
+    }
+    return 0;
+}
