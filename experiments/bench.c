@@ -11,6 +11,7 @@ typedef struct {
 
 /* One line per backend benchmark. */
 static const bench_entry benches[] = {
+    {"dem", bench_dem},
     {NULL, NULL},
 };
 
