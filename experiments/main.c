@@ -2,6 +2,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
+
 #include "cmd.h"
 
 typedef struct {
@@ -28,6 +30,8 @@ static void usage(FILE *f)
 
 int main(int argc, char **argv)
 {
+    /* GSL's default handler aborts; grano checks every status instead. */
+    gsl_set_error_handler_off();
     if (argc < 2) {
         usage(stderr);
         return 2;

@@ -1,0 +1,20 @@
+/* Figures through gnuplot (pngcairo): data go inline as datablocks, so no
+ * temporary files are left behind. */
+#ifndef GR_PLOT_H
+#define GR_PLOT_H
+
+#include <stdio.h>
+
+#include "err.h"
+#include "particles.h"
+
+/* Start a gnuplot process writing a PNG of w x h pixels to png; write the
+ * script into the returned stream, then call gr_plot_close. */
+FILE *gr_plot_open(const char *png, int w, int h, gr_err *err);
+int gr_plot_close(FILE *gp, const char *png, gr_err *err);
+
+/* Grains as disks coloured by speed (fixed grains grey), the box outlined. */
+int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
+                     double t, const char *title, gr_err *err);
+
+#endif

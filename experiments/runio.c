@@ -1,0 +1,239 @@
+#include "runio.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "ckpt.h"
+#include "fields.h"
+#include "h5md.h"
+#include "init.h"
+#include "plot.h"
+#include "progress.h"
+
+void gr_run_ckpt_path(const char *out, char *buf, size_t n)
+{
+    size_t l = strlen(out);
+    if (l > 3 && !strcmp(out + l - 3, ".h5"))
+        snprintf(buf, n, "%.*s.ckpt", (int)(l - 3), out);
+    else
+        snprintf(buf, n, "%s.ckpt", out);
+}
+
+int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
+                const void *state, const uint64_t counters[3], gr_err *err)
+{
+    gr_ckpt *ck = gr_ckpt_create(path, err);
+    if (!ck)
+        return err->code;
+    int rc = gr_ckpt_put_bytes(ck, "run_scene_text", sc->text, strlen(sc->text), err);
+    if (!rc)
+        rc = gr_ckpt_put_bytes(ck, "run_method", m->name, strlen(m->name), err);
+    uint64_t seed = sc->seed;
+    if (!rc)
+        rc = gr_ckpt_put_u64(ck, "run_seed", &seed, 1, err);
+    if (!rc)
+        rc = gr_ckpt_put_u64(ck, "run_counters", counters, 3, err);
+    if (!rc)
+        rc = m->save(state, ck, err);
+    if (rc) {
+        gr_err ignore = {0};
+        gr_ckpt_close(ck, &ignore);
+        return rc;
+    }
+    return gr_ckpt_close(ck, err);
+}
+
+/* A stored string must equal the expected one. */
+static int check_text(gr_ckpt *ck, const char *name, const char *want, const char *path,
+                      const char *what, gr_err *err)
+{
+    size_t n;
+    if (gr_ckpt_len(ck, name, &n, err))
+        return gr_fail(err, GR_EINPUT, "%s: not a grano run checkpoint (no %s)", path, name);
+    char *s = calloc(n + 1, 1);
+    if (!s)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    int rc = gr_ckpt_get_bytes(ck, name, s, n, err);
+    if (!rc && strcmp(s, want))
+        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written for a different %s", path, what);
+    free(s);
+    return rc;
+}
+
+int gr_run_load(const char *path, const gr_scene *sc, const gr_method_type *m, void *state,
+                uint64_t counters[3], gr_err *err)
+{
+    gr_ckpt *ck = gr_ckpt_open(path, err);
+    if (!ck)
+        return err->code;
+    uint64_t seed;
+    int rc = check_text(ck, "run_scene_text", sc->text, path, "scene (its text differs)", err);
+    if (!rc)
+        rc = check_text(ck, "run_method", m->name, path, "method", err);
+    if (!rc && !(rc = gr_ckpt_get_u64(ck, "run_seed", &seed, 1, err)) && seed != sc->seed)
+        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written with seed %llu, not %llu", path,
+                     (unsigned long long)seed, (unsigned long long)sc->seed);
+    if (!rc)
+        rc = gr_ckpt_get_u64(ck, "run_counters", counters, 3, err);
+    if (!rc)
+        rc = m->load(state, ck, err);
+    gr_err ignore = {0};
+    gr_ckpt_close(ck, &ignore);
+    return rc;
+}
+
+typedef struct {
+    gr_h5md *h;
+    gr_field *field;
+    gr_particles *snap;
+    double *buf;
+} run_io;
+
+static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
+{
+    gr_field *f = io->field;
+    if (!f || f->wsum <= 0)
+        return GR_OK;
+    size_t nc = gr_field_ncells(f);
+    gr_field_desc d = {"packing_fraction", "1", f->nx, f->ny, 1, f->x0, f->y0, f->cx, f->cy};
+    gr_field_packing(f, io->buf);
+    if (gr_h5md_write_field(io->h, &d, o->steps, o->t, io->buf, err))
+        return err->code;
+    double *vx = io->buf, *vy = io->buf + nc, *v = io->buf + 2 * nc;
+    gr_field_velocity(f, vx, vy);
+    for (size_t c = 0; c < nc; c++)
+        v[2 * c] = vx[c], v[2 * c + 1] = vy[c];
+    d.name = "velocity", d.unit = "d tau-1", d.ncomp = 2;
+    if (gr_h5md_write_field(io->h, &d, o->steps, o->t, v, err))
+        return err->code;
+    gr_field_temperature(f, io->buf);
+    d.name = "temperature", d.unit = "m d2 tau-2", d.ncomp = 1;
+    if (gr_h5md_write_field(io->h, &d, o->steps, o->t, io->buf, err))
+        return err->code;
+    gr_field_clear(f);
+    return GR_OK;
+}
+
+/* Observables every observe_every, frames and fields every output_every,
+ * checkpoints every checkpoint_every; times are k * interval from the start
+ * so that they do not drift and a restart lands on the same ones. */
+static int loop(gr_scene *sc, const gr_method_type *m, void *st, run_io *io, const gr_run_opts *o,
+                uint64_t k[3], double t0, gr_err *err)
+{
+    const gr_runctl *rc = &sc->run;
+    gr_progress *pg = o->progress ? gr_progress_create(stderr, m->time(st), rc->until, 1.0) : NULL;
+    const double eps = 1e-9 * (rc->until > 1 ? rc->until : 1);
+    int status = GR_OK;
+    for (;;) {
+        double t = m->time(st);
+        gr_obs obs;
+        gr_obs_clear(&obs);
+        int observed = 0;
+        if (t >= t0 + (double)k[0] * rc->observe_every - eps) {
+            if ((status = m->observe(st, &obs, err)) || (status = gr_h5md_write_obs(io->h, &obs, err)))
+                break;
+            observed = 1;
+            if (io->field) {
+                if ((status = m->snapshot(st, io->snap, err)) ||
+                    (status = gr_field_add(io->field, io->snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
+                    break;
+            }
+            k[0]++;
+            gr_progress_update(pg, t, "E_kin", obs.ekin_trans + obs.ekin_rot);
+        }
+        if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
+            if ((!observed && (status = m->observe(st, &obs, err))) ||
+                (status = m->snapshot(st, io->snap, err)) ||
+                (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err)))
+                break;
+            if ((status = write_fields(io, &obs, err)))
+                break;
+            while (t >= t0 + (double)k[1] * rc->output_every - eps)
+                k[1]++;
+        }
+        if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
+            while (t >= t0 + (double)k[2] * rc->checkpoint_every - eps)
+                k[2]++;
+            if (o->ckpt && (status = gr_run_save(o->ckpt, sc, m, st, k, err)))
+                break;
+        }
+        if (t >= rc->until - eps)
+            break;
+        double target = rc->until;
+        for (int j = 0; j < 3; j++) {
+            double every = j == 0 ? rc->observe_every : j == 1 ? rc->output_every : rc->checkpoint_every;
+            double next = t0 + (double)k[j] * every;
+            target = next < target ? next : target;
+        }
+        if ((status = m->advance(st, target, 0, err)))
+            break;
+    }
+    gr_progress_free(pg);
+    return status;
+}
+
+int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
+{
+    run_io io = {0};
+    void *st = NULL;
+    int rc = GR_OK;
+    gr_particles *init = gr_particles_create(0, err);
+    io.snap = gr_particles_create(0, err);
+    if (!init || !io.snap) {
+        rc = GR_ERUN;
+        goto done;
+    }
+    if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_method_create(m, sc, init, &st, err)))
+        goto done;
+    uint64_t k[3] = {0, 0, 1};
+    double t0 = m->time(st);
+    if (o->restart) {
+        if ((rc = gr_run_load(o->restart, sc, m, st, k, err)))
+            goto done;
+    }
+    if (sc->run.field_nx > 0) {
+        io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
+                                   sc->width / sc->run.field_nx, sc->height / sc->run.field_ny, err);
+        io.buf = malloc(4 * (size_t)sc->run.field_nx * (size_t)sc->run.field_ny * sizeof *io.buf);
+        if (!io.field || !io.buf) {
+            rc = err->code ? err->code : gr_fail(err, GR_ERUN, "out of memory");
+            goto done;
+        }
+    }
+    gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION};
+    if (!(io.h = gr_h5md_create(o->out, sc, &ho, err))) {
+        rc = err->code;
+        goto done;
+    }
+    rc = loop(sc, m, st, &io, o, k, t0, err);
+    if (rc == GR_ERUN && o->ckpt) {
+        /* The backend stopped at its last good step: keep that state. */
+        gr_err e2 = {0};
+        if (gr_run_save(o->ckpt, sc, m, st, k, &e2) == GR_OK)
+            gr_err_prefix(err, "(last good state saved in %s) ", o->ckpt);
+    } else if (rc == GR_OK && o->ckpt) {
+        rc = gr_run_save(o->ckpt, sc, m, st, k, err);
+    }
+    if (rc == GR_OK && o->snapshot) {
+        if (!(rc = m->snapshot(st, io.snap, err)))
+            rc = gr_plot_snapshot(o->snapshot, io.snap, sc->width, sc->height, m->time(st), sc->name, err);
+    }
+    {
+        gr_err e2 = {0};
+        int crc = gr_h5md_close(io.h, rc ? &e2 : err);
+        io.h = NULL;
+        if (!rc)
+            rc = crc;
+    }
+done:
+    gr_h5md_free(io.h);
+    free(io.buf);
+    gr_field_free(io.field);
+    if (st)
+        m->free(st);
+    gr_particles_free(init);
+    gr_particles_free(io.snap);
+    return rc;
+}

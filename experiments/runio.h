@@ -1,0 +1,34 @@
+/* The run loop shared by `grano run` and the experiments: advance a method
+ * through a scene, writing observables, frames, fields and checkpoints as
+ * it goes; restart from a checkpoint; keep the last good state on failure. */
+#ifndef GR_RUNIO_H
+#define GR_RUNIO_H
+
+#include <stddef.h>
+
+#include "method.h"
+#include "scene.h"
+
+typedef struct {
+    const char *out;      /* H5MD result file */
+    const char *ckpt;     /* checkpoint file (NULL: none) */
+    const char *restart;  /* checkpoint to continue from (NULL: fresh start) */
+    const char *snapshot; /* PNG of the final state (NULL: none) */
+    int force;            /* replace existing files */
+    int progress;         /* progress line on a terminal */
+} gr_run_opts;
+
+/* "<out minus .h5>.ckpt" */
+void gr_run_ckpt_path(const char *out, char *buf, size_t n);
+
+/* Returns GR_OK, GR_EINPUT (scene refused, bad restart) or GR_ERUN (the run
+ * failed; the checkpoint then holds the last good state). */
+int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err);
+
+/* Save / restore a method's full state and the run counters. */
+int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
+                const void *state, const uint64_t counters[3], gr_err *err);
+int gr_run_load(const char *path, const gr_scene *sc, const gr_method_type *m, void *state,
+                uint64_t counters[3], gr_err *err);
+
+#endif
