@@ -81,7 +81,7 @@ static gr_ckpt *create_impl(const char *path, gr_err *err)
 gr_ckpt *gr_ckpt_create(const char *path, gr_err *err)
 {
     gr_ckpt *c = NULL;
-    GR_H5_QUIET(c = create_impl(path, err));
+    GR_H5_GUARD(err, !c, c = create_impl(path, err));
     return c;
 }
 
@@ -125,7 +125,7 @@ static gr_ckpt *open_impl(const char *path, gr_err *err)
 gr_ckpt *gr_ckpt_open(const char *path, gr_err *err)
 {
     gr_ckpt *c = NULL;
-    GR_H5_QUIET(c = open_impl(path, err));
+    GR_H5_GUARD(err, !c, c = open_impl(path, err));
     return c;
 }
 
@@ -220,13 +220,13 @@ static int get(gr_ckpt *c, const char *name, gr_h5_type t, void *v, size_t n, gr
                              gr_err *err)                                                       \
     {                                                                                           \
         int rc;                                                                                 \
-        GR_H5_QUIET(rc = put(c, name, code, v, n, err));                                        \
+        GR_H5_GUARD(err, rc, rc = put(c, name, code, v, n, err));                                        \
         return rc;                                                                              \
     }                                                                                           \
     int gr_ckpt_get_##suffix(gr_ckpt *c, const char *name, ctype *v, size_t n, gr_err *err)  \
     {                                                                                           \
         int rc;                                                                                 \
-        GR_H5_QUIET(rc = get(c, name, code, v, n, err));                                        \
+        GR_H5_GUARD(err, rc, rc = get(c, name, code, v, n, err));                                        \
         return rc;                                                                              \
     }
 
@@ -239,7 +239,7 @@ CKPT_TYPE(bytes, void, GR_T_U8)
 int gr_ckpt_len(gr_ckpt *c, const char *name, size_t *n, gr_err *err)
 {
     int rc = GR_OK;
-    GR_H5_QUIET({
+    GR_H5_GUARD(err, rc, {
         if (!valid_name(name) || !gr_h5_exists(c->group, name)) {
             rc = gr_fail(err, GR_ERUN, "checkpoint %s has no array '%s'", c->path, name ? name : "");
         } else {
@@ -321,7 +321,7 @@ int gr_ckpt_close(gr_ckpt *c, gr_err *err)
         return rc;
     }
     int rc = GR_OK;
-    GR_H5_QUIET({
+    GR_H5_GUARD(err, rc, {
         if (H5Fflush(c->file, H5F_SCOPE_GLOBAL) < 0)
             rc = gr_h5_fail(err, GR_ERUN, "cannot flush checkpoint %s", c->tmp);
         gr_h5_close(c->group);

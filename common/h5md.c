@@ -295,7 +295,7 @@ gr_h5md *gr_h5md_create(const char *path, const gr_scene *sc, const gr_h5md_opts
         return NULL;
     }
     gr_h5md *h = NULL;
-    GR_H5_QUIET(h = create_impl(path, sc, o ? o : &zero, err));
+    GR_H5_GUARD(err, !h, h = create_impl(path, sc, o ? o : &zero, err));
     return h;
 }
 
@@ -309,7 +309,7 @@ gr_h5md *gr_h5md_attach(hid_t file, const gr_scene *sc, const gr_h5md_opts *o, g
     }
     h->file = file;
     int rc;
-    GR_H5_QUIET(rc = build_layout(h, sc, o ? o : &zero, err));
+    GR_H5_GUARD(err, rc, rc = build_layout(h, sc, o ? o : &zero, err));
     if (rc) {
         free_writer(h);
         return NULL;
@@ -529,7 +529,7 @@ int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time, const gr_particl
                         gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = frame_impl(h, step, time, p, err));
+    GR_H5_GUARD(err, rc, rc = frame_impl(h, step, time, p, err));
     return rc;
 }
 
@@ -572,14 +572,14 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
 int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = obs_impl(h, o, err));
+    GR_H5_GUARD(err, rc, rc = obs_impl(h, o, err));
     return rc;
 }
 
 int gr_h5md_flush(gr_h5md *h, gr_err *err)
 {
     int rc = GR_OK;
-    GR_H5_QUIET(if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+    GR_H5_GUARD(err, rc, if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
                     rc = gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file"));
     return rc;
 }
@@ -607,10 +607,8 @@ int gr_h5md_close(gr_h5md *h, gr_err *err)
     if (!rc)
         rc = write_sidecar(h, err);
     char *path = h->path ? strdup(h->path) : NULL;
-    herr_t st;
-    GR_H5_QUIET(st = release(h));
-    if (st < 0 && !rc)
-        rc = gr_fail(err, GR_ERUN, "cannot close %s", path ? path : "the output file");
+    GR_H5_GUARD(err, rc, if (release(h) < 0 && !rc)
+                    rc = gr_h5_fail(err, GR_ERUN, "cannot close %s", path ? path : "the output file"));
     free(path);
     return rc;
 }

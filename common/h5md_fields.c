@@ -100,7 +100,7 @@ int gr_h5md_write_field(gr_h5md *h, const gr_field_desc *f, uint64_t step, doubl
                         const double *values, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = field_impl(h, f, step, time, values, err));
+    GR_H5_GUARD(err, rc, rc = field_impl(h, f, step, time, values, err));
     return rc;
 }
 
@@ -133,7 +133,7 @@ static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_
 int gr_h5md_write_result(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = result_impl(h, d, v, err));
+    GR_H5_GUARD(err, rc, rc = result_impl(h, d, v, err));
     return rc;
 }
 
@@ -157,7 +157,7 @@ int gr_h5md_field_info(gr_h5md_reader *r, const char *name, gr_field_desc *f, si
                        gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = field_info_impl(r, name, f, samples, err));
+    GR_H5_GUARD(err, rc, rc = field_info_impl(r, name, f, samples, err));
     return rc;
 }
 
@@ -192,7 +192,7 @@ int gr_h5md_read_field(gr_h5md_reader *r, const char *name, size_t sample, doubl
                        uint64_t *step, double *time, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = read_field_impl(r, name, sample, values, step, time, err));
+    GR_H5_GUARD(err, rc, rc = read_field_impl(r, name, sample, values, step, time, err));
     return rc;
 }
 
@@ -235,6 +235,6 @@ int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows, size_
                         double **v, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = result_read_impl(r, name, rows, cols, v, err));
+    GR_H5_GUARD(err, rc, rc = result_read_impl(r, name, rows, cols, v, err));
     return rc;
 }

@@ -11,16 +11,30 @@
 #define GRANO_VERSION "unknown"
 #endif
 
-/* Run an HDF5 sequence with the library's own stderr report turned off:
- * errors reach the caller through gr_err instead. */
-#define GR_H5_QUIET(stmt)                                                      \
+/* HDF5 calls run inside a guard: the library's own report to stderr is
+ * replaced by a recorder that keeps the innermost description of the first
+ * failure (e.g. "unable to lock file, errno = 11 ..."); if the guarded
+ * statement failed, that description is appended to err's message. (Any
+ * successful HDF5 call clears the library's error stack, so the cause must
+ * be caught when it happens, not when the failure is reported.) */
+typedef struct {
+    H5E_auto2_t fn;
+    void *data;
+    char text[400];
+    int set;
+} gr_h5_guard;
+void gr_h5_guard_begin(gr_h5_guard *g);
+void gr_h5_guard_end(gr_h5_guard *g, gr_err *err); /* err NULL: append nothing */
+#define GR_H5_GUARD(err, failed, stmt)                                         \
     do {                                                                       \
-        H5E_BEGIN_TRY { stmt; }                                                \
-        H5E_END_TRY;                                                           \
+        gr_h5_guard g5_;                                                       \
+        gr_h5_guard_begin(&g5_);                                               \
+        stmt;                                                                  \
+        gr_h5_guard_end(&g5_, (failed) ? (err) : NULL);                        \
     } while (0)
+#define GR_H5_QUIET(stmt) GR_H5_GUARD(NULL, 0, stmt)
 
-/* Fill err with the message followed by the innermost HDF5 error, then clear
- * the HDF5 error stack. Returns code. */
+/* Fill err (the guard adds the HDF5 cause). Returns code. */
 int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 

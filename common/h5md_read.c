@@ -253,7 +253,12 @@ static gr_h5md_reader *open_impl(const char *path, gr_err *err)
 gr_h5md_reader *gr_h5md_open(const char *path, gr_err *err)
 {
     gr_h5md_reader *r = NULL;
-    GR_H5_QUIET(r = open_impl(path, err));
+    GR_H5_GUARD(err, !r, r = open_impl(path, err));
+    if (!r && err && strstr(err->msg, "unable to lock file")) {
+        size_t len = strlen(err->msg);
+        snprintf(err->msg + len, sizeof err->msg - len,
+                 "; is a run still writing it? (HDF5_USE_FILE_LOCKING=FALSE reads it anyway)");
+    }
     return r;
 }
 
@@ -290,7 +295,7 @@ static int times_impl(gr_h5md_reader *r, double *time, uint64_t *step, gr_err *e
 int gr_h5md_read_times(gr_h5md_reader *r, double *time, uint64_t *step, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = times_impl(r, time, step, err));
+    GR_H5_GUARD(err, rc, rc = times_impl(r, time, step, err));
     return rc;
 }
 
@@ -374,7 +379,7 @@ int gr_h5md_read_frame(gr_h5md_reader *r, size_t frame, gr_particles *p, uint64_
                        double *time, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = frame_impl(r, frame, p, step, time, err));
+    GR_H5_GUARD(err, rc, rc = frame_impl(r, frame, p, step, time, err));
     return rc;
 }
 
@@ -448,14 +453,14 @@ static int obs_impl(gr_h5md_reader *r, gr_obs *obs, gr_err *err)
 int gr_h5md_read_obs(gr_h5md_reader *r, gr_obs *obs, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = obs_impl(r, obs, err));
+    GR_H5_GUARD(err, rc, rc = obs_impl(r, obs, err));
     return rc;
 }
 
 int gr_h5md_list(gr_h5md_reader *r, const char *group, char ***names, size_t *n, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = list_impl(r->file, group, names, n));
+    GR_H5_GUARD(err, rc, rc = list_impl(r->file, group, names, n));
     return rc ? gr_fail(err, GR_ERUN, "%s: cannot list %s", r->info.path, group) : GR_OK;
 }
 
@@ -479,7 +484,7 @@ int gr_h5md_series_info(gr_h5md_reader *r, const char *path, size_t *samples, do
                         double *t1, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = series_impl(r, path, samples, t0, t1, err));
+    GR_H5_GUARD(err, rc, rc = series_impl(r, path, samples, t0, t1, err));
     return rc;
 }
 
@@ -526,6 +531,6 @@ static int xdmf_impl(gr_h5md_reader *r, gr_err *err)
 int gr_h5md_write_xdmf(gr_h5md_reader *r, gr_err *err)
 {
     int rc;
-    GR_H5_QUIET(rc = xdmf_impl(r, err));
+    GR_H5_GUARD(err, rc, rc = xdmf_impl(r, err));
     return rc;
 }

@@ -6,37 +6,56 @@
 #include <stdlib.h>
 #include <string.h>
 
-typedef struct {
-    char text[400];
-    int found;
-} h5_errmsg;
-
 /* Walked from the innermost frame outwards: keep the first description,
- * which is where HDF5 saw the problem (e.g. "unable to open file ..."). */
+ * where HDF5 saw the problem. */
 static herr_t first_error(unsigned n, const H5E_error2_t *e, void *data)
 {
     (void)n;
-    h5_errmsg *m = data;
-    if (!m->found && e->desc && e->desc[0]) {
-        snprintf(m->text, sizeof m->text, "%s", e->desc);
-        m->found = 1;
+    gr_h5_guard *g = data;
+    if (!g->set && e->desc && e->desc[0]) {
+        snprintf(g->text, sizeof g->text, "%s", e->desc);
+        g->set = 1;
     }
     return 0;
 }
 
+static herr_t record(hid_t estack, void *data)
+{
+    gr_h5_guard *g = data;
+    if (!g->set)
+        H5Ewalk2(estack, H5E_WALK_UPWARD, first_error, g);
+    return 0;
+}
+
+void gr_h5_guard_begin(gr_h5_guard *g)
+{
+    g->fn = NULL;
+    g->data = NULL;
+    g->text[0] = '\0';
+    g->set = 0;
+    H5Eget_auto2(H5E_DEFAULT, &g->fn, &g->data);
+    H5Eset_auto2(H5E_DEFAULT, record, g);
+}
+
+void gr_h5_guard_end(gr_h5_guard *g, gr_err *err)
+{
+    H5Eset_auto2(H5E_DEFAULT, g->fn, g->data);
+    if (err && err->code && g->set) {
+        size_t len = strlen(err->msg);
+        snprintf(err->msg + len, sizeof err->msg - len, " (HDF5: %s)", g->text);
+    }
+}
+
 int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
 {
-    char msg[sizeof err->msg];
+    if (!err)
+        return code;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
     va_end(ap);
-    h5_errmsg m = {{0}, 0};
-    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, first_error, &m);
-    H5Eclear2(H5E_DEFAULT);
-    if (m.found)
-        return gr_fail(err, code, "%s (HDF5: %s)", msg, m.text);
-    return gr_fail(err, code, "%s", msg);
+    err->code = code;
+    return code;
 }
 
 hid_t gr_h5_fapl(void)

@@ -370,6 +370,7 @@ static void existing_output_refused_without_force(void **state)
     assert_null(gr_h5md_create("no-such-dir/out.h5", &sc, &o, &e));
     assert_int_equal(e.code, GR_EINPUT);
     assert_non_null(strstr(e.msg, "no-such-dir/out.h5"));
+    assert_non_null(strstr(e.msg, "No such file or directory")); /* HDF5's cause kept */
     assert_false(file_exists("no-such-dir/out.h5.part"));
     mkdir("adir.h5", 0700);
     assert_null(gr_h5md_create("adir.h5", &sc, &o, &e));
