@@ -12,16 +12,7 @@
 
 #include "scene.h"
 
-typedef struct {
-    const char *name;
-    const char *unit;
-    gr_h5_type type;
-    int ncomp;        /* 1 or 2 (x, y) */
-    int once;         /* stored once, as a dataset, until it changes */
-} elem_def;
-
-enum { E_POS, E_VEL, E_OMEGA, E_FLAGS, E_RADIUS, E_MASS, E_INERTIA, E_SPECIES, E_ID, NPE };
-static const elem_def pdefs[NPE] = {
+const gr_elem_def gr_h5md_pdefs[NPE] = {
     {"position", "d", GR_T_F64, 2, 0},
     {"velocity", "d tau-1", GR_T_F64, 2, 0},
     {"omega", "tau-1", GR_T_F64, 1, 0},
@@ -33,8 +24,7 @@ static const elem_def pdefs[NPE] = {
     {"id", "1", GR_T_I64, 1, 1},
 };
 
-enum { O_NMOB, O_EKT, O_EKR, O_EPOT, O_TEMP, O_MOM, O_OUT, O_PRES, O_OVL, NOE };
-static const elem_def odefs[NOE] = {
+const gr_elem_def gr_h5md_odefs[NOE] = {
     {"n_mobile", "1", GR_T_I64, 1, 0},
     {"ekin_trans", "m d+2 tau-2", GR_T_F64, 1, 0},
     {"ekin_rot", "m d+2 tau-2", GR_T_F64, 1, 0},
@@ -46,33 +36,6 @@ static const elem_def odefs[NOE] = {
     {"max_overlap", "d", GR_T_F64, 1, 0},
 };
 
-typedef struct {
-    hid_t group;   /* time-dependent: the element group */
-    hid_t value;   /* time-dependent: its value; once: the dataset itself */
-    int series;
-    void *prev;    /* once: the stored values, to notice a change */
-} elem;
-
-struct gr_h5md {
-    hid_t file;
-    int owned;            /* created by gr_h5md_create: closed on free */
-    int broken;           /* a write failed half-way: refuse further frames */
-    char *path, *xdmf, *h5name;
-    hid_t traj, box;
-    size_t n, frames;
-    size_t xdmf_frames;   /* frames in the sidecar on disk */
-    hid_t step, time, edges;
-    elem pe[NPE];
-    double width, height;
-    void *buf;
-    double *times;
-    size_t times_cap;
-    double last_time;
-    hid_t obs_step, obs_time;
-    elem oe[NOE];
-    size_t nobs;
-    double last_obs_time;
-};
 
 static const char *author_name(const gr_h5md_opts *o)
 {
@@ -131,7 +94,7 @@ static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, g
     return GR_OK;
 }
 
-static gr_h5md *alloc_writer(void)
+gr_h5md *gr_h5md_alloc(void)
 {
     gr_h5md *h = calloc(1, sizeof *h);
     if (!h)
@@ -167,7 +130,7 @@ static void close_handles(gr_h5md *h)
 
 /* Close every handle (the file too when owned) and free h; returns the
  * status of closing the file. */
-static herr_t release(gr_h5md *h)
+herr_t gr_h5md_release(gr_h5md *h)
 {
     close_handles(h);
     herr_t st = 0;
@@ -184,10 +147,10 @@ static herr_t release(gr_h5md *h)
 
 static void free_writer(gr_h5md *h)
 {
-    (void)release(h);
+    (void)gr_h5md_release(h);
 }
 
-static int write_sidecar(gr_h5md *h, gr_err *err)
+int gr_h5md_write_sidecar(gr_h5md *h, gr_err *err)
 {
     if (!h->xdmf)
         return GR_OK;
@@ -195,7 +158,7 @@ static int write_sidecar(gr_h5md *h, gr_err *err)
     size_t na = 0;
     for (int k = E_VEL; k < NPE; k++)
         if (k != E_MASS && k != E_INERTIA) /* derived, and the XML grows per frame */
-            a[na++] = (gr_xdmf_attr){pdefs[k].name, h->pe[k].series, pdefs[k].ncomp, pdefs[k].type};
+            a[na++] = (gr_xdmf_attr){gr_h5md_pdefs[k].name, h->pe[k].series, gr_h5md_pdefs[k].ncomp, gr_h5md_pdefs[k].type};
     int rc = gr_xdmf_write(h->xdmf, h->h5name, h->file, h->n, h->frames, h->times, a, na, err);
     if (!rc)
         h->xdmf_frames = h->frames;
@@ -208,11 +171,11 @@ static int write_sidecar(gr_h5md *h, gr_err *err)
 static int update_sidecar(gr_h5md *h, gr_err *err)
 {
     if (h->frames <= 100 || h->frames - h->xdmf_frames >= h->frames / 20)
-        return write_sidecar(h, err);
+        return gr_h5md_write_sidecar(h, err);
     return GR_OK;
 }
 
-static char *catstr(const char *a, const char *b)
+char *gr_h5_catstr(const char *a, const char *b)
 {
     size_t la = strlen(a), lb = strlen(b);
     char *s = malloc(la + lb + 1);
@@ -241,10 +204,10 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
             return NULL;
         }
     }
-    gr_h5md *h = alloc_writer();
-    char *part = catstr(path, ".part");
+    gr_h5md *h = gr_h5md_alloc();
+    char *part = gr_h5_catstr(path, ".part");
     if (!h || !part || !(h->path = strdup(path)) ||
-        (!o->no_xdmf && !(h->xdmf = catstr(path, ".xdmf")))) {
+        (!o->no_xdmf && !(h->xdmf = gr_h5_catstr(path, ".xdmf")))) {
         gr_fail(err, GR_ERUN, "out of memory");
         goto fail;
     }
@@ -267,7 +230,7 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
         gr_h5_fail(err, GR_ERUN, "cannot write %s", path);
         goto fail_unlink;
     }
-    if (write_sidecar(h, err))
+    if (gr_h5md_write_sidecar(h, err))
         goto fail_unlink;
     if (rename(part, path) != 0) {
         gr_fail(err, GR_EINPUT, "cannot create output file %s: %s", path, strerror(errno));
@@ -302,7 +265,7 @@ gr_h5md *gr_h5md_create(const char *path, const gr_scene *sc, const gr_h5md_opts
 gr_h5md *gr_h5md_attach(hid_t file, const gr_scene *sc, const gr_h5md_opts *o, gr_err *err)
 {
     gr_h5md_opts zero = {0};
-    gr_h5md *h = alloc_writer();
+    gr_h5md *h = gr_h5md_alloc();
     if (!h) {
         gr_fail(err, GR_ERUN, "out of memory");
         return NULL;
@@ -332,7 +295,7 @@ static hid_t series_group(hid_t loc, const char *name, hid_t owner_group)
     return g;
 }
 
-static hid_t series_value(hid_t g, const elem_def *d, size_t n)
+static hid_t series_value(hid_t g, const gr_elem_def *d, size_t n)
 {
     hsize_t item[2] = {n, (hsize_t)d->ncomp};
     int rank = n ? (d->ncomp > 1 ? 2 : 1) : (d->ncomp > 1 ? 1 : 0);
@@ -385,17 +348,17 @@ static const void *pack_particles(const gr_particles *p, int k, double *buf)
 static int create_trajectory(gr_h5md *h, const gr_particles *p)
 {
     size_t n = p->n;
-    elem *pos = &h->pe[E_POS];
+    gr_elem *pos = &h->pe[E_POS];
     pos->group = owner_group(h->traj, "position", &h->step, &h->time);
     if (pos->group < 0)
         return -1;
     pos->series = 1;
-    if ((pos->value = series_value(pos->group, &pdefs[E_POS], n)) < 0)
+    if ((pos->value = series_value(pos->group, &gr_h5md_pdefs[E_POS], n)) < 0)
         return -1;
     /* The box never changes, but H5MD wants box step/time to be those of
      * position when edges is time-dependent; writing it per frame keeps
      * readers that expect edges/value (VMD, MDAnalysis) happy. */
-    static const elem_def edges = {"edges", "d", GR_T_F64, 2, 0};
+    static const gr_elem_def edges = {"edges", "d", GR_T_F64, 2, 0};
     hid_t eg = series_group(h->box, "edges", pos->group);
     if (eg < 0)
         return -1;
@@ -404,19 +367,19 @@ static int create_trajectory(gr_h5md *h, const gr_particles *p)
     if (h->edges < 0)
         return -1;
     for (int k = E_VEL; k < NPE; k++) {
-        elem *e = &h->pe[k];
-        if (pdefs[k].once) {
-            size_t bytes = n * gr_h5_tsize(pdefs[k].type);
+        gr_elem *e = &h->pe[k];
+        if (gr_h5md_pdefs[k].once) {
+            size_t bytes = n * gr_h5_tsize(gr_h5md_pdefs[k].type);
             hsize_t dims[2] = {n, 0};
-            e->value = gr_h5_fixed_create(h->traj, pdefs[k].name, pdefs[k].type, dims,
+            e->value = gr_h5_fixed_create(h->traj, gr_h5md_pdefs[k].name, gr_h5md_pdefs[k].type, dims,
                                           pack_particles(p, k, h->buf));
-            if (e->value < 0 || gr_h5_unit(e->value, pdefs[k].unit) || !(e->prev = malloc(bytes)))
+            if (e->value < 0 || gr_h5_unit(e->value, gr_h5md_pdefs[k].unit) || !(e->prev = malloc(bytes)))
                 return -1;
             memcpy(e->prev, pack_particles(p, k, h->buf), bytes);
         } else {
             e->series = 1;
-            e->group = series_group(h->traj, pdefs[k].name, pos->group);
-            if (e->group < 0 || (e->value = series_value(e->group, &pdefs[k], n)) < 0)
+            e->group = series_group(h->traj, gr_h5md_pdefs[k].name, pos->group);
+            if (e->group < 0 || (e->value = series_value(e->group, &gr_h5md_pdefs[k], n)) < 0)
                 return -1;
         }
     }
@@ -427,16 +390,16 @@ static int create_trajectory(gr_h5md *h, const gr_particles *p)
  * whose first rows repeat the stored values. */
 static int promote(gr_h5md *h, int k)
 {
-    elem *e = &h->pe[k];
+    gr_elem *e = &h->pe[k];
     H5Dclose(e->value);
     e->value = -1;
-    if (H5Ldelete(h->traj, pdefs[k].name, H5P_DEFAULT) < 0)
+    if (H5Ldelete(h->traj, gr_h5md_pdefs[k].name, H5P_DEFAULT) < 0)
         return -1;
-    e->group = series_group(h->traj, pdefs[k].name, h->pe[E_POS].group);
-    if (e->group < 0 || (e->value = series_value(e->group, &pdefs[k], h->n)) < 0)
+    e->group = series_group(h->traj, gr_h5md_pdefs[k].name, h->pe[E_POS].group);
+    if (e->group < 0 || (e->value = series_value(e->group, &gr_h5md_pdefs[k], h->n)) < 0)
         return -1;
     for (size_t f = 0; f < h->frames; f++)
-        if (gr_h5_ext_append(e->value, pdefs[k].type, e->prev))
+        if (gr_h5_ext_append(e->value, gr_h5md_pdefs[k].type, e->prev))
             return -1;
     e->series = 1;
     free(e->prev);
@@ -501,16 +464,16 @@ static int frame_impl(gr_h5md *h, uint64_t step, double time, const gr_particles
         return gr_fail(err, GR_ERUN, "out of memory");
     h->broken = 1;
     for (int k = 0; k < NPE; k++) {
-        elem *e = &h->pe[k];
+        gr_elem *e = &h->pe[k];
         const void *row = pack_particles(p, k, h->buf);
         if (!e->series) {
-            if (!h->frames || !memcmp(row, e->prev, h->n * gr_h5_tsize(pdefs[k].type)))
+            if (!h->frames || !memcmp(row, e->prev, h->n * gr_h5_tsize(gr_h5md_pdefs[k].type)))
                 continue;
             if (promote(h, k))
-                return gr_h5_fail(err, GR_ERUN, "cannot make %s time-dependent", pdefs[k].name);
+                return gr_h5_fail(err, GR_ERUN, "cannot make %s time-dependent", gr_h5md_pdefs[k].name);
         }
-        if (gr_h5_ext_append(e->value, pdefs[k].type, row))
-            return gr_h5_fail(err, GR_ERUN, "cannot append to particles/trajectory/%s", pdefs[k].name);
+        if (gr_h5_ext_append(e->value, gr_h5md_pdefs[k].type, row))
+            return gr_h5_fail(err, GR_ERUN, "cannot append to particles/trajectory/%s", gr_h5md_pdefs[k].name);
     }
     double edges[2] = {h->width, h->height};
     int64_t s = (int64_t)step;
@@ -542,11 +505,11 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
         hid_t og = gr_h5_mkgroup(h->file, "observables");
         int bad = og < 0;
         for (int k = 0; k < NOE && !bad; k++) {
-            elem *e = &h->oe[k];
-            e->group = k == 0 ? owner_group(og, odefs[k].name, &h->obs_step, &h->obs_time)
-                              : series_group(og, odefs[k].name, h->oe[0].group);
+            gr_elem *e = &h->oe[k];
+            e->group = k == 0 ? owner_group(og, gr_h5md_odefs[k].name, &h->obs_step, &h->obs_time)
+                              : series_group(og, gr_h5md_odefs[k].name, h->oe[0].group);
             e->series = 1;
-            bad = e->group < 0 || (e->value = series_value(e->group, &odefs[k], 0)) < 0;
+            bad = e->group < 0 || (e->value = series_value(e->group, &gr_h5md_odefs[k], 0)) < 0;
         }
         gr_h5_close(og);
         if (bad)
@@ -557,8 +520,8 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
     const void *rows[NOE] = {&nmob, &o->ekin_trans, &o->ekin_rot, &o->epot_grav,
                              &o->temperature, mom, &out, &o->wall_pressure, &o->max_overlap};
     for (int k = 0; k < NOE; k++)
-        if (gr_h5_ext_append(h->oe[k].value, odefs[k].type, rows[k]))
-            return gr_h5_fail(err, GR_ERUN, "cannot append to observables/%s", odefs[k].name);
+        if (gr_h5_ext_append(h->oe[k].value, gr_h5md_odefs[k].type, rows[k]))
+            return gr_h5_fail(err, GR_ERUN, "cannot append to observables/%s", gr_h5md_odefs[k].name);
     if (gr_h5_ext_append(h->obs_step, GR_T_I64, &step) ||
         gr_h5_ext_append(h->obs_time, GR_T_F64, &o->t))
         return gr_h5_fail(err, GR_ERUN, "cannot append the observables step and time");
@@ -605,9 +568,9 @@ int gr_h5md_close(gr_h5md *h, gr_err *err)
         return GR_OK;
     int rc = gr_h5md_flush(h, err);
     if (!rc)
-        rc = write_sidecar(h, err);
+        rc = gr_h5md_write_sidecar(h, err);
     char *path = h->path ? strdup(h->path) : NULL;
-    GR_H5_GUARD(err, rc, if (release(h) < 0 && !rc)
+    GR_H5_GUARD(err, rc, if (gr_h5md_release(h) < 0 && !rc)
                     rc = gr_h5_fail(err, GR_ERUN, "cannot close %s", path ? path : "the output file"));
     free(path);
     return rc;

@@ -37,6 +37,14 @@ typedef struct gr_h5md_opts {
 gr_h5md *gr_h5md_create(const char *path, const struct gr_scene *sc,
                         const gr_h5md_opts *o, gr_err *err);
 
+/* Continue the result file of a run restarted from a checkpoint taken at
+ * time t_keep: opens path for writing, checks that it holds a run of the
+ * same scene text, method and seed (GR_EINPUT otherwise, nothing changed),
+ * and drops every frame, observable sample and field sample later than
+ * t_keep, which the resumed run writes again; results/ are kept. */
+gr_h5md *gr_h5md_reopen(const char *path, const struct gr_scene *sc,
+                        const gr_h5md_opts *o, double t_keep, gr_err *err);
+
 /* Append a trajectory frame: every grain of p in the order given (the order
  * and count must stay the same for the whole file). A non-finite position,
  * velocity or spin is refused (GR_ERUN naming the grain), nothing written.

@@ -94,6 +94,52 @@ hid_t gr_h5md_file_of(const gr_h5md *h);
 const char *gr_h5md_path_of(const gr_h5md *h);
 hid_t gr_h5md_reader_file(const gr_h5md_reader *r);
 
+/* ---- writer state (h5md.c; reopened by h5md_append.c) ---- */
+
+enum { E_POS, E_VEL, E_OMEGA, E_FLAGS, E_RADIUS, E_MASS, E_INERTIA, E_SPECIES, E_ID, NPE };
+enum { O_NMOB, O_EKT, O_EKR, O_EPOT, O_TEMP, O_MOM, O_OUT, O_PRES, O_OVL, NOE };
+typedef struct {
+    const char *name;
+    const char *unit;
+    gr_h5_type type;
+    int ncomp;        /* 1 or 2 (x, y) */
+    int once;         /* stored once, as a dataset, until it changes */
+} gr_elem_def;
+
+typedef struct {
+    hid_t group;   /* time-dependent: the element group */
+    hid_t value;   /* time-dependent: its value; once: the dataset itself */
+    int series;
+    void *prev;    /* once: the stored values, to notice a change */
+} gr_elem;
+
+struct gr_h5md {
+    hid_t file;
+    int owned;            /* created by gr_h5md_create: closed on free */
+    int broken;           /* a write failed half-way: refuse further frames */
+    char *path, *xdmf, *h5name;
+    hid_t traj, box;
+    size_t n, frames;
+    size_t xdmf_frames;   /* frames in the sidecar on disk */
+    hid_t step, time, edges;
+    gr_elem pe[NPE];
+    double width, height;
+    void *buf;
+    double *times;
+    size_t times_cap;
+    double last_time;
+    hid_t obs_step, obs_time;
+    gr_elem oe[NOE];
+    size_t nobs;
+    double last_obs_time;
+};
+
+extern const gr_elem_def gr_h5md_pdefs[NPE], gr_h5md_odefs[NOE];
+gr_h5md *gr_h5md_alloc(void);
+herr_t gr_h5md_release(gr_h5md *h); /* close handles (and the owned file), free */
+int gr_h5md_write_sidecar(gr_h5md *h, gr_err *err);
+char *gr_h5_catstr(const char *a, const char *b); /* malloc'd a b */
+
 /* Attach the H5MD layout to an open file that the caller keeps owning (the
  * checkpoint store): no rename, no sidecar, the file stays open on free. */
 gr_h5md *gr_h5md_attach(hid_t file, const struct gr_scene *sc, const gr_h5md_opts *o,

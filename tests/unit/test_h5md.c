@@ -1,8 +1,6 @@
-/* H5MD writer and reader: exact round trips, refusals, and a writer killed
- * without closing. Other modes (docs/output-format.md):
- *   --sample FILE         write a small result file for check_h5md.py
- *   --bench N FRAMES      cost of writing and reading frames of N grains
- *   --kill TRIALS N       SIGKILL a writer at random moments, read what is left */
+/* H5MD writer and reader: exact round trips, fields and results, refusals.
+ * With `--sample FILE` it only writes a small result file for check_h5md.py.
+ * Crashes and restarts are in test_h5md_crash.c. */
 #include "test.h"
 
 #include <hdf5.h>
@@ -11,172 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
-#include <signal.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "ckpt.h"
 #include "h5md.h"
 #include "scene.h"
 
-static char scene_text[] = "# test scene\n[domain]\nwidth = 20\nheight = 10\n"
-                           "# accents survive: caída, orificio\n";
-
-static gr_scene make_scene(void)
-{
-    gr_scene sc;
-    memset(&sc, 0, sizeof sc);
-    sc.text = scene_text;
-    snprintf(sc.path, sizeof sc.path, "scenes/test.ini");
-    snprintf(sc.name, sizeof sc.name, "testbox");
-    sc.width = 20.0;
-    sc.height = 10.0;
-    sc.side[GR_LEFT] = sc.side[GR_RIGHT] = GR_BC_PERIODIC;
-    sc.side[GR_BOTTOM] = sc.side[GR_TOP] = GR_BC_WALL;
-    return sc;
-}
-
-/* xorshift64*: deterministic values with every mantissa bit in use. */
-static double next_u(uint64_t *s)
-{
-    *s ^= *s >> 12;
-    *s ^= *s << 25;
-    *s ^= *s >> 27;
-    return (double)((*s * 2685821657736338717ull) >> 11) * 0x1.0p-53;
-}
-
-static gr_particles *make_particles(size_t n, uint64_t seed)
-{
-    gr_err e = {0};
-    gr_particles *p = gr_particles_create(n, &e);
-    assert_non_null(p);
-    uint64_t s = seed | 1;
-    for (size_t i = 0; i < n; i++) {
-        double r = 0.4 + 0.2 * next_u(&s);
-        long k = gr_particles_push(p, 20 * next_u(&s), 10 * next_u(&s), r, 4 * r * r,
-                                   i % 7 == 0 ? GR_PF_FIXED : 0, (int32_t)(i % 3), &e);
-        assert_int_equal(k, (long)i);
-        p->id[i] = 1000 + (int64_t)i;
-    }
-    return p;
-}
-
-/* Move the grains of frame f: every kinematic field changes. */
-static void move(gr_particles *p, int f)
-{
-    uint64_t s = 77 + (uint64_t)f;
-    for (size_t i = 0; i < p->n; i++) {
-        if (p->flags[i] & GR_PF_FIXED)
-            continue;
-        p->vx[i] = next_u(&s) - 0.5;
-        p->vy[i] = -next_u(&s) * 1e-3;
-        p->omega[i] = (next_u(&s) - 0.5) * 1e5;
-        p->x[i] += 0.01 * p->vx[i];
-        p->y[i] += 0.01 * p->vy[i];
-        if (f >= 3 && i % 5 == 1)
-            p->flags[i] |= GR_PF_GONE;
-    }
-}
-
-static void assert_same_particles(const gr_particles *a, const gr_particles *b)
-{
-    assert_int_equal(a->n, b->n);
-    size_t n = a->n;
-    assert_memory_equal(a->x, b->x, n * sizeof(double));
-    assert_memory_equal(a->y, b->y, n * sizeof(double));
-    assert_memory_equal(a->vx, b->vx, n * sizeof(double));
-    assert_memory_equal(a->vy, b->vy, n * sizeof(double));
-    assert_memory_equal(a->omega, b->omega, n * sizeof(double));
-    assert_memory_equal(a->radius, b->radius, n * sizeof(double));
-    assert_memory_equal(a->mass, b->mass, n * sizeof(double));
-    assert_memory_equal(a->inertia, b->inertia, n * sizeof(double));
-    assert_memory_equal(a->flags, b->flags, n * sizeof(uint32_t));
-    assert_memory_equal(a->id, b->id, n * sizeof(int64_t));
-    assert_memory_equal(a->species, b->species, n * sizeof(int32_t));
-}
-
-static gr_obs make_obs(int k)
-{
-    gr_obs o;
-    memset(&o, 0, sizeof o);
-    o.t = 0.25 * k + 1e-13;
-    o.steps = 1000u * (uint64_t)k + 7;
-    o.n_mobile = 40 - (uint64_t)k;
-    o.ekin_trans = 1.0 / (k + 3.0);
-    o.ekin_rot = 1e-300 * k;
-    o.epot_grav = -12.5 + k / 3.0;
-    o.temperature = sqrt(2.0 + k);
-    o.px = -0.1 * k;
-    o.py = 1e10 + k;
-    o.outflow = (uint64_t)k * 3;
-    o.wall_pressure = NAN;
-    o.max_overlap = k % 2 ? 0.01 / k : INFINITY;
-    return o;
-}
-
-static int file_exists(const char *p)
-{
-    struct stat st;
-    return stat(p, &st) == 0;
-}
-
-static char *read_text(const char *p)
-{
-    FILE *f = fopen(p, "r");
-    if (!f)
-        return NULL;
-    char *buf = calloc(1 << 20, 1);
-    size_t n = fread(buf, 1, (1 << 20) - 1, f);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
-}
-
-static void rm(const char *base)
-{
-    char p[1100];
-    const char *suffix[] = {"", ".xdmf", ".part", ".tmp", ".xdmf.tmp"};
-    for (size_t i = 0; i < sizeof suffix / sizeof *suffix; i++) {
-        snprintf(p, sizeof p, "%s%s", base, suffix[i]);
-        unlink(p);
-    }
-}
-
-#define NFR 5
-#define NP 40
-#define NOBS 7
-
-/* Write NFR frames (and NOBS observables) of NP grains to path; the frames
- * written are kept in want[] when given. Returns the writer if left open. */
-static gr_h5md *write_sample(const char *path, gr_particles **want, int close_it)
-{
-    rm(path); /* left over by an earlier failed run */
-    gr_err e = {0};
-    gr_scene sc = make_scene();
-    gr_h5md_opts o = {.method = "dem", .seed = 12345678901234567ull, .version = "0.1.0-test",
-                      .author = "Test Author"};
-    gr_h5md *h = gr_h5md_create(path, &sc, &o, &e);
-    assert_non_null(h);
-    gr_particles *p = make_particles(NP, 42);
-    for (int f = 0; f < NFR; f++) {
-        move(p, f);
-        assert_int_equal(gr_h5md_write_frame(h, 100u * (uint64_t)f, 0.5 * f, p, &e), GR_OK);
-        if (want) {
-            want[f] = gr_particles_create(NP, &e);
-            assert_int_equal(gr_particles_copy(want[f], p, &e), GR_OK);
-        }
-    }
-    for (int k = 0; k < NOBS; k++) {
-        gr_obs ob = make_obs(k);
-        assert_int_equal(gr_h5md_write_obs(h, &ob, &e), GR_OK);
-    }
-    gr_particles_free(p);
-    if (!close_it)
-        return h;
-    assert_int_equal(gr_h5md_close(h, &e), GR_OK);
-    return NULL;
-}
+#include "h5md_sample.h"
 
 static void frames_and_obs_round_trip(void **state)
 {
@@ -378,43 +217,6 @@ static void existing_output_refused_without_force(void **state)
     rmdir("adir.h5");
 }
 
-/* A run killed after a flush: the child writes and _exit()s without closing
- * anything; every flushed frame must read back exactly. */
-static void killed_writer_leaves_readable_file(void **state)
-{
-    (void)state;
-    const char *path = "killed.h5";
-    rm(path);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        write_sample(path, NULL, 0);
-        _exit(0);
-    }
-    int status = 0;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-
-    gr_particles *want[NFR];
-    write_sample("killed-ref.h5", want, 1);
-    gr_err e = {0};
-    gr_h5md_reader *r = gr_h5md_open(path, &e);
-    if (!r)
-        fail_msg("%s", e.msg);
-    assert_int_equal(gr_h5md_info_of(r)->nframes, NFR);
-    assert_int_equal(gr_h5md_info_of(r)->nobs, NOBS);
-    gr_particles *got = gr_particles_create(1, &e);
-    for (int f = 0; f < NFR; f++) {
-        assert_int_equal(gr_h5md_read_frame(r, (size_t)f, got, NULL, NULL, &e), GR_OK);
-        assert_same_particles(got, want[f]);
-        gr_particles_free(want[f]);
-    }
-    gr_particles_free(got);
-    gr_h5md_reader_free(r);
-    rm(path);
-    rm("killed-ref.h5");
-}
-
 static void fields_and_results(void **state)
 {
     (void)state;
@@ -494,116 +296,8 @@ static void not_a_grano_file(void **state)
 }
 
 
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* --bench N FRAMES: write then read FRAMES frames of N grains (and one
- * observable sample per frame); prints the cost per frame and the size. */
-static int bench(size_t n, int frames)
-{
-    gr_err e = {0};
-    gr_scene sc = make_scene();
-    gr_h5md_opts o = {.force = 1};
-    gr_particles *p = make_particles(n, 1);
-    gr_obs ob = make_obs(0);
-    double t0 = now();
-    gr_h5md *h = gr_h5md_create("bench.h5", &sc, &o, &e);
-    for (int f = 0; h && f < frames; f++) {
-        move(p, f % 3);
-        ob.t = 0.1 * f;
-        if (gr_h5md_write_frame(h, (uint64_t)f, 0.1 * f, p, &e) || gr_h5md_write_obs(h, &ob, &e))
-            break;
-    }
-    if (!h || e.code || gr_h5md_close(h, &e)) {
-        fprintf(stderr, "%s\n", e.msg);
-        return 1;
-    }
-    double t1 = now();
-    gr_h5md_reader *r = gr_h5md_open("bench.h5", &e);
-    for (int f = 0; r && f < frames; f++)
-        gr_h5md_read_frame(r, (size_t)f, p, NULL, NULL, &e);
-    gr_h5md_reader_free(r);
-    double t2 = now();
-    struct stat st, sx;
-    stat("bench.h5", &st);
-    stat("bench.h5.xdmf", &sx);
-    /* Per grain and frame: position, velocity 32 B, omega 8, flags 4. */
-    double raw = (double)n * frames * 44.0 + (double)n * 36.0;
-    printf("N %zu, %d frames: write %.3f ms/frame (%.0f MB/s), read %.3f ms/frame, "
-           "file %.1f MB (%.1f %% over the raw data), sidecar %.0f kB\n",
-           n, frames, 1e3 * (t1 - t0) / frames, raw / (t1 - t0) / 1e6, 1e3 * (t2 - t1) / frames,
-           (double)st.st_size / 1e6, 100.0 * ((double)st.st_size / raw - 1.0), (double)sx.st_size / 1e3);
-    gr_particles_free(p);
-    rm("bench.h5");
-    return 0;
-}
-
-/* --kill TRIALS N: a child writes frames of N grains, observables and a
- * field without end; it is SIGKILLed after a random 20-420 ms; every file
- * left must open and read back every frame it reports. */
-static int kill_stress(int trials, size_t n)
-{
-    int bad = 0;
-    uint64_t s = 12345;
-    for (int t = 0; t < trials; t++) {
-        rm("killed-stress.h5");
-        pid_t pid = fork();
-        if (pid < 0)
-            return 1;
-        if (pid == 0) {
-            gr_err e = {0};
-            gr_scene sc = make_scene();
-            gr_h5md *h = gr_h5md_create("killed-stress.h5", &sc, NULL, &e);
-            gr_particles *p = make_particles(n, 2);
-            gr_field_desc fd = {"rho", "1", 8, 4, 1, 0, 0, 2.5, 2.5};
-            double v[32] = {0};
-            for (int f = 0; h; f++) {
-                move(p, f);
-                if (f % 50 == 49)
-                    p->radius[0] *= 1.01; /* a promotion now and then */
-                gr_obs ob = make_obs(f);
-                if (gr_h5md_write_frame(h, (uint64_t)f, 0.1 * f, p, &e) ||
-                    gr_h5md_write_obs(h, &ob, &e) ||
-                    gr_h5md_write_field(h, &fd, (uint64_t)f, 0.1 * f, v, &e))
-                    _exit(3);
-            }
-            _exit(4);
-        }
-        struct timespec ts = {0, 20000000L + (long)(next_u(&s) * 400e6)};
-        nanosleep(&ts, NULL);
-        kill(pid, SIGKILL);
-        int status;
-        waitpid(pid, &status, 0);
-        gr_err e = {0};
-        gr_h5md_reader *r = gr_h5md_open("killed-stress.h5", &e);
-        int ok = r != NULL;
-        size_t frames = 0;
-        if (r) {
-            frames = gr_h5md_info_of(r)->nframes;
-            gr_particles *p = gr_particles_create(1, &e);
-            for (size_t f = 0; ok && f < frames; f++)
-                ok = gr_h5md_read_frame(r, f, p, NULL, NULL, &e) == GR_OK;
-            gr_particles_free(p);
-            gr_h5md_reader_free(r);
-        }
-        printf("trial %d: %zu frames readable%s%s\n", t, frames, ok ? "" : ", FAILED: ", ok ? "" : e.msg);
-        bad += !ok;
-    }
-    rm("killed-stress.h5");
-    printf("%d of %d killed files unreadable\n", bad, trials);
-    return bad != 0;
-}
-
 int main(int argc, char **argv)
 {
-    if (argc == 4 && !strcmp(argv[1], "--bench"))
-        return bench((size_t)atol(argv[2]), atoi(argv[3]));
-    if (argc == 4 && !strcmp(argv[1], "--kill"))
-        return kill_stress(atoi(argv[2]), (size_t)atol(argv[3]));
     if (argc == 3 && !strcmp(argv[1], "--sample")) {
         /* A small file for check_h5md.py: frames, observables, a field and a
          * result table. */
@@ -627,7 +321,6 @@ int main(int argc, char **argv)
         cmocka_unit_test(changing_radius_becomes_time_dependent),
         cmocka_unit_test(nonfinite_frame_refused),
         cmocka_unit_test(existing_output_refused_without_force),
-        cmocka_unit_test(killed_writer_leaves_readable_file),
         cmocka_unit_test(fields_and_results),
         cmocka_unit_test(not_a_grano_file),
     };
