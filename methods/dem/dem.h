@@ -125,7 +125,8 @@ typedef struct gr_dem {
     uint64_t step;           /* steps done */
     double t;
     double t0;               /* time when step was 0 */
-    double ekin_last;
+    double ekin_last;        /* kinetic + elastic energy of the last good step */
+    double eel_eval;         /* elastic energy of the last force evaluation */
     double e_floor;          /* energy below which jumps are not checked */
     uint64_t outflow;
     int gates_open;

@@ -53,13 +53,17 @@ DEM_INLINE void dem_hist_write(gr_dem_hist *h, long s, int32_t key, double z, ui
 
 /* Normal and tangential force for overlap xi along unit n (nx, ny), with
  * relative velocity dv and rotation term wsum = w_i R_i + w_j R_j. zeta is
- * the spring's stretch (in/out, TL == spring only), integ its time step. */
+ * the spring's stretch (in/out, TL == spring only), integ its time step;
+ * energy receives the normal spring's elastic energy. */
 DEM_INLINE void dem_law_eval(const dem_law *L, const int NL, const int TL, double xi,
                              double nx, double ny, double dvx, double dvy, double wsum,
-                             double *zeta, double integ, double *Fx, double *Fy, double *Ft)
+                             double *zeta, double integ, double *Fx, double *Fy, double *Ft,
+                             double *energy)
 {
     double vn = dvx * nx + dvy * ny;
     double el = NL == GR_NORMAL_HERTZ ? L->kn * xi * sqrt(xi) : L->kn * xi;
+    /* elastic energy kn xi^(p+1) / (p+1), for the energy-jump check */
+    *energy = el * xi * (NL == GR_NORMAL_HERTZ ? 0.4 : 0.5);
     double fn = el - L->gn * vn;
     if (L->clip && fn < 0.0)
         fn = 0.0;

@@ -31,14 +31,16 @@ typedef struct {
     const unsigned char *seg_on;
     /* per strip results */
     double *smax;       /* largest relative overlap */
+    double *sel;        /* elastic energy */
     long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
     double *sseg;       /* per strip, per segment: fx, fy, fn */
     int hist_full;      /* set when a grain ran out of history slots */
     long full_i;
 } dem_ctx;
 
-DEM_INLINE void track(dem_ctx *c, int s, double rel, long i, long j)
+DEM_INLINE void track(dem_ctx *c, int s, double rel, long i, long j, double el)
 {
+    c->sel[s] += el;
     if (rel > c->smax[s]) {
         c->smax[s] = rel;
         c->sarg_i[s] = i;
@@ -79,7 +81,8 @@ DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, int s, size_t i, si
         }
         /* v_t and F_t are symmetric in i and j, so zeta needs no sign per owner */
     }
-    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft);
+    double el;
+    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
     if (TL == GR_TANG_SPRING && slot >= 0)
         dem_hist_write(&c->d->hist, slot, key, zeta, c->E);
     c->fx[j] += Fx;
@@ -91,7 +94,7 @@ DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, int s, size_t i, si
         *tqi -= Ft * ri;
     }
     double dm = 2.0 * (ri < rj ? ri : rj);
-    track(c, s, xi / dm, (long)i, (long)j);
+    track(c, s, xi / dm, (long)i, (long)j, el);
 }
 
 /* Contacts of grain i with segment k. */
@@ -135,7 +138,8 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, int s, size_t i, in
             zeta = c->d->hist.z[slot];
         }
     }
-    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft);
+    double el;
+    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
     if (TL == GR_TANG_SPRING && slot >= 0)
         dem_hist_write(&c->d->hist, slot, key, zeta, c->E);
     *fxi += Fx;
@@ -146,7 +150,7 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, int s, size_t i, in
     sf[0] -= Fx;
     sf[1] -= Fy;
     sf[2] += Fx * nx + Fy * ny;
-    track(c, s, xi / (2.0 * r), (long)i, -1 - k);
+    track(c, s, xi / (2.0 * r), (long)i, -1 - k, el);
 }
 
 DEM_INLINE void add_i(dem_ctx *c, size_t i, double fxi, double fyi, double tqi, const int TL)
@@ -271,17 +275,28 @@ DEM_INLINE void run_loops(dem_ctx *c, const int NL, const int TL, int mode)
         all_brute(c, NL, TL);
         return;
     }
-    int ns = d->strips.n;
+    int ns = d->strips.n, ncol = ns > 1 ? 3 : 1;
     int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
-    (void)nth;
-#pragma omp parallel num_threads(nth) if (nth > 1 && ns > 1)
-    for (int col = 0; col < (ns > 1 ? 3 : 1); col++) {
+    if (nth > 1 && ns > 1) {
+#pragma omp parallel num_threads(nth)
+        for (int col = 0; col < ncol; col++) {
 #pragma omp for schedule(dynamic, 1)
-        for (int s = col; s < ns; s += (ns > 1 ? 3 : 1)) {
-            if (mode == GR_DEM_NB_VERLET)
-                strip_verlet(c, NL, TL, s);
-            else
-                strip_cells(c, NL, TL, s);
+            for (int s = col; s < ns; s += ncol) {
+                if (mode == GR_DEM_NB_VERLET)
+                    strip_verlet(c, NL, TL, s);
+                else
+                    strip_cells(c, NL, TL, s);
+            }
+        }
+    } else {
+        /* the same colours in the same order, without the runtime's cost */
+        for (int col = 0; col < ncol; col++) {
+            for (int s = col; s < ns; s += ncol) {
+                if (mode == GR_DEM_NB_VERLET)
+                    strip_verlet(c, NL, TL, s);
+                else
+                    strip_cells(c, NL, TL, s);
+            }
         }
     }
 }
@@ -313,13 +328,13 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
     int ns = mode == GR_DEM_NB_BRUTE ? 1 : d->strips.n;
     int nseg = d->nseg;
     size_t nsf = (size_t)ns * (size_t)(nseg > 0 ? nseg : 1) * 3;
-    double *smax = malloc((size_t)ns * sizeof *smax);
+    double *smax = malloc((size_t)ns * sizeof *smax), *sel = calloc((size_t)ns, sizeof *sel);
     long *si = malloc((size_t)ns * sizeof *si), *sj = malloc((size_t)ns * sizeof *sj);
     double *sseg = calloc(nsf, sizeof *sseg);
     double *soff = calloc((size_t)nseg + 1, sizeof *soff), *svy = calloc((size_t)nseg + 1, sizeof *svy);
     unsigned char *son = calloc((size_t)nseg + 1, 1);
-    if (!smax || !si || !sj || !sseg || !soff || !svy || !son) {
-        free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
+    if (!smax || !sel || !si || !sj || !sseg || !soff || !svy || !son) {
+        free(sel), free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
     }
     for (int s = 0; s < ns; s++) {
@@ -350,7 +365,7 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
         .seg_off = soff, .seg_vy = svy, .seg_on = son,
-        .smax = smax, .sarg_i = si, .sarg_j = sj, .sseg = sseg,
+        .smax = smax, .sel = sel, .sarg_i = si, .sarg_j = sj, .sseg = sseg,
     };
     dispatch(&c, mode);
     if (d->ext_fx) {
@@ -359,9 +374,10 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
             c.fy[i] += d->ext_fy[i];
         }
     }
-    double best = 0.0;
+    double best = 0.0, eel = 0.0;
     long bi = -1, bj = -1;
     for (int s = 0; s < ns; s++) {
+        eel += sel[s];
         if (smax[s] > best) {
             best = smax[s];
             bi = si[s];
@@ -382,8 +398,9 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
             seg_out[3 * k + 2] = cfn;
         }
     }
-    free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
+    free(sel), free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
     d->max_ovl = best;
+    d->eel_eval = eel;
     int rc = GR_OK;
     if (c.hist_full) {
         rc = gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",

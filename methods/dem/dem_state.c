@@ -209,8 +209,8 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     qsort(order, nt, 2 * sizeof *order, cmp_id);
     for (size_t t = 1; t < nt; t++) {
         if (order[2 * t] == order[2 * t - 2]) {
-            free(order);
             rc = gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)order[2 * t]);
+            free(order);
             goto fail;
         }
     }
@@ -325,7 +325,7 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
         msum += d->im[i] != 0 ? d->mass[i] : 0.0;
     d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
     gr_dem_energy(d, &ek, NULL);
-    d->ekin_last = ek;
+    d->ekin_last = ek + d->eel_eval;
     *out = d;
     return GR_OK;
 fail:

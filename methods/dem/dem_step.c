@@ -48,13 +48,12 @@ static double *block_scratch(gr_dem *d, size_t nb)
 
 static int nthreads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
 
-/* Drift and first kick; returns the sum of the two largest displacements
- * since the list build when track != 0 (section 2.4.1), else 0. */
-static double predict_verlet(gr_dem *d, int p, int q, int track)
+/* Drift and first kick of block b; its two largest displacements since
+ * the list build go to blk[2b], blk[2b+1] when track != 0. */
+static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
 {
     double dt = d->par.dt, h = 0.5 * dt;
-    size_t n = d->n, nb = (n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double *blk = block_scratch(d, nb);
+    size_t n = d->n;
     const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
     const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
     const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
@@ -69,49 +68,62 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
     double *restrict wn = d->f[F_W][q], *restrict uw = d->uw;
     const double *restrict iI = d->iI;
     double Lx = d->Lx, Ly = d->Ly;
-    int rot = d->rot, nth = nthreads(d);
-    (void)nth;
-#pragma omp parallel for schedule(static) num_threads(nth) if (nth > 1 && nb > 1)
-    for (size_t b = 0; b < nb; b++) {
-        size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
-        double m1 = 0, m2 = 0;
-        for (size_t i = i0; i < i1; i++) {
-            /* fixed grains (im = 0) feel no gravity */
-            double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
-            double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
-            double nx = wrap(x[i] + dt * hx, Lx), ny = wrap(y[i] + dt * hy, Ly);
-            /* the new forces start from zero here, saving a pass */
-            fxn[i] = 0.0;
-            fyn[i] = 0.0;
-            xn[i] = nx;
-            yn[i] = ny;
-            vxn[i] = hx;
-            vyn[i] = hy;
-            /* the damping sees v(t+dt) predicted to second order, not the
-             * half-step velocity, so the dissipation is second order too */
-            ux[i] = hx + h * ax;
-            uy[i] = hy + h * ay;
-            if (rot) {
-                double a = tq[i] * iI[i];
-                wn[i] = w[i] + h * a;
-                uw[i] = wn[i] + h * a;
-                tqn[i] = 0.0;
-            }
-            if (track) {
-                double dx = gr_dem_image(nx - xr[i], Lx), dy = gr_dem_image(ny - yr[i], Ly);
-                double s2 = dx * dx + dy * dy;
-                if (s2 > m2) {
-                    if (s2 > m1) {
-                        m2 = m1;
-                        m1 = s2;
-                    } else {
-                        m2 = s2;
-                    }
+    int rot = d->rot;
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
+    double m1 = 0, m2 = 0;
+    for (size_t i = i0; i < i1; i++) {
+        /* fixed grains (im = 0) feel no gravity */
+        double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
+        double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
+        double nx = wrap(x[i] + dt * hx, Lx), ny = wrap(y[i] + dt * hy, Ly);
+        /* the new forces start from zero here, saving a pass */
+        fxn[i] = 0.0;
+        fyn[i] = 0.0;
+        xn[i] = nx;
+        yn[i] = ny;
+        vxn[i] = hx;
+        vyn[i] = hy;
+        /* the damping sees v(t+dt) predicted to second order, not the
+         * half-step velocity, so the dissipation is second order too */
+        ux[i] = hx + h * ax;
+        uy[i] = hy + h * ay;
+        if (rot) {
+            double a = tq[i] * iI[i];
+            wn[i] = w[i] + h * a;
+            uw[i] = wn[i] + h * a;
+            tqn[i] = 0.0;
+        }
+        if (track) {
+            double dx = gr_dem_image(nx - xr[i], Lx), dy = gr_dem_image(ny - yr[i], Ly);
+            double s2 = dx * dx + dy * dy;
+            if (s2 > m2) {
+                if (s2 > m1) {
+                    m2 = m1;
+                    m1 = s2;
+                } else {
+                    m2 = s2;
                 }
             }
         }
-        blk[2 * b] = m1;
-        blk[2 * b + 1] = m2;
+    }
+    d->blk[2 * b] = m1;
+    d->blk[2 * b + 1] = m2;
+}
+
+/* Returns the sum of the two largest displacements since the list build
+ * when track != 0 (section 2.4.1), else 0. */
+static double predict_verlet(gr_dem *d, int p, int q, int track)
+{
+    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    double *blk = block_scratch(d, nb);
+    int nth = nthreads(d);
+    if (nth > 1 && nb > 1) {
+#pragma omp parallel for schedule(static) num_threads(nth)
+        for (size_t b = 0; b < nb; b++)
+            predict_block(d, p, q, track, b);
+    } else {
+        for (size_t b = 0; b < nb; b++)
+            predict_block(d, p, q, track, b);
     }
     if (!track)
         return 0.0;
@@ -130,38 +142,47 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
     return sqrt(m1) + sqrt(m2);
 }
 
-/* Second kick; returns the kinetic energy of the new state. */
-static double correct_verlet(gr_dem *d, int q)
+/* Second kick of block b; its kinetic energy goes to blk[b]. */
+static void correct_block(gr_dem *d, int q, size_t b)
 {
     double h = 0.5 * d->par.dt;
-    size_t n = d->n, nb = (n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double *blk = block_scratch(d, nb);
-    if (!blk)
-        return NAN;
+    size_t n = d->n;
     double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
     const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
     const double *restrict im = d->im, *restrict m = d->mass;
     double g = d->g;
     double *restrict w = d->f[F_W][q];
     const double *restrict tq = d->f[F_TQ][q], *restrict iI = d->iI, *restrict I = d->inertia;
-    int rot = d->rot, nth = nthreads(d);
-    (void)nth;
-#pragma omp parallel for schedule(static) num_threads(nth) if (nth > 1 && nb > 1)
-    for (size_t b = 0; b < nb; b++) {
-        size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
-        double ek = 0;
-        for (size_t i = i0; i < i1; i++) {
-            double a = vx[i] + h * fx[i] * im[i], c = vy[i] + h * (fy[i] * im[i] - g * (im[i] != 0));
-            vx[i] = a;
-            vy[i] = c;
-            ek += (im[i] != 0) * 0.5 * m[i] * (a * a + c * c);
-            if (rot) {
-                double ww = w[i] + h * tq[i] * iI[i];
-                w[i] = ww;
-                ek += (iI[i] != 0) * 0.5 * I[i] * ww * ww;
-            }
+    int rot = d->rot;
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
+    double ek = 0;
+    for (size_t i = i0; i < i1; i++) {
+        double a = vx[i] + h * fx[i] * im[i], c = vy[i] + h * (fy[i] * im[i] - g * (im[i] != 0));
+        vx[i] = a;
+        vy[i] = c;
+        ek += (im[i] != 0) * 0.5 * m[i] * (a * a + c * c);
+        if (rot) {
+            double ww = w[i] + h * tq[i] * iI[i];
+            w[i] = ww;
+            ek += (iI[i] != 0) * 0.5 * I[i] * ww * ww;
         }
-        blk[b] = ek;
+    }
+    d->blk[b] = ek;
+}
+
+/* Second kick; returns the kinetic energy of the new state. */
+static double correct_verlet(gr_dem *d, int q)
+{
+    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    double *blk = block_scratch(d, nb);
+    int nth = nthreads(d);
+    if (nth > 1 && nb > 1) {
+#pragma omp parallel for schedule(static) num_threads(nth)
+        for (size_t b = 0; b < nb; b++)
+            correct_block(d, q, b);
+    } else {
+        for (size_t b = 0; b < nb; b++)
+            correct_block(d, q, b);
     }
     double ek = 0;
     for (size_t b = 0; b < nb; b++)
@@ -396,7 +417,10 @@ int gr_dem_step(gr_dem *d, gr_err *err)
         gr_dem_hist_undo_at(d, E);
         return report_nonfinite(d, q, err);
     }
-    if (ek > (1.0 + d->par.energy_jump) * d->ekin_last + d->e_floor) {
+    /* kinetic plus elastic energy: the elastic part returns to motion at
+     * every rebound, which is no jump */
+    double em = ek + d->eel_eval;
+    if (em > (1.0 + d->par.energy_jump) * d->ekin_last + d->e_floor) {
         gr_dem_hist_undo_at(d, E);
         /* name the fastest grain: where the energy went */
         size_t arg = 0;
@@ -407,10 +431,10 @@ int gr_dem_step(gr_dem *d, gr_err *err)
                 best = v2, arg = i;
         }
         return gr_fail(err, GR_ERUN,
-                       "unstable at t = %.9g: kinetic energy jumped from %.6g to %.6g in one step (bound energy_jump = %g); fastest grain id %lld at speed %.4g, largest overlap %.4g of a diameter; lower dt",
-                       tn, d->ekin_last, ek, d->par.energy_jump, (long long)d->tag_id[d->tag[arg]], sqrt(best), d->max_ovl);
+                       "unstable at t = %.9g: kinetic plus elastic energy jumped from %.6g to %.6g in one step (bound energy_jump = %g); fastest grain id %lld at speed %.4g, largest overlap %.4g of a diameter; lower dt",
+                       tn, d->ekin_last, em, d->par.energy_jump, (long long)d->tag_id[d->tag[arg]], sqrt(best), d->max_ovl);
     }
-    d->ekin_last = ek;
+    d->ekin_last = em;
     d->cur = q;
     d->step = E;
     d->t = tn;
