@@ -194,6 +194,29 @@ def check_xdmf(path):
     f.close()
 
 
+def check_info(path, build):
+    """`grano info` on the sample, on a missing file and on a non-HDF5 file."""
+    grano = os.path.join(build, "experiments", "grano")
+    if not os.path.exists(grano):
+        print("ok      (grano not built: grano info not checked)")
+        return
+    p = subprocess.run([grano, "info", path], capture_output=True, text=True)
+    out = p.stdout
+    check(p.returncode == 0 and "frames       5, t = 0 .. 2 tau (steps 0 .. 400)" in out and
+          "particles    40 per frame" in out and "method       dem, seed 12345678901234567" in out and
+          "fields       packing_fraction: 4 x 2 cells" in out and "results      flow [4 x 2]" in out,
+          "grano info describes the sample")
+    p = subprocess.run([grano, "info", path + ".missing"], capture_output=True, text=True)
+    check(p.returncode == 2 and "no such file" in p.stderr, "grano info: a missing file exits 2")
+    p = subprocess.run([grano, "info", path + ".xdmf"], capture_output=True, text=True)
+    check(p.returncode == 2 and "not an HDF5 file" in p.stderr, "grano info: a text file exits 2")
+    p = subprocess.run([grano, "info", "--help"], capture_output=True, text=True)
+    check(p.returncode == 0 and p.stdout.startswith("usage: grano info"), "grano info --help exits 0")
+    os.unlink(path + ".xdmf")
+    p = subprocess.run([grano, "info", "--xdmf", path], capture_output=True, text=True)
+    check(p.returncode == 0 and os.path.exists(path + ".xdmf"), "grano info --xdmf rewrites the sidecar")
+
+
 PV_PROBE = r"""
 import sys
 from paraview.simple import XDMFReader
@@ -248,8 +271,8 @@ def check_paraview(path):
 def main():
     args = [a for a in sys.argv[1:] if a != "--paraview"]
     paraview = len(args) != len(sys.argv) - 1
-    exe = args[0] if args else os.path.join(
-        os.environ.get("GRANO_BUILD_ROOT", "../.."), "tests", "unit", "test_h5md")
+    build = os.environ.get("GRANO_BUILD_ROOT", "../..")
+    exe = args[0] if args else os.path.join(build, "tests", "unit", "test_h5md")
     with tempfile.TemporaryDirectory(prefix="h5md-layout-", dir=".") as d:
         path = os.path.join(d, "sample.h5")
         subprocess.run([exe, "--sample", path], check=True)
@@ -258,6 +281,7 @@ def main():
         else:
             check_file(path)
             check_xdmf(path)
+            check_info(path, build)
     if failures:
         print(f"{len(failures)} check(s) failed")
         return 1
