@@ -96,7 +96,6 @@ typedef struct gr_dem {
     int nmobile;
     int cur;
     double *f[F_NFIELDS][2];
-    double *ux, *uy, *uw;    /* velocities seen by the force evaluation */
     double *rad, *im, *iI, *gf, *mass, *inertia;
     int32_t *tag;
     uint32_t *flags;
@@ -188,7 +187,7 @@ int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err);
 int gr_dem_sort(gr_dem *d, gr_err *err);
 int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
 void gr_dem_make_strips(gr_dem *d);
-/* Forces on the positions of parity q with velocities ux, uy, uw at time
+/* Forces on the positions and velocities of parity q at time
  * t_eval; E numbers the evaluation for the contact history, integ is the
  * spring's time step (0: do not stretch). Fills seg_force. */
 int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,

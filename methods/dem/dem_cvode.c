@@ -23,8 +23,7 @@ typedef struct {
     int rhs_failed;
 } dem_cv;
 
-/* Copy the ODE state into parity q (positions wrapped) and the force
- * velocities; velocities also into q for snapshots. */
+/* Copy the ODE state into parity q (positions wrapped). */
 static void unpack(gr_dem *d, dem_cv *c, const double *y, int q)
 {
     for (size_t i = 0; i < d->n; i++) {
@@ -34,10 +33,10 @@ static void unpack(gr_dem *d, dem_cv *c, const double *y, int q)
         if (d->Ly > 0) yy -= d->Ly * floor(yy / d->Ly);
         d->f[F_X][q][i] = x;
         d->f[F_Y][q][i] = yy;
-        d->ux[i] = d->f[F_VX][q][i] = s[2];
-        d->uy[i] = d->f[F_VY][q][i] = s[3];
+        d->f[F_VX][q][i] = s[2];
+        d->f[F_VY][q][i] = s[3];
         if (d->rot)
-            d->uw[i] = d->f[F_W][q][i] = s[4];
+            d->f[F_W][q][i] = s[4];
     }
 }
 

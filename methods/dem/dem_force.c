@@ -360,7 +360,7 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         .d = d,
         .x = d->f[F_X][q], .y = d->f[F_Y][q],
         .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
-        .ux = d->ux, .uy = d->uy, .uw = d->uw, .rad = d->rad,
+        .ux = d->f[F_VX][q], .uy = d->f[F_VY][q], .uw = d->f[F_W][q], .rad = d->rad,
         .tag = d->tag, .flags = d->flags,
         .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,

@@ -178,7 +178,6 @@ static int permute(gr_dem *d, const int32_t *perm, gr_err *err)
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 2; p++)
             PERM(double, d->f[f][p]);
-    PERM(double, d->ux) PERM(double, d->uy) PERM(double, d->uw)
     PERM(double, d->rad) PERM(double, d->im) PERM(double, d->iI) PERM(double, d->gf)
     PERM(double, d->mass) PERM(double, d->inertia)
     PERM(double, d->xref) PERM(double, d->yref)

@@ -35,9 +35,6 @@ int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
         if (field_used(d, f))
             for (int p = 0; p < 2; p++)
                 GROW(double, d->f[f][p]);
-    GROW(double, d->ux) GROW(double, d->uy)
-    if (d->rot)
-        GROW(double, d->uw);
     GROW(double, d->rad) GROW(double, d->im) GROW(double, d->iI) GROW(double, d->gf)
     GROW(double, d->mass) GROW(double, d->inertia) GROW(double, d->xref) GROW(double, d->yref)
     GROW(int32_t, d->tag) GROW(uint32_t, d->flags) GROW(int32_t, d->species)
@@ -80,7 +77,6 @@ void gr_dem_free(gr_dem *d)
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 2; p++)
             free(d->f[f][p]);
-    free(d->ux), free(d->uy), free(d->uw);
     free(d->rad), free(d->im), free(d->iI), free(d->gf), free(d->mass), free(d->inertia);
     free(d->tag), free(d->flags), free(d->species), free(d->xref), free(d->yref);
     free(d->ext_fx), free(d->ext_fy);
@@ -139,16 +135,6 @@ static int make_segments(gr_dem *d, gr_err *err)
     return d->seg_force ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
 }
 
-/* Velocities for the first force evaluation: the state's own. */
-static void copy_u(gr_dem *d)
-{
-    int p = d->cur;
-    memcpy(d->ux, d->f[F_VX][p], d->n * sizeof(double));
-    memcpy(d->uy, d->f[F_VY][p], d->n * sizeof(double));
-    if (d->rot)
-        memcpy(d->uw, d->f[F_W][p], d->n * sizeof(double));
-}
-
 int gr_dem_prepare(gr_dem *d, gr_err *err)
 {
     double cutoff = 2.0 * d->rmax + (d->par.neighbour == GR_DEM_NB_VERLET ? d->par.skin : 0.0);
@@ -182,6 +168,14 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->Lx = sc->side[GR_LEFT] == GR_BC_PERIODIC ? sc->width : 0.0;
     d->Ly = sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? sc->height : 0.0;
     int rc = GR_OK;
+    if (d->tang == GR_TANG_NONE && !isnan(m->tangential_restitution) && m->tangential_restitution != -1.0) {
+        char where[1200];
+        gr_scene_where(sc, "material", "tangential_restitution", where, sizeof where);
+        rc = gr_fail(err, GR_EINPUT,
+                     "%s: the soft DEM takes friction from [material] tangential (coulomb, viscous, regularised or spring), not from a tangential restitution",
+                     where);
+        goto fail;
+    }
     if (d->hist_on && d->par.integrator == GR_DEM_CVODE) {
         rc = gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
         goto fail;
@@ -306,7 +300,6 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
             goto fail;
         }
     } else {
-        copy_u(d);
         if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err)) {
             rc = err->code;
             goto fail;
@@ -372,7 +365,7 @@ int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err)
             for (int f = 0; f < F_NFIELDS; f++)
                 for (int p = 0; p < 2; p++)
                     MV(d->f[f][p]);
-            MV(d->ux) MV(d->uy) MV(d->uw) MV(d->rad) MV(d->im) MV(d->iI) MV(d->gf)
+            MV(d->rad) MV(d->im) MV(d->iI) MV(d->gf)
             MV(d->mass) MV(d->inertia) MV(d->xref) MV(d->yref) MV(d->ext_fx) MV(d->ext_fy)
             MV(d->tag) MV(d->flags) MV(d->species)
 #undef MV
@@ -510,7 +503,7 @@ double gr_dem_memory(const gr_dem *d)
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 2; p++)
             b += d->f[f][p] ? (double)d->cap * sizeof(double) : 0;
-    const double *arr[] = {d->ux, d->uy, d->uw, d->rad, d->im, d->iI, d->gf, d->mass, d->inertia,
+    const double *arr[] = {d->rad, d->im, d->iI, d->gf, d->mass, d->inertia,
                            d->xref, d->yref, d->ext_fx, d->ext_fy};
     for (size_t k = 0; k < sizeof arr / sizeof *arr; k++)
         b += arr[k] ? (double)d->cap * sizeof(double) : 0;

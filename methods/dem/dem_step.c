@@ -59,13 +59,12 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
     const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
     double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
     double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
-    double *restrict ux = d->ux, *restrict uy = d->uy;
     const double *restrict im = d->im;
     const double *restrict xr = d->xref, *restrict yr = d->yref;
     double *restrict fxn = d->f[F_FX][q], *restrict fyn = d->f[F_FY][q], *restrict tqn = d->f[F_TQ][q];
     double g = d->g;
     const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
-    double *restrict wn = d->f[F_W][q], *restrict uw = d->uw;
+    double *restrict wn = d->f[F_W][q];
     const double *restrict iI = d->iI;
     double Lx = d->Lx, Ly = d->Ly;
     int rot = d->rot;
@@ -81,16 +80,14 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
         fyn[i] = 0.0;
         xn[i] = nx;
         yn[i] = ny;
-        vxn[i] = hx;
-        vyn[i] = hy;
-        /* the damping sees v(t+dt) predicted to second order, not the
-         * half-step velocity, so the dissipation is second order too */
-        ux[i] = hx + h * ax;
-        uy[i] = hy + h * ay;
+        /* the new buffer holds v(t+dt) predicted to second order,
+         * v(t+dt/2) + (dt/2) a(t), which the damping sees (the half-step
+         * velocity would make the dissipation first order); the second
+         * kick corrects it with a(t+dt) - a(t) */
+        vxn[i] = hx + h * ax;
+        vyn[i] = hy + h * ay;
         if (rot) {
-            double a = tq[i] * iI[i];
-            wn[i] = w[i] + h * a;
-            uw[i] = wn[i] + h * a;
+            wn[i] = w[i] + dt * tq[i] * iI[i];
             tqn[i] = 0.0;
         }
         if (track) {
@@ -142,36 +139,40 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
     return sqrt(m1) + sqrt(m2);
 }
 
-/* Second kick of block b; its kinetic energy goes to blk[b]. */
-static void correct_block(gr_dem *d, int q, size_t b)
+/* Second kick of block b: v(t+dt) = u + (dt/2) (a(t+dt) - a(t)), where u
+ * is the predicted velocity (gravity cancels); its kinetic energy goes to
+ * blk[b] (m v^2 / 2 as v^2 / (2 im): no mass array to stream). */
+static void correct_block(gr_dem *d, int p, int q, size_t b)
 {
     double h = 0.5 * d->par.dt;
     size_t n = d->n;
     double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
     const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
-    const double *restrict im = d->im, *restrict m = d->mass;
-    double g = d->g;
+    const double *restrict fxo = d->f[F_FX][p], *restrict fyo = d->f[F_FY][p];
+    const double *restrict im = d->im;
     double *restrict w = d->f[F_W][q];
-    const double *restrict tq = d->f[F_TQ][q], *restrict iI = d->iI, *restrict I = d->inertia;
+    const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p], *restrict iI = d->iI;
     int rot = d->rot;
     size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
     double ek = 0;
     for (size_t i = i0; i < i1; i++) {
-        double a = vx[i] + h * fx[i] * im[i], c = vy[i] + h * (fy[i] * im[i] - g * (im[i] != 0));
+        double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
         vx[i] = a;
         vy[i] = c;
-        ek += (im[i] != 0) * 0.5 * m[i] * (a * a + c * c);
+        if (im[i] != 0)
+            ek += 0.5 * (a * a + c * c) / im[i];
         if (rot) {
-            double ww = w[i] + h * tq[i] * iI[i];
+            double ww = w[i] + h * (tq[i] - tqo[i]) * iI[i];
             w[i] = ww;
-            ek += (iI[i] != 0) * 0.5 * I[i] * ww * ww;
+            if (iI[i] != 0)
+                ek += 0.5 * ww * ww / iI[i];
         }
     }
     d->blk[b] = ek;
 }
 
 /* Second kick; returns the kinetic energy of the new state. */
-static double correct_verlet(gr_dem *d, int q)
+static double correct_verlet(gr_dem *d, int p, int q)
 {
     size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
     double *blk = block_scratch(d, nb);
@@ -179,10 +180,10 @@ static double correct_verlet(gr_dem *d, int q)
     if (nth > 1 && nb > 1) {
 #pragma omp parallel for schedule(static) num_threads(nth)
         for (size_t b = 0; b < nb; b++)
-            correct_block(d, q, b);
+            correct_block(d, p, q, b);
     } else {
         for (size_t b = 0; b < nb; b++)
-            correct_block(d, q, b);
+            correct_block(d, p, q, b);
     }
     double ek = 0;
     for (size_t b = 0; b < nb; b++)
@@ -209,10 +210,10 @@ static void predict_euler(gr_dem *d, int p, int q)
         double ax = d->f[F_FX][p][i] * d->im[i], ay = d->f[F_FY][p][i] * d->im[i] - d->gf[i];
         d->f[F_X][q][i] = wrap(d->f[F_X][p][i] + dt * d->f[F_VX][p][i], d->Lx);
         d->f[F_Y][q][i] = wrap(d->f[F_Y][p][i] + dt * d->f[F_VY][p][i], d->Ly);
-        d->ux[i] = d->f[F_VX][q][i] = d->f[F_VX][p][i] + dt * ax;
-        d->uy[i] = d->f[F_VY][q][i] = d->f[F_VY][p][i] + dt * ay;
+        d->f[F_VX][q][i] = d->f[F_VX][p][i] + dt * ax;
+        d->f[F_VY][q][i] = d->f[F_VY][p][i] + dt * ay;
         if (d->rot)
-            d->uw[i] = d->f[F_W][q][i] = d->f[F_W][p][i] + dt * d->f[F_TQ][p][i] * d->iI[i];
+            d->f[F_W][q][i] = d->f[F_W][p][i] + dt * d->f[F_TQ][p][i] * d->iI[i];
     }
 }
 
@@ -232,7 +233,6 @@ static void predict_gear(gr_dem *d, int p, int q)
         double *b2 = d->f[qb[c][0]][p], *b3 = d->f[qb[c][1]][p], *b4 = d->f[qb[c][2]][p], *b5 = d->f[qb[c][3]][p];
         double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
         double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
-        double *u = c == 0 ? d->ux : c == 1 ? d->uy : d->uw;
         double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
         for (size_t i = 0; i < d->n; i++) {
             double b1 = dt * v[i];
@@ -242,7 +242,7 @@ static void predict_gear(gr_dem *d, int p, int q)
             B3[i] = b3[i] + 4 * b4[i] + 10 * b5[i];
             B4[i] = b4[i] + 5 * b5[i];
             B5[i] = b5[i];
-            V[i] = u[i] = B1 / dt;
+            V[i] = B1 / dt;
         }
     }
 }
@@ -407,7 +407,7 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     }
     double ek;
     if (d->par.integrator == GR_DEM_VERLET) {
-        ek = correct_verlet(d, q);
+        ek = correct_verlet(d, p, q);
     } else {
         if (d->par.integrator == GR_DEM_GEAR)
             correct_gear(d, q);
@@ -464,10 +464,10 @@ int gr_dem_forces(gr_dem *d, int mode, double *fx, double *fy, double *tq, gr_er
     size_t n = d->n;
     memcpy(d->f[F_X][q], d->f[F_X][p], n * sizeof(double));
     memcpy(d->f[F_Y][q], d->f[F_Y][p], n * sizeof(double));
-    memcpy(d->ux, d->f[F_VX][p], n * sizeof(double));
-    memcpy(d->uy, d->f[F_VY][p], n * sizeof(double));
+    memcpy(d->f[F_VX][q], d->f[F_VX][p], n * sizeof(double));
+    memcpy(d->f[F_VY][q], d->f[F_VY][p], n * sizeof(double));
     if (d->rot)
-        memcpy(d->uw, d->f[F_W][p], n * sizeof(double));
+        memcpy(d->f[F_W][q], d->f[F_W][p], n * sizeof(double));
     uint64_t E = d->step + 1;
     double *segf = calloc((size_t)d->nseg * 3 + 3, sizeof *segf);
     if (!segf)
