@@ -63,21 +63,31 @@ double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir)
         *dir = DIR_LEFT;
     }
     double yb = s->ybot + iy * s->ch;
+    /* Under gravity the rise to the top of the cell is solved from the
+     * present state: from the reference state its first root may be a
+     * passage through that level on the way up to an earlier cell. */
+    double t0 = p->t, y = p->y, vy = p->vy;
+    if (s->g != 0.0 && s->t > p->t) {
+        best += p->t - s->t;
+        t0 = s->t;
+        y = edmd_y_at(p, t0, s->g);
+        vy = edmd_vy_at(p, t0, s->g);
+    }
     if (iy < s->ny - 1 || s->periodic_y) {
-        double tu = edmd_rise_time(yb + s->ch - p->y, p->vy, s->g);
+        double tu = edmd_rise_time(yb + s->ch - y, vy, s->g);
         if (tu < best) {
             best = tu;
             *dir = DIR_UP;
         }
     }
     if (iy > 0 || s->periodic_y) {
-        double td = edmd_fall_time(p->y - yb, p->vy, s->g);
+        double td = edmd_fall_time(y - yb, vy, s->g);
         if (td < best) {
             best = td;
             *dir = DIR_DOWN;
         }
     }
-    return p->t + best;
+    return t0 + best;
 }
 
 /* Can a grain whose centre is in `cell` touch `wall`? */

@@ -11,7 +11,7 @@
 
 int edmd_events_init(gr_edmd *s, gr_err *err)
 {
-    int32_t P = 1;
+    int32_t P = 2; /* at least two leaves: every leaf has a sibling */
     while ((size_t)P < s->n)
         P *= 2;
     s->P = P;
@@ -133,11 +133,7 @@ void edmd_tree_update(gr_edmd *s, int32_t i)
     const double *tmin = s->tmin;
     int32_t k = (P + i) >> 1;
     int32_t c = i ^ 1; /* sibling leaf */
-    int32_t w = better(tmin, i < c ? i : c, i < c ? c : i);
-    if (k == 0) { /* a single leaf */
-        node[1] = i;
-        return;
-    }
+    int32_t w = better(tmin, i, c);
     node[k] = w;
     while (k > 1) {
         int32_t sib = node[k ^ 1];
@@ -151,10 +147,6 @@ void edmd_tree_update(gr_edmd *s, int32_t i)
 void edmd_tree_build(gr_edmd *s)
 {
     int32_t P = s->P;
-    if (P == 1) {
-        s->node[1] = 0;
-        return;
-    }
     for (int32_t k = P - 1; k >= 1; k--) {
         int32_t a, b;
         if (2 * k >= P) {
