@@ -37,9 +37,20 @@ int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
         rc = gr_ckpt_put_u64(ck, "run_counters", counters, 3, err);
     if (!rc)
         rc = m->save(state, ck, err);
+    if (!rc) {
+        /* The H5MD part makes a checkpoint readable by grano info and h5py. */
+        /* observe() would reset the backend's averaging windows, so the
+         * frame carries the time and the run's sample count as its step. */
+        gr_particles *p = gr_particles_create(0, err);
+        gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .version = GRANO_VERSION};
+        rc = !p ? GR_ERUN : m->snapshot((void *)state, p, err);
+        if (!rc)
+            rc = gr_ckpt_put_h5md(ck, sc, &ho, counters[0], m->time(state), p, err);
+        gr_particles_free(p);
+    }
     if (rc) {
-        gr_err ignore = {0};
-        gr_ckpt_close(ck, &ignore);
+        /* Never let a partial checkpoint replace the last good one. */
+        gr_ckpt_discard(ck);
         return rc;
     }
     return gr_ckpt_close(ck, err);
@@ -109,7 +120,7 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
     if (gr_h5md_write_field(io->h, &d, o->steps, o->t, v, err))
         return err->code;
     gr_field_temperature(f, io->buf);
-    d.name = "temperature", d.unit = "m d2 tau-2", d.ncomp = 1;
+    d.name = "temperature", d.unit = "m d+2 tau-2", d.ncomp = 1;
     if (gr_h5md_write_field(io->h, &d, o->steps, o->t, io->buf, err))
         return err->code;
     gr_field_clear(f);
