@@ -71,9 +71,12 @@ typedef struct {
     int32_t *cell_seg_start, *cell_seg; /* segments near each cell */
 } gr_dem_cells;
 
-/* Groups of cell rows processed in 3 colours, so that threads never write
+/* Groups of cell rows processed in colours, so that threads never write
  * the same grain and the summation order does not depend on the thread
- * count. */
+ * count. A strip writes to itself and the next one (pairs i < j after the
+ * sort by rows, or a cell's forward neighbours), so strips two apart never
+ * collide; periodic in y, the last strip also writes to the first, which
+ * needs three colours. */
 typedef struct {
     int n;
     int32_t *row0;           /* n+1 row boundaries */
@@ -187,6 +190,7 @@ int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err);
 int gr_dem_sort(gr_dem *d, gr_err *err);
 int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
 void gr_dem_make_strips(gr_dem *d);
+static inline int gr_dem_colours(const gr_dem *d) { return d->cells.py ? 3 : 2; }
 /* Forces on the positions and velocities of parity q at time
  * t_eval; E numbers the evaluation for the contact history, integ is the
  * spring's time step (0: do not stretch). Fills seg_force. */

@@ -1,7 +1,8 @@
 /* Force evaluation: pair and wall contacts over Verlet lists, linked cells
- * or all pairs. Threads take strips of cell rows in three colours, so no
- * two threads write the same grain and the sums do not depend on the
- * thread count (bit-identical runs for any --threads). */
+ * or all pairs. Threads take strips of cell rows in colours (two, three
+ * when periodic in y), so no two threads write the same grain and the sums
+ * do not depend on the thread count (bit-identical runs for any
+ * --threads). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -275,7 +276,7 @@ DEM_INLINE void run_loops(dem_ctx *c, const int NL, const int TL, int mode)
         all_brute(c, NL, TL);
         return;
     }
-    int ns = d->strips.n, ncol = ns > 1 ? 3 : 1;
+    int ns = d->strips.n, ncol = ns > 1 ? gr_dem_colours(d) : 1;
     int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
     if (nth > 1 && ns > 1) {
 #pragma omp parallel num_threads(nth)

@@ -229,9 +229,9 @@ void gr_dem_make_strips(gr_dem *d)
     /* a fixed rule in the grid only: the strips (and so the sums) do not
      * depend on the number of threads */
     int rps = ny / 48 > 1 ? ny / 48 : 1;
-    int ns = ny / rps;
-    ns -= ns % 3;
-    if (ns < 3)
+    int ns = ny / rps, ncol = gr_dem_colours(d);
+    ns -= ns % ncol;
+    if (ns < ncol)
         ns = 1;
     free(s->row0);
     free(s->i0);

@@ -152,6 +152,12 @@ static void threads_give_the_same_bits(void **state)
     same(a, b);
     gr_particles_free(a);
     gr_particles_free(b);
+    /* periodic in y: three colours */
+    a = run(gas_gear("threads = 1\n"), 0, 0.5, NULL, 0, &o1);
+    b = run(gas_gear("threads = 2\n"), 0, 0.5, NULL, 0, &o2);
+    same(a, b);
+    gr_particles_free(a);
+    gr_particles_free(b);
 }
 
 int main(void)
