@@ -14,7 +14,7 @@ void gr_dem_params_default(gr_dem_params *p)
     p->neighbour = GR_DEM_NB_VERLET;
     p->skin = 0.2;
     p->threads = 1;
-    p->max_overlap = 0.1;
+    p->max_overlap = 0.3;
     p->energy_jump = 1.0;
     p->sort_every = 100;
     p->cvode_rtol = 1e-10;
