@@ -10,7 +10,7 @@
 #define SCALARS(X)                                                                                 \
     X(t) X(t_prev_coll) X(stuck) X(cnt) X(steps) X(m_t) X(m_K) X(m_Krot) X(m_U) X(m_Smvy) X(m_Sm)  \
     X(a_t0) X(a_K) X(a_Krot) X(a_U) X(a_mom) X(a_virial) X(a_inj) X(a_diss) X(a_pair0) X(a_wall0) \
-    X(e_inj) X(e_diss) X(obs_t0) X(obs_mom) X(ncap) X(nfree) X(freelist)
+    X(e_inj) X(e_diss) X(obs_t0) X(obs_mom) X(ecap) X(last_sort)
 
 #define SIZE_OF(f) +sizeof(((gr_edmd *)0)->f)
 enum { SCALAR_BYTES = 0 SCALARS(SIZE_OF) };
@@ -39,7 +39,7 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
 {
     unsigned char sc[SCALAR_BYTES];
     pack(s, sc);
-    uint64_t dims[5] = {s->n, (uint64_t)s->ncap, ncells(s), (uint64_t)s->P, s->cacc != NULL};
+    uint64_t dims[5] = {s->n, (uint64_t)s->ecap, ncells(s), (uint64_t)s->P, s->cacc != NULL};
     size_t n = s->n, nc = ncells(s);
     if (gr_ckpt_put_u64(ck, "edmd.dims", dims, 5, err) ||
         gr_ckpt_put_bytes(ck, "edmd.scalars", sc, sizeof sc, err) ||
@@ -49,11 +49,18 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_f64(ck, "edmd.tacc", s->tacc, n, err) ||
         gr_ckpt_put_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.events", s->ev, (size_t)s->ncap * sizeof *s->ev, err) ||
-        gr_ckpt_put_f64(ck, "edmd.tmin", s->tmin, (size_t)s->P, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
         gr_ckpt_put_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.tree", s->node, (size_t)s->P * 2 * sizeof *s->node, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_save(s->rng, ck, "edmd.rng", err))
+        return err->code;
+    /* a re-sort renumbers the grains: save the numbering */
+    if (gr_ckpt_put_i64(ck, "edmd.id", s->id, n, err) ||
+        gr_ckpt_put_f64(ck, "edmd.mass", s->m, n, err) ||
+        gr_ckpt_put_f64(ck, "edmd.inertia", s->inertia, n, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.species", s->species, n * sizeof *s->species, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err))
         return err->code;
     if (s->cacc && gr_ckpt_put_f64(ck, "edmd.fields", (const double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;
@@ -71,12 +78,12 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
                        "edmd: the checkpoint holds %llu grains on %llu cells, this scene %zu on %zu "
                        "(or fields differ): not the same scene",
                        (unsigned long long)dims[0], (unsigned long long)dims[2], n, nc);
-    if (dims[1] != (uint64_t)s->ncap) {
-        edmd_ev *ev = realloc(s->ev, (size_t)dims[1] * sizeof *ev);
+    if (dims[1] != (uint64_t)s->ecap) {
+        edmd_ev *ev = realloc(s->ev, n * (size_t)dims[1] * sizeof *ev);
         if (!ev)
-            return gr_fail(err, GR_ERUN, "edmd: out of memory for the event pool");
+            return gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists");
         s->ev = ev;
-        s->ncap = (int32_t)dims[1];
+        s->ecap = (int32_t)dims[1];
     }
     unsigned char sc[SCALAR_BYTES];
     if (gr_ckpt_get_bytes(ck, "edmd.scalars", sc, sizeof sc, err) ||
@@ -86,11 +93,17 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_f64(ck, "edmd.tacc", s->tacc, n, err) ||
         gr_ckpt_get_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.events", s->ev, (size_t)s->ncap * sizeof *s->ev, err) ||
-        gr_ckpt_get_f64(ck, "edmd.tmin", s->tmin, (size_t)s->P, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
         gr_ckpt_get_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.tree", s->node, (size_t)s->P * 2 * sizeof *s->node, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_load(s->rng, ck, "edmd.rng", err))
+        return err->code;
+    if (gr_ckpt_get_i64(ck, "edmd.id", s->id, n, err) ||
+        gr_ckpt_get_f64(ck, "edmd.mass", s->m, n, err) ||
+        gr_ckpt_get_f64(ck, "edmd.inertia", s->inertia, n, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.species", s->species, n * sizeof *s->species, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err))
         return err->code;
     if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;

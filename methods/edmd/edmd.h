@@ -21,6 +21,7 @@ typedef struct {
     double tc;                   /* TC model: elastic if a partner collided less than tc ago */
     double v_threshold;          /* threshold model: elastic below this normal speed */
     int fields;                  /* accumulate hydrodynamic fields on the cells */
+    double sort_every;           /* collisions per grain between spatial re-sorts; 0 never, < 0 auto */
 } gr_edmd_params;
 
 void gr_edmd_params_default(gr_edmd_params *p);

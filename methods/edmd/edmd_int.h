@@ -20,21 +20,27 @@ enum { W_FLOOR = 4, W_COUNT = 5 };
 
 typedef struct {
     double t;
-    int32_t next;    /* next event in the owner's list, -1 = end */
-    int32_t kind;
-    int32_t partner;
+    int32_t partner; /* >= 0: the other grain; < 0: -1 - (kind << 3 | direction or wall) */
     uint32_t pncol;  /* partner's collision counter when predicted */
 } edmd_ev;
+static inline int edmd_ev_kind(const edmd_ev *e) { return e->partner >= 0 ? EV_PAIR : (-1 - e->partner) >> 3; }
+static inline int edmd_ev_sub(const edmd_ev *e) { return e->partner >= 0 ? e->partner : (-1 - e->partner) & 7; }
 
 /* The hot part of a particle: one cache line. Position and velocity are
  * those at time t, the particle's last state change (lazy advancement). */
 typedef struct {
     double x, y, vx, vy, t, r;
     int32_t cell;    /* event cell, -1 when not in a cell (naive) */
-    int32_t head;    /* first event of its list */
+    int32_t nev;     /* events in its slab */
     int32_t cnext;   /* next particle in its cell */
     uint32_t ncol;   /* state changes so far (collision counter) */
 } edmd_p;
+
+/* An inner node of the tree: the earliest event below it. */
+typedef struct {
+    double t;
+    int32_t i, pad;
+} edmd_node;
 
 /* Per-cell field accumulators: time integrals of mass-weighted moments and
  * sums of collisional transfers over the averaging window. */
@@ -68,13 +74,17 @@ struct gr_edmd {
     int nx, ny;
     double cw, ch;
     int32_t *chead;
+    uint8_t *wmask;          /* per cell: walls a grain in it can touch */
+    int32_t *corder;         /* cells in Morton order, for spatial sorting */
+    uint64_t sort_period;    /* collisions between re-sorts, 0 = never */
+    uint64_t last_sort;      /* collision count at the last sort */
 
     /* events */
-    edmd_ev *ev;
-    int32_t ncap, nfree, freelist;
-    double *tmin;
-    int32_t *emin;
-    int32_t *node;           /* complete binary tree, node[1] is the root */
+    edmd_ev *ev;             /* n slabs of ecap events */
+    int32_t ecap;
+    edmd_ev *lf;             /* leaves: a copy of each grain's earliest event */
+    int32_t *emin;           /* slot of the earliest event, -1 if none */
+    edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
     int32_t P;               /* leaves (power of two >= n) */
 
     double t;                /* current time */
@@ -160,7 +170,7 @@ void edmd_list_clear(gr_edmd *s, int32_t i);
 void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);
 void edmd_tree_update(gr_edmd *s, int32_t i);
 void edmd_tree_build(gr_edmd *s);
-static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1]; }
+static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1].i; }
 
 /* predict.c */
 double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
@@ -187,5 +197,9 @@ double edmd_kinetic(const gr_edmd *s, int32_t i, double t);
 int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
 int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
 int edmd_schedule_all(gr_edmd *s, gr_err *err);
+
+/* sort.c: renumber grains along a Morton curve over the cells */
+int edmd_sort_setup(gr_edmd *s, gr_err *err);
+int edmd_sort(gr_edmd *s, gr_err *err);
 
 #endif

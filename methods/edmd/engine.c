@@ -102,7 +102,7 @@ static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *er
     return GR_OK;
 }
 
-#define OOM(s, err) gr_fail(err, GR_ERUN, "edmd: out of memory for the event pool (%d events)", (s)->ncap)
+#define OOM(s, err) gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists (%d per grain)", (s)->ecap)
 
 int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
 {
@@ -110,13 +110,20 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
     for (;;) {
         if (max_coll && done >= max_coll)
             return GR_OK;
-        int32_t i = edmd_tree_top(s);
-        double t = s->tmin[i];
+        if (s->sort_period && s->steps - s->last_sort >= s->sort_period && edmd_sort(s, err))
+            return err->code;
+        int32_t i = s->node[1].i;
+        double t = s->node[1].t;
         if (!(t <= t_end) || t == EDMD_INF)
             break;
+        edmd_ev ev = s->lf[i];
         int32_t e = s->emin[i];
-        edmd_ev ev = s->ev[e];
-        if (ev.kind == EV_PAIR) {
+        /* the slabs are rewritten next: start fetching them now */
+        __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
+        if (ev.partner >= 0)
+            __builtin_prefetch(s->ev + (size_t)ev.partner * (size_t)s->ecap, 1);
+        int kind = edmd_ev_kind(&ev);
+        if (kind == EV_PAIR) {
             int32_t j = ev.partner;
             if (s->p[j].ncol != ev.pncol) {
                 s->cnt.stale++;
@@ -136,11 +143,11 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             edmd_tree_update(s, j);
             done++;
             s->steps++;
-        } else if (ev.kind == EV_WALL) {
+        } else if (kind == EV_WALL) {
             if (check_collapse(s, i, -1, t, err))
                 return err->code;
             s->t = t;
-            edmd_collide_wall(s, i, ev.partner, t);
+            edmd_collide_wall(s, i, edmd_ev_sub(&ev), t);
             edmd_list_clear(s, i);
             if (edmd_predict_all(s, i))
                 return OOM(s, err);
@@ -150,8 +157,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         } else {
             s->t = t;
             edmd_list_remove(s, i, e);
-            do_cross(s, i, ev.partner);
-            if (edmd_predict_cross(s, i, ev.partner))
+            do_cross(s, i, edmd_ev_sub(&ev));
+            if (edmd_predict_cross(s, i, edmd_ev_sub(&ev)))
                 return OOM(s, err);
             edmd_tree_update(s, i);
             s->cnt.crossing++;

@@ -279,9 +279,9 @@ static int push_cross_and_walls(gr_edmd *s, int32_t i)
     double tc = edmd_cross_time(s, i, &dir);
     if (dir >= 0 && tc < EDMD_INF && edmd_ev_push(s, i, tc > now ? tc : now, EV_CROSS, dir, 0))
         return GR_ERUN;
-    int cell = s->p[i].cell;
-    for (int w = 0; w < W_COUNT; w++) {
-        if (!edmd_wall_relevant(s, cell, w))
+    unsigned mask = s->wmask[s->p[i].cell];
+    for (int w = 0; mask; w++, mask >>= 1) {
+        if (!(mask & 1u))
             continue;
         double tw = edmd_wall_time(s, i, w, now, tc);
         if (tw <= tc && tw < EDMD_INF && edmd_ev_push(s, i, tw > now ? tw : now, EV_WALL, w, 0))

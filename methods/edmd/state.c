@@ -19,6 +19,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->tc = 1e-5;
     p->v_threshold = 1e-4;
     p->fields = 0;
+    p->sort_every = -1.0;
 }
 
 int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
@@ -35,7 +36,8 @@ int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
         return err->code;
     if (gr_scene_get_double(sc, "edmd", "cell", 0.0, &p->cell, err) ||
         gr_scene_get_double(sc, "edmd", "tc", p->tc, &p->tc, err) ||
-        gr_scene_get_double(sc, "edmd", "v_threshold", p->v_threshold, &p->v_threshold, err))
+        gr_scene_get_double(sc, "edmd", "v_threshold", p->v_threshold, &p->v_threshold, err) ||
+        gr_scene_get_double(sc, "edmd", "sort_every", p->sort_every, &p->sort_every, err))
         return err->code;
     const char *bad = !(p->cell >= 0) ? "cell" : !(p->tc >= 0) ? "tc" : !(p->v_threshold >= 0) ? "v_threshold" : NULL;
     if (bad) {
@@ -60,8 +62,10 @@ void gr_edmd_free(gr_edmd *s)
     free(s->id);
     free(s->order);
     free(s->chead);
+    free(s->wmask);
+    free(s->corder);
     free(s->ev);
-    free(s->tmin);
+    free(s->lf);
     free(s->emin);
     free(s->node);
     free(s->cacc);
@@ -165,7 +169,7 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
         p->r = init->radius[i];
         p->t = 0.0;
         p->cell = -1;
-        p->head = -1;
+        p->nev = 0;
         p->cnext = -1;
         s->w[k] = init->omega[i];
         s->m[k] = init->mass[i];
@@ -274,6 +278,19 @@ static int setup_cells(gr_edmd *s, gr_err *err)
             s->cprev[p->cnext] = (int32_t)i;
         s->chead[c] = (int32_t)i;
     }
+    s->wmask = calloc(nc, 1);
+    if (!s->wmask)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu cells", nc);
+    for (size_t c = 0; c < nc; c++)
+        for (int w = 0; w < W_COUNT; w++)
+            if (edmd_wall_relevant(s, (int)c, w))
+                s->wmask[c] |= (uint8_t)(1u << w);
+    if (s->prm.algorithm == GR_EDMD_TREE) {
+        double every = s->prm.sort_every < 0 ? (s->n >= 16384 ? 20.0 : 0.0) : s->prm.sort_every;
+        s->sort_period = (uint64_t)(every * (double)s->n);
+        if (s->sort_period && edmd_sort_setup(s, err))
+            return err->code;
+    }
     if (s->prm.fields) {
         if (s->prm.algorithm == GR_EDMD_NAIVE)
             return gr_fail(err, GR_EINPUT, "edmd: fields need algorithm = tree");
@@ -361,7 +378,8 @@ int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
 
 /* ---- the method table ---- */
 
-static const char *const param_keys[] = {"algorithm", "cell", "collapse", "tc", "v_threshold", "fields", NULL};
+static const char *const param_keys[] = {"algorithm", "cell",   "collapse",   "tc",
+                                         "v_threshold", "fields", "sort_every", NULL};
 
 static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
 {

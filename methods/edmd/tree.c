@@ -1,9 +1,11 @@
-/* Event calendar of the slides: every particle owns a linked list of the
- * events it predicted; each leaf of a complete binary tree holds the
- * earliest event of one particle's list and each inner node the earlier of
- * its two children, so the next event is at the root and an update costs
- * log2 N comparisons. Events live in one pool with a free list (indices,
- * not pointers, so the pool can grow and be checkpointed as bytes). */
+/* Event calendar of the slides: every particle owns the list of the events
+ * it predicted; each leaf of a complete binary tree holds the earliest event
+ * of one particle's list and each inner node the earlier of its two
+ * children, so the next event is at the root and an update costs log2 N
+ * comparisons. A particle's list is a slab of a fixed capacity in one array
+ * (not linked nodes scattered in a pool): clearing it is O(1) and scanning
+ * it touches one or two cache lines. A full slab first drops its stale
+ * events; if still full, every slab doubles. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -15,132 +17,135 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
     while ((size_t)P < s->n)
         P *= 2;
     s->P = P;
-    s->tmin = malloc((size_t)P * sizeof *s->tmin);
+    s->lf = malloc((size_t)P * sizeof *s->lf);
     s->emin = malloc((size_t)P * sizeof *s->emin);
-    s->node = malloc((size_t)(2 * P) * sizeof *s->node);
-    s->ncap = (int32_t)(16 * s->n + 64);
-    s->ev = malloc((size_t)s->ncap * sizeof *s->ev);
-    if (!s->tmin || !s->emin || !s->node || !s->ev)
+    s->node = calloc((size_t)P, sizeof *s->node);
+    s->ecap = 8;
+    s->ev = malloc(s->n * (size_t)s->ecap * sizeof *s->ev);
+    if (!s->lf || !s->emin || !s->node || !s->ev)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event calendar of %zu grains", s->n);
     for (int32_t i = 0; i < P; i++) {
-        s->tmin[i] = EDMD_INF;
+        s->lf[i] = (edmd_ev){EDMD_INF, 0, 0};
         s->emin[i] = -1;
     }
-    for (int32_t e = 0; e < s->ncap; e++)
-        s->ev[e].next = e + 1 < s->ncap ? e + 1 : -1;
-    s->freelist = 0;
-    s->nfree = s->ncap;
     for (size_t i = 0; i < s->n; i++)
-        s->p[i].head = -1;
+        s->p[i].nev = 0;
     edmd_tree_build(s);
     return GR_OK;
 }
 
+/* Double every grain's slab; slots keep their numbers. */
 static int grow(gr_edmd *s)
 {
-    int32_t old = s->ncap;
-    if (old > INT32_MAX / 2)
+    size_t n = s->n, c = (size_t)s->ecap;
+    if (c > 4096)
         return GR_ERUN;
-    int32_t cap = old * 2;
-    edmd_ev *ev = realloc(s->ev, (size_t)cap * sizeof *ev);
+    edmd_ev *ev = realloc(s->ev, n * 2 * c * sizeof *ev);
     if (!ev)
         return GR_ERUN;
+    for (size_t i = n; i-- > 0;)
+        memmove(ev + i * 2 * c, ev + i * c, (size_t)s->p[i].nev * sizeof *ev);
     s->ev = ev;
-    for (int32_t e = old; e < cap; e++)
-        ev[e].next = e + 1 < cap ? e + 1 : s->freelist;
-    s->freelist = old;
-    s->nfree += cap - old;
-    s->ncap = cap;
+    s->ecap = (int32_t)(2 * c);
     return GR_OK;
+}
+
+static void rescan(gr_edmd *s, int32_t i)
+{
+    const edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
+    double best = EDMD_INF;
+    int32_t be = -1;
+    for (int32_t k = 0; k < s->p[i].nev; k++)
+        if (v[k].t < best) {
+            best = v[k].t;
+            be = k;
+        }
+    s->lf[i] = be >= 0 ? v[be] : (edmd_ev){EDMD_INF, 0, 0};
+    s->emin[i] = be;
+}
+
+/* Drop the pair events of a full slab whose partner has changed state
+ * since (they would be dropped when popped anyway). */
+static void compact(gr_edmd *s, int32_t i)
+{
+    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
+    int32_t m = 0;
+    for (int32_t k = 0; k < s->p[i].nev; k++) {
+        if (v[k].partner >= 0 && s->p[v[k].partner].ncol != v[k].pncol) {
+            s->cnt.stale++;
+            continue;
+        }
+        v[m++] = v[k];
+    }
+    s->p[i].nev = m;
+    rescan(s, i);
 }
 
 int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol)
 {
-    if (s->freelist < 0 && grow(s))
-        return GR_ERUN;
-    int32_t e = s->freelist;
-    edmd_ev *v = &s->ev[e];
-    s->freelist = v->next;
-    s->nfree--;
+    edmd_p *p = &s->p[i];
+    if (p->nev == s->ecap) {
+        compact(s, i);
+        if (p->nev == s->ecap && grow(s))
+            return GR_ERUN;
+    }
+    int32_t k = p->nev++;
+    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap + k;
     v->t = t;
-    v->kind = kind;
-    v->partner = partner;
+    v->partner = kind == EV_PAIR ? partner : -1 - (kind << 3 | partner);
     v->pncol = pncol;
-    v->next = s->p[i].head;
-    s->p[i].head = e;
-    if (t < s->tmin[i]) {
-        s->tmin[i] = t;
-        s->emin[i] = e;
+    if (t < s->lf[i].t) {
+        s->lf[i] = *v;
+        s->emin[i] = k;
     }
     return GR_OK;
 }
 
 void edmd_list_clear(gr_edmd *s, int32_t i)
 {
-    int32_t e = s->p[i].head;
-    if (e >= 0) {
-        int32_t last = e, k = 1;
-        while (s->ev[last].next >= 0) {
-            last = s->ev[last].next;
-            k++;
-        }
-        s->ev[last].next = s->freelist;
-        s->freelist = e;
-        s->nfree += k;
-    }
-    s->p[i].head = -1;
-    s->tmin[i] = EDMD_INF;
+    s->p[i].nev = 0;
+    s->lf[i].t = EDMD_INF;
     s->emin[i] = -1;
 }
 
-/* Unlink event e from i's list and find the new earliest in the same pass.
- * Ties keep the event nearest the head, i.e. the latest predicted. */
-void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e)
+/* Remove slot k (the last slot moves into it) and find the new earliest. */
+void edmd_list_remove(gr_edmd *s, int32_t i, int32_t k)
 {
-    int32_t *link = &s->p[i].head;
-    double best = EDMD_INF;
-    int32_t be = -1;
-    while (*link >= 0) {
-        int32_t k = *link;
-        if (k == e) {
-            *link = s->ev[k].next;
-            s->ev[k].next = s->freelist;
-            s->freelist = k;
-            s->nfree++;
-            continue;
-        }
-        if (s->ev[k].t < best) {
-            best = s->ev[k].t;
-            be = k;
-        }
-        link = &s->ev[k].next;
-    }
-    s->tmin[i] = best;
-    s->emin[i] = be;
+    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
+    int32_t last = --s->p[i].nev;
+    v[k] = v[last];
+    rescan(s, i);
 }
 
-/* Earlier of two particles' minima; ties go to the lower index, so the
- * order of simultaneous events is deterministic. */
-static inline int32_t better(const double *tmin, int32_t a, int32_t b)
+/* Nodes hold the winner's time beside its index, so a comparison reads the
+ * sibling node (same cache line) instead of chasing the leaves at random. Ties
+ * go to the lower index, so simultaneous events pop in a fixed order. */
+static inline int earlier(double ta, int32_t a, double tb, int32_t b)
 {
-    return tmin[b] < tmin[a] || (tmin[b] == tmin[a] && b < a) ? b : a;
+    return ta < tb || (ta == tb && a < b);
 }
 
 void edmd_tree_update(gr_edmd *s, int32_t i)
 {
-    int32_t P = s->P;
-    int32_t *node = s->node;
-    const double *tmin = s->tmin;
-    int32_t k = (P + i) >> 1;
-    int32_t c = i ^ 1; /* sibling leaf */
-    int32_t w = better(tmin, i, c);
-    node[k] = w;
-    while (k > 1) {
-        int32_t sib = node[k ^ 1];
-        int32_t nw = (k & 1) ? better(tmin, sib, w) : better(tmin, w, sib);
+    edmd_node *node = s->node;
+    const edmd_ev *lf = s->lf;
+    int32_t k = (s->P + i) >> 1;
+    int32_t a = i & ~1, b = a + 1;
+    int32_t w = earlier(lf[b].t, b, lf[a].t, a) ? b : a;
+    double tw = lf[w].t;
+    for (;;) {
+        if (node[k].i == w && node[k].t == tw)
+            return; /* unchanged: nothing above changes either */
+        node[k].t = tw;
+        node[k].i = w;
+        if (k == 1)
+            return;
+        const edmd_node *sib = &node[k ^ 1];
+        if (earlier(sib->t, sib->i, tw, w)) {
+            tw = sib->t;
+            w = sib->i;
+        }
         k >>= 1;
-        w = nw;
-        node[k] = w;
     }
 }
 
@@ -149,13 +154,20 @@ void edmd_tree_build(gr_edmd *s)
     int32_t P = s->P;
     for (int32_t k = P - 1; k >= 1; k--) {
         int32_t a, b;
+        double ta, tb;
         if (2 * k >= P) {
             a = 2 * k - P;
-            b = 2 * k + 1 - P;
+            b = a + 1;
+            ta = s->lf[a].t;
+            tb = s->lf[b].t;
         } else {
-            a = s->node[2 * k];
-            b = s->node[2 * k + 1];
+            a = s->node[2 * k].i;
+            b = s->node[2 * k + 1].i;
+            ta = s->node[2 * k].t;
+            tb = s->node[2 * k + 1].t;
         }
-        s->node[k] = better(s->tmin, a, b);
+        int bw = earlier(tb, b, ta, a);
+        s->node[k].i = bw ? b : a;
+        s->node[k].t = bw ? tb : ta;
     }
 }
