@@ -12,6 +12,7 @@ typedef struct {
 /* One line per backend benchmark. */
 static const bench_entry benches[] = {
     {"dem", bench_dem},
+    {"edmd", bench_edmd},
     {NULL, NULL},
 };
 
