@@ -39,6 +39,10 @@ void gr_edmd_free(gr_edmd *s);
  * wall and floor collisions; 0 = no limit). */
 int gr_edmd_advance(gr_edmd *s, double t_end, uint64_t max_collisions, gr_err *err);
 double gr_edmd_time(const gr_edmd *s);
+/* Change the restitution from now on (e.g. quench an equilibrated elastic
+ * gas); alpha_wall NaN = alpha. Pending events stay valid: restitution only
+ * enters the collision rules. */
+void gr_edmd_set_restitution(gr_edmd *s, double alpha, double alpha_wall);
 
 typedef struct {
     uint64_t pair;      /* disk-disk collisions (CPP) */

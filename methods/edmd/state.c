@@ -342,6 +342,12 @@ int gr_edmd_advance(gr_edmd *s, double t_end, uint64_t max_collisions, gr_err *e
 
 double gr_edmd_time(const gr_edmd *s) { return s->t; }
 
+void gr_edmd_set_restitution(gr_edmd *s, double alpha, double alpha_wall)
+{
+    s->alpha = alpha;
+    s->alpha_w = isnan(alpha_wall) ? alpha : alpha_wall;
+}
+
 void gr_edmd_get_counters(const gr_edmd *s, gr_edmd_counters *c) { *c = s->cnt; }
 
 void gr_edmd_set_event_hook(gr_edmd *s, gr_edmd_event_fn fn, void *user)
