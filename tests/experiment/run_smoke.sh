@@ -65,7 +65,7 @@ if [ $? = 2 ] && grep -q "different scene" "$tmp/err" && [ ! -e "$tmp/d.h5" ]; t
 pid=$!
 for _ in $(seq 1 100); do
     sleep 0.2
-    $PY -c "import h5py,sys; f=h5py.File('$tmp/k.h5','r'); sys.exit(0 if f['particles/trajectory/position/value'].shape[0] >= 2 else 1)" 2>/dev/null && break
+    HDF5_USE_FILE_LOCKING=FALSE $PY -c "import h5py,sys; f=h5py.File('$tmp/k.h5','r'); sys.exit(0 if f['particles/trajectory/position/value'].shape[0] >= 2 else 1)" 2>/dev/null && break
 done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 if $PY - "$tmp/k.h5" >"$tmp/err" 2>&1 <<'PY'
