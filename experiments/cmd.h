@@ -6,6 +6,8 @@
 int cmd_run(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
+int cmd_silo_start(int argc, char **argv);
+int cmd_silo_flow(int argc, char **argv);
 int cmd_course(int argc, char **argv);
 
 /* Backend-specific benchmarks, called by cmd_bench with argv[0] = method. */

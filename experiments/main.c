@@ -16,6 +16,8 @@ static const subcommand commands[] = {
     {"run", "run a scene with one method, writing H5MD", cmd_run},
     {"info", "describe what a grano result file holds", cmd_info},
     {"bench", "throughput and speed-against-error benchmarks", cmd_bench},
+    {"silo-start", "start of a silo discharge (thesis chapter 3)", cmd_silo_start},
+    {"silo-flow", "silo outflow against orifice size (thesis chapter 4)", cmd_silo_flow},
     {"course", "the event-driven course exercises (Maxwell, pressure, cooling)", cmd_course},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])

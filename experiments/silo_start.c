@@ -1,0 +1,519 @@
+/* grano silo-start: the start of the discharge (thesis chapter 3). Each
+ * unit of work is one discharge: fill, settle, open, and follow the grains
+ * until the top grain has fallen two diameters; the report averages the
+ * units of each orifice. */
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cmd.h"
+#include "fields.h"
+#include "progress.h"
+#include "rng.h"
+#include "silo_start.h"
+
+const long ss_fig32_steps[6] = {300, 700, 1100, 1700, 6300, 10000};
+
+void ss_label(size_t unit, void *ctx, char *buf, size_t n)
+{
+    const ss_ctx *c = ctx;
+    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
+    snprintf(buf, n, "D%g-r%02zu", c->orifice[o], r);
+}
+
+void ss_key(size_t unit, void *ctx, char *buf, size_t n)
+{
+    const ss_ctx *c = ctx;
+    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
+    const silo_cfg *b = &c->base;
+    int k = snprintf(buf, n,
+                     "silo-start 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g "
+                     "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu lags=",
+                     b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
+                     (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->fs, c->min_steps,
+                     c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap);
+    for (size_t s = 0; s < c->nslots && k > 0 && (size_t)k < n; s++)
+        k += snprintf(buf + k, n - (size_t)k, "%ld,", c->lag[s]);
+    for (size_t s = 0; s < c->ntimes && k > 0 && (size_t)k < n; s++)
+        k += snprintf(buf + k, n - (size_t)k, "t%ld,", c->times[s]);
+}
+
+/* ------------------------------------------------------------ one unit */
+
+#define QMAX 18
+
+typedef struct {
+    size_t m;
+    long f0;
+    int live;
+    int32_t *idx;
+    double *x, *y;
+} origin;
+
+typedef struct {
+    origin q[QMAX];
+    double *sx, *sy;
+    size_t ns, seen;
+    double fall_sum, fall_n;
+} slotbuf;
+
+typedef struct {
+    const ss_ctx *c;
+    size_t wcap;
+    slotbuf sl[SS_MAX_SLOTS];
+    gr_msd *msd;
+    gr_rng *rng;
+    double *dx, *dy;
+    int32_t *widx;
+    double *wx, *wy;
+    size_t wm;
+} ustate;
+
+static void ustate_free(ustate *u)
+{
+    for (size_t k = 0; k < SS_MAX_SLOTS; k++) {
+        for (int j = 0; j < QMAX; j++)
+            free(u->sl[k].q[j].idx), free(u->sl[k].q[j].x), free(u->sl[k].q[j].y);
+        free(u->sl[k].sx), free(u->sl[k].sy);
+    }
+    gr_msd_free(u->msd);
+    gr_rng_free(u->rng);
+    free(u->dx), free(u->dy), free(u->widx), free(u->wx), free(u->wy);
+}
+
+static int ustate_init(ustate *u, const ss_ctx *c, uint64_t seed, gr_err *err)
+{
+    memset(u, 0, sizeof *u);
+    u->c = c;
+    u->wcap = (size_t)((c->window + 2) * (c->window + 2) * 1.3) + 16;
+    u->msd = gr_msd_create(c->nslots, err);
+    u->rng = gr_rng_create(seed, 77, err);
+    u->dx = malloc(u->wcap * sizeof *u->dx), u->dy = malloc(u->wcap * sizeof *u->dy);
+    u->widx = malloc(u->wcap * sizeof *u->widx);
+    u->wx = malloc(u->wcap * sizeof *u->wx), u->wy = malloc(u->wcap * sizeof *u->wy);
+    int bad = !u->msd || !u->rng || !u->dx || !u->dy || !u->widx || !u->wx || !u->wy;
+    for (size_t k = 0; k < c->nslots && !bad; k++) {
+        slotbuf *s = &u->sl[k];
+        s->sx = malloc(c->sample_cap * sizeof *s->sx), s->sy = malloc(c->sample_cap * sizeof *s->sy);
+        bad |= !s->sx || !s->sy;
+        for (int j = 0; j < QMAX && !bad; j++) {
+            origin *o = &s->q[j];
+            o->idx = malloc(u->wcap * sizeof *o->idx);
+            o->x = malloc(u->wcap * sizeof *o->x), o->y = malloc(u->wcap * sizeof *o->y);
+            bad |= !o->idx || !o->x || !o->y;
+        }
+    }
+    if (bad) {
+        ustate_free(u);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    return GR_OK;
+}
+
+/* Grains of the snapshot inside the window [x0, x0+w) x [y0, y0+w). */
+static void window_scan(ustate *u, const gr_particles *p, double x0, double y0)
+{
+    double w = u->c->window;
+    u->wm = 0;
+    for (size_t i = 0; i < p->n && u->wm < u->wcap; i++) {
+        if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
+            continue;
+        if (p->x[i] >= x0 && p->x[i] < x0 + w && p->y[i] >= y0 && p->y[i] < y0 + w) {
+            u->widx[u->wm] = (int32_t)i;
+            u->wx[u->wm] = p->x[i], u->wy[u->wm] = p->y[i];
+            u->wm++;
+        }
+    }
+}
+
+/* Displacements of an origin's grains now: the mean flow (the mean of the
+ * selection, both components) subtracted, as in thesis section 3.2. */
+static int complete(ustate *u, size_t k, origin *o, const gr_particles *p, double lag_time,
+                    gr_err *err)
+{
+    slotbuf *s = &u->sl[k];
+    size_t m = 0;
+    double mx = 0, my = 0;
+    for (size_t a = 0; a < o->m; a++) {
+        size_t i = (size_t)o->idx[a];
+        if (p->flags[i] & GR_PF_GONE)
+            continue;
+        u->dx[m] = p->x[i] - o->x[a], u->dy[m] = p->y[i] - o->y[a];
+        mx += u->dx[m], my += u->dy[m];
+        m++;
+    }
+    o->live = 0;
+    if (m < 2)
+        return GR_OK;
+    mx /= (double)m, my /= (double)m;
+    s->fall_sum += -my * (double)m;
+    s->fall_n += (double)m;
+    for (size_t a = 0; a < m; a++) {
+        u->dx[a] -= mx, u->dy[a] -= my;
+        /* reservoir sampling keeps a uniform subset of every sample seen */
+        size_t slot = s->seen < u->c->sample_cap ? s->seen : gr_rng_below(u->rng, s->seen + 1);
+        if (slot < u->c->sample_cap)
+            s->sx[slot] = u->dx[a], s->sy[slot] = u->dy[a];
+        s->seen++;
+    }
+    s->ns = s->seen < u->c->sample_cap ? s->seen : u->c->sample_cap;
+    return gr_msd_add(u->msd, k, lag_time, u->dx, u->dy, m, err);
+}
+
+static int write_part(const char *part, const char *key, const ss_ctx *c, ustate *u,
+                      const silo_settled *set, const gr_particles *fin, gr_field **fld,
+                      const double *ts, size_t nts, double win[2], long steps, const double *cost,
+                      gr_err *err)
+{
+    gr_ckpt *ck = gr_ckpt_create(part, err);
+    if (!ck)
+        return err->code;
+    size_t ns = c->nslots, nt = c->ntimes, nc = gr_field_ncells(fld[0]);
+    double *buf = malloc((7 * ns + 4 * nt * nc + 8) * sizeof *buf);
+    int rc = buf ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
+    if (!rc)
+        rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
+    if (!rc) {
+        double *lag = buf, *n = lag + ns, *sx2 = n + ns, *sx4 = sx2 + ns, *sy2 = sx4 + ns,
+               *sy4 = sy2 + ns, *fall = sy4 + ns;
+        for (size_t k = 0; k < ns; k++) {
+            lag[k] = (double)(c->lag[k] * c->fs) * c->base.dt;
+            n[k] = u->msd->n[k], sx2[k] = u->msd->sx2[k], sx4[k] = u->msd->sx4[k];
+            sy2[k] = u->msd->sy2[k], sy4[k] = u->msd->sy4[k];
+            fall[k] = u->sl[k].fall_n > 0 ? u->sl[k].fall_sum : 0.0;
+        }
+        const char *names[] = {"lag", "n", "sx2", "sx4", "sy2", "sy4", "fall_sum"};
+        for (int a = 0; a < 7 && !rc; a++)
+            rc = gr_ckpt_put_f64(ck, names[a], buf + (size_t)a * ns, ns, err);
+    }
+    for (size_t k = 0; k < ns && !rc; k++) {
+        char nm[64];
+        snprintf(nm, sizeof nm, "samples_x_%zu", k);
+        rc = gr_ckpt_put_f64(ck, nm, u->sl[k].sx, u->sl[k].ns, err);
+        snprintf(nm, sizeof nm, "samples_y_%zu", k);
+        if (!rc)
+            rc = gr_ckpt_put_f64(ck, nm, u->sl[k].sy, u->sl[k].ns, err);
+    }
+    if (!rc) {
+        double *num = buf, *py = num + nt * nc, *mass = py + nt * nc, *wsum = mass + nt * nc;
+        for (size_t j = 0; j < nt; j++) {
+            memcpy(num + j * nc, fld[j]->num, nc * sizeof *num);
+            memcpy(py + j * nc, fld[j]->py, nc * sizeof *py);
+            memcpy(mass + j * nc, fld[j]->mass, nc * sizeof *mass);
+            wsum[j] = fld[j]->wsum;
+        }
+        double grid[6] = {(double)fld[0]->nx, (double)fld[0]->ny, fld[0]->x0, fld[0]->y0, fld[0]->cx, fld[0]->cy};
+        rc = gr_ckpt_put_f64(ck, "field_num", num, nt * nc, err);
+        if (!rc) rc = gr_ckpt_put_f64(ck, "field_py", py, nt * nc, err);
+        if (!rc) rc = gr_ckpt_put_f64(ck, "field_mass", mass, nt * nc, err);
+        if (!rc) rc = gr_ckpt_put_f64(ck, "field_wsum", wsum, nt, err);
+        if (!rc) rc = gr_ckpt_put_f64(ck, "field_grid", grid, 6, err);
+    }
+    if (!rc) rc = gr_ckpt_put_f64(ck, "series", ts, nts, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "window", win, 2, err);
+    if (!rc) rc = silo_put_scalar(ck, "t_settle", set->t_settle, err);
+    if (!rc) rc = silo_put_scalar(ck, "top0", set->top, err);
+    if (!rc) rc = silo_put_scalar(ck, "steps", (double)steps, err);
+    if (!rc) rc = silo_put_particles(ck, "final", fin, err);
+    if (!rc && set->filling) rc = silo_put_particles(ck, "filling", set->filling, err);
+    if (!rc) rc = silo_put_scalar(ck, "t_filling", set->t_filling, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    free(buf);
+    if (rc) {
+        gr_ckpt_discard(ck);
+        return rc;
+    }
+    return gr_ckpt_close(ck, err);
+}
+
+int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
+            gr_err *err)
+{
+    const ss_ctx *c = ctx;
+    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
+    silo_cfg cfg = c->base;
+    cfg.orifice = c->orifice[o];
+    cfg.seed = c->seed + r;
+    cfg.reinsert = 0;
+    const gr_method_type *m = gr_method_find("dem");
+    silo_settled set;
+    ustate u;
+    if (ustate_init(&u, c, cfg.seed, err))
+        return err->code;
+    double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
+    int rc = silo_fill(&cfg, &set, progress, err);
+    double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
+    if (rc) {
+        ustate_free(&u);
+        return rc;
+    }
+    gr_scene *sc = NULL;
+    void *st = NULL;
+    gr_particles *snap = gr_particles_create(0, err);
+    gr_field *fld[SS_MAX_TIMES] = {0};
+    size_t tscap = 3 * (size_t)(c->max_steps / (10 * c->fs) + 4), nts = 0;
+    double *ts = malloc(tscap * sizeof *ts);
+    if (!snap || !ts)
+        rc = gr_fail(err, GR_ERUN, "out of memory");
+    if (!rc)
+        rc = silo_open(&cfg, &set, &sc, &st, err);
+    double xl = rc ? 0 : sc->silo.x0, base = cfg.base, W = cfg.width;
+    int nx = (int)floor(W / c->cell + 1e-9), ny = (int)floor(cfg.height / c->cell + 1e-9);
+    for (size_t j = 0; j < c->ntimes && !rc; j++)
+        if (!(fld[j] = gr_field_create(nx, ny, xl, base, c->cell, c->cell, err)))
+            rc = err->code;
+    /* the window is centred in the silo across and in the settled packing's height */
+    double win[2] = {xl + 0.5 * (W - c->window), base + 0.5 * (set.top - base) - 0.5 * c->window};
+    double top0 = set.top;
+    long f = 0, step = 0;
+    while (!rc) {
+        if ((rc = m->snapshot(st, snap, err)))
+            break;
+        for (size_t j = 0; j < c->ntimes; j++)
+            if (labs(step - c->times[j]) <= 2 * c->fs &&
+                (rc = gr_field_add(fld[j], snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
+                break;
+        int scanned = 0;
+        for (size_t k = 0; k < c->nslots && !rc; k++) {
+            slotbuf *s = &u.sl[k];
+            long lag = c->lag[k], every = lag / 8 > 1 ? lag / 8 : 1;
+            for (int j = 0; j < QMAX && !rc; j++)
+                if (s->q[j].live && s->q[j].f0 + lag == f)
+                    rc = complete(&u, k, &s->q[j], snap, (double)(lag * c->fs) * cfg.dt, err);
+            if (f % every || step + lag * c->fs > c->max_steps)
+                continue;
+            if (!scanned)
+                window_scan(&u, snap, win[0], win[1]), scanned = 1;
+            for (int j = 0; j < QMAX; j++) {
+                origin *q = &s->q[j];
+                if (q->live)
+                    continue;
+                q->live = 1, q->f0 = f, q->m = u.wm;
+                memcpy(q->idx, u.widx, u.wm * sizeof *q->idx);
+                memcpy(q->x, u.wx, u.wm * sizeof *q->x);
+                memcpy(q->y, u.wy, u.wm * sizeof *q->y);
+                break;
+            }
+        }
+        if (rc)
+            break;
+        double top = silo_top(snap);
+        if (f % 10 == 0 && nts + 3 <= tscap) {
+            gr_obs ob;
+            gr_obs_clear(&ob);
+            if ((rc = m->observe(st, &ob, err)))
+                break;
+            ts[nts++] = (double)step, ts[nts++] = top, ts[nts++] = (double)ob.outflow;
+        }
+        if (progress)
+            *progress = fmax((double)step / (double)c->max_steps,
+                             step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
+        if ((step >= c->min_steps && top0 - top >= c->fall_stop) || step >= c->max_steps)
+            break;
+        if ((rc = silo_advance(st, (uint64_t)c->fs, err)))
+            break;
+        f++, step += c->fs;
+    }
+    double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
+                      (double)step};
+    if (!rc)
+        rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
+    for (size_t j = 0; j < c->ntimes; j++)
+        gr_field_free(fld[j]);
+    if (st)
+        m->free(st);
+    gr_scene_free(sc);
+    gr_particles_free(snap);
+    free(ts);
+    silo_settled_free(&set);
+    ustate_free(&u);
+    return rc;
+}
+
+/* ------------------------------------------------------------------ CLI */
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+        "usage: grano silo-start [options]\n\n"
+        "The start of a silo discharge (thesis chapter 3) on the soft DEM backend:\n"
+        "fill through a hopper, settle, open the orifice, and follow the grains until\n"
+        "the top grain has fallen two diameters, for each orifice and realisation.\n"
+        "Writes DIR/silo-start.h5, .dat tables and the figures fig3_1 ... fig3_6.\n\n"
+        "options:\n"
+        "  -D, --orifices LIST  orifice widths in d, comma separated (default 3.8,11)\n"
+        "  -n, --realisations N independent discharges per orifice (default 20)\n"
+        "  -s, --seed S         seed of realisation 0; realisation r uses S + r (default 1)\n"
+        "  -j, --jobs N         discharges run at once, one process each (default 1)\n"
+        "  -o, --out DIR        output directory (default results/silo-start)\n"
+        "      --grains N       mobile grains (default 5000)\n"
+        "      --width W        container width in d (default 50; height 2 W)\n"
+        "      --max-steps N    stop a discharge after N steps at most\n"
+        "  -Q, --quick          800 grains in a 20 d x 48 d silo filled without hopper,\n"
+        "                       2 realisations, shorter runs: a smoke test in seconds\n"
+        "  -f, --force          redo every part, even finished ones\n"
+        "  -q, --quiet          no progress line\n"
+        "  -h, --help           this help\n\n"
+        "Each discharge writes DIR/parts/start-D<D>-r<r>.part when done; a run that is\n"
+        "interrupted and started again with the same options redoes only the missing\n"
+        "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
+}
+
+static int bad(const char *opt, const char *val, const char *what)
+{
+    fprintf(stderr, "grano silo-start: %s: '%s' is not %s\n", opt, val, what);
+    return 2;
+}
+
+static int parse_long(const char *s, long lo, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (*end || end == s || errno || v < lo)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* Lags 1, 2, 3, 4, 6, 8, 11, ... frames (ratio about sqrt 2). */
+static void make_lags(ss_ctx *c)
+{
+    c->nslots = 0;
+    double l = 1;
+    long last = 0;
+    while (c->nslots < SS_MAX_SLOTS) {
+        long v = lround(l);
+        l *= M_SQRT2;
+        if (v == last)
+            continue;
+        if (v * c->fs > c->max_steps)
+            break;
+        c->lag[c->nslots++] = last = v;
+    }
+}
+
+static void make_times(ss_ctx *c)
+{
+    static const long extra[] = {2500, 4000, 16000, 25000, 40000, 63000, 100000, 160000,
+                                 250000, 400000, 630000, 1000000};
+    c->ntimes = 0;
+    for (int i = 0; i < 6; i++)
+        c->times[c->ntimes++] = ss_fig32_steps[i];
+    for (size_t i = 0; i < sizeof extra / sizeof extra[0]; i++)
+        if (extra[i] <= c->max_steps && c->ntimes < SS_MAX_TIMES)
+            c->times[c->ntimes++] = extra[i];
+    for (size_t i = 1; i < c->ntimes; i++)
+        for (size_t j = i; j > 0 && c->times[j] < c->times[j - 1]; j--) {
+            long t = c->times[j];
+            c->times[j] = c->times[j - 1], c->times[j - 1] = t;
+        }
+}
+
+int cmd_silo_start(int argc, char **argv)
+{
+    static const struct option opts[] = {
+        {"orifices", required_argument, NULL, 'D'}, {"realisations", required_argument, NULL, 'n'},
+        {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
+        {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
+        {"width", required_argument, NULL, 'W'},    {"max-steps", required_argument, NULL, 'M'},
+        {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
+        {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    const char *orif = NULL, *out = NULL;
+    long nreal = -1, jobs = 1, seed = 1, grains = -1, maxsteps = -1;
+    double width = -1;
+    int quick = 0, force = 0, quiet = 0, ch;
+    opterr = 0;
+    optind = 1;
+    while ((ch = getopt_long(argc, argv, ":D:n:s:j:o:Qfqh", opts, NULL)) != -1) {
+        char *end;
+        switch (ch) {
+        case 'D': orif = optarg; break;
+        case 'n': if (parse_long(optarg, 1, &nreal)) return bad("--realisations", optarg, "a positive integer"); break;
+        case 's': if (parse_long(optarg, 0, &seed)) return bad("--seed", optarg, "a non-negative integer"); break;
+        case 'j': if (parse_long(optarg, 1, &jobs) || jobs > 256) return bad("--jobs", optarg, "an integer in 1..256"); break;
+        case 'o': out = optarg; break;
+        case 'G': if (parse_long(optarg, 10, &grains)) return bad("--grains", optarg, "an integer >= 10"); break;
+        case 'W':
+            width = strtod(optarg, &end);
+            if (*end || !(width >= 8) || !isfinite(width)) return bad("--width", optarg, "a width >= 8");
+            break;
+        case 'M': if (parse_long(optarg, 100, &maxsteps)) return bad("--max-steps", optarg, "an integer >= 100"); break;
+        case 'Q': quick = 1; break;
+        case 'f': force = 1; break;
+        case 'q': quiet = 1; break;
+        case 'h': usage(stdout); return 0;
+        case ':': fprintf(stderr, "grano silo-start: option '%s' needs a value\n", argv[optind - 1]); return 2;
+        default:
+            fprintf(stderr, "grano silo-start: unknown option '%s' (see grano silo-start --help)\n", argv[optind - 1]);
+            return 2;
+        }
+    }
+    if (optind != argc) {
+        fprintf(stderr, "grano silo-start: unexpected argument '%s'\n", argv[optind]);
+        return 2;
+    }
+    ss_ctx c = {0};
+    c.quick = quick;
+    if (quick)
+        silo_cfg_quick(&c.base, 1);
+    else
+        silo_cfg_thesis(&c.base, 1);
+    if (grains > 0)
+        c.base.n = grains;
+    if (width > 0)
+        c.base.width = width, c.base.height = 2 * width;
+    if (silo_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
+        return bad("--orifices", orif, "a comma-separated list of positive widths");
+    for (size_t i = 0; i < c.norif; i++)
+        if (c.orifice[i] >= c.base.width - 2)
+            return bad("--orifices", orif, "narrower than the silo");
+    c.nreal = (int)(nreal > 0 ? nreal : quick ? 2 : 20);
+    c.seed = (uint64_t)seed;
+    c.fs = 20;
+    c.min_steps = quick ? 4000 : 10000;
+    c.max_steps = maxsteps > 0 ? maxsteps : quick ? 12000 : 800000;
+    c.fall_stop = 2.0;
+    c.window = quick ? 8 : 15;
+    c.cell = quick ? 1 : 2;
+    c.sample_cap = quick ? 4000 : 20000;
+    make_lags(&c);
+    make_times(&c);
+    char dir[1024], pdir[1100];
+    snprintf(dir, sizeof dir, "%s", out ? out : quick ? "results/silo-start-quick" : "results/silo-start");
+    snprintf(pdir, sizeof pdir, "%s/parts", dir);
+    c.dir = dir;
+    gr_err e = {0};
+    size_t nu = c.norif * (size_t)c.nreal, reused = 0;
+    char **parts = calloc(nu, sizeof *parts);
+    if (!parts)
+        return 1;
+    if (force)
+        for (size_t u = 0; u < nu; u++) {
+            char lab[256], p[1400];
+            ss_label(u, &c, lab, sizeof lab);
+            snprintf(p, sizeof p, "%s/start-%s.part", pdir, lab);
+            remove(p);
+        }
+    silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges"};
+    double t0 = gr_wall_seconds();
+    int rc = silo_sweep_run(&sw, ss_unit, ss_label, ss_key, &c, parts, &reused, &e);
+    double t_units = gr_wall_seconds() - t0;
+    char summary[4096] = "";
+    if (!rc)
+        rc = ss_report(&c, parts, summary, sizeof summary, &e);
+    if (rc)
+        fprintf(stderr, "grano silo-start: %s\n", e.msg);
+    else if (!quiet)
+        fprintf(stderr, "grano silo-start: %zu discharges (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
+                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
+    for (size_t u = 0; u < nu; u++)
+        free(parts[u]);
+    free(parts);
+    return rc;
+}

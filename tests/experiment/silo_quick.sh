@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# grano silo-start and silo-flow in quick mode: every output and figure is
+# produced, every fit converges, the numbers are physical (superdiffusive
+# MSD, flow rising with D), a resumed sweep redoes only missing parts and
+# gives the same bits with another --jobs, and bad flags exit 2. TAP.
+set -u
+GRANO=$1
+PY=/usr/bin/python3
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+n=0
+fails=0
+ok() { n=$((n + 1)); echo "ok $n - $1"; }
+notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); [ -f "$tmp/err" ] && sed 's/^/# /' "$tmp/err"; }
+check() { if [ "$1" = 0 ]; then ok "$2"; else notok "$2"; fi; }
+if ! $PY -c 'import h5py, numpy' 2>/dev/null; then
+    echo "1..0 # SKIP /usr/bin/python3 lacks h5py"
+    exit 0
+fi
+
+# --- help and bad flags
+"$GRANO" silo-start --help >"$tmp/out" 2>&1 && grep -q "usage: grano silo-start" "$tmp/out"
+check $? "silo-start --help"
+"$GRANO" silo-flow --help >"$tmp/out" 2>&1 && grep -q "usage: grano silo-flow" "$tmp/out"
+check $? "silo-flow --help"
+for args in "silo-start --bogus:--bogus" "silo-start --jobs 0:--jobs" "silo-flow --orifices 3,abc:--orifices" \
+            "silo-flow --blocks x:--blocks" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
+    cmd=${args%%:*}
+    flag=${args##*:}
+    # shellcheck disable=SC2086
+    "$GRANO" $cmd -o "$tmp/never" >"$tmp/err" 2>&1
+    rc=$?
+    if [ $rc = 2 ] && grep -q -- "$flag" "$tmp/err" && [ ! -e "$tmp/never" ]; then
+        ok "grano $cmd exits 2 naming $flag"
+    else
+        notok "grano $cmd exits 2 naming $flag (got $rc)"
+    fi
+done
+
+# --- silo-start --quick
+S=$tmp/start
+"$GRANO" silo-start --quick --jobs 2 -o "$S" -q 2>"$tmp/err"
+check $? "silo-start --quick --jobs 2 runs"
+missing=""
+for f in silo-start.h5 summary.dat msd_D3.8.dat msd_D11.dat pdf_short_D11.dat pdf_long_D3.8.dat \
+         fig3_1_filling.png fig3_2_velocity_profiles.png fig3_2_velocity_profiles_D3.8.png \
+         fig3_2_stationarity.png fig3_3_displacement_pdf.png fig3_4_msd.png \
+         fig3_5_displacement_pdf_long.png fig3_6_kurtosis.png silo_snapshot.png; do
+    [ -s "$S/$f" ] || missing="$missing $f"
+done
+[ -z "$missing" ]
+check $? "silo-start writes every table and figure${missing:+ (missing:$missing)}"
+
+$PY - "$S/silo-start.h5" >"$tmp/err" 2>&1 <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+r = f["results"]
+s = r["summary"][:]
+assert s.shape == (2, 20), s.shape
+for row in s:
+    D = row[0]
+    ex, ey = row[6], row[8]
+    # fits converged, and the motion is superdiffusive (thesis: 1.33-1.51)
+    assert np.isfinite([ex, ey, row[7], row[9]]).all(), row
+    assert 1.0 < ex < 2.2 and 1.0 < ey < 2.2, (D, ex, ey)
+    # the short lag is a fall of about 0.01 d
+    assert 0.003 < row[3] < 0.03, row[3]
+    assert np.isfinite(row[15:19]).all(), row
+for D in ("3.8", "11"):
+    g = r["D" + D]
+    v = g["velocity_y"][:]
+    assert np.isfinite(v).any() and np.nanmin(v) < 0, D  # grains move down
+    for k in ("msd", "msd_fit", "pdf_short", "pdf_long", "pdf_stats", "r00/msd_sums", "r01/series"):
+        assert k in g, (D, k)
+    p = g["pdf_short"][:]
+    du = p[1, 0] - p[0, 0]
+    for col in (1, 3):
+        area = p[:, col].sum() * du
+        assert 0.9 < area <= 1.0 + 1e-9, (D, col, area)
+PY
+check $? "silo-start: fits converge, MSD exponents in (1, 2.2), densities normalised"
+
+cp "$S/silo-start.h5" "$tmp/start-first.h5"
+"$GRANO" silo-start --quick --jobs 2 -o "$S" 2>"$tmp/err" && grep -q "(4 reused)" "$tmp/err"
+check $? "silo-start rerun reuses all 4 parts"
+rm "$S/parts/start-D11-r01.part"
+"$GRANO" silo-start --quick --jobs 1 -o "$S" 2>"$tmp/err" && grep -q "(3 reused)" "$tmp/err"
+check $? "silo-start resumes: redoes only the missing part"
+$PY - "$tmp/start-first.h5" "$S/silo-start.h5" >"$tmp/err" 2>&1 <<'PY'
+import sys, h5py, numpy as np
+a = h5py.File(sys.argv[1], "r")["results"]; b = h5py.File(sys.argv[2], "r")["results"]
+for k in ("summary", "D11/msd", "D11/velocity_y", "D3.8/pdf_short"):
+    x, y = a[k][:], b[k][:]
+    assert np.array_equal(x, y, equal_nan=True), k
+PY
+check $? "silo-start: the redone part (1 job) gives the same bits as the first run (2 jobs)"
+
+# --- silo-flow --quick
+F=$tmp/flow
+"$GRANO" silo-flow --quick --jobs 2 -o "$F" -q 2>"$tmp/err"
+check $? "silo-flow --quick --jobs 2 runs"
+missing=""
+for f in silo-flow.h5 flow.dat fits.dat pdf_fluctuations.dat reduced_flow.dat fig4_1_flow_rate.png \
+         fig4_2_flow_fluctuations.png fig4_3_fluctuation_pdf.png fig4_5_packing.png \
+         fig4_6_modified_flow_law.png silo_snapshot.png; do
+    [ -s "$F/$f" ] || missing="$missing $f"
+done
+[ -z "$missing" ]
+check $? "silo-flow writes every table and figure${missing:+ (missing:$missing)}"
+$PY - "$F/silo-flow.h5" >"$tmp/err" 2>&1 <<'PY'
+import sys, h5py, numpy as np
+r = h5py.File(sys.argv[1], "r")["results"]
+fits = r["fits"][:]
+assert fits.shape == (6, 9)
+assert (fits[:, 8] == 1).all(), "a fit did not converge: %s" % fits[:, 8]
+C, k = fits[0, 0], fits[0, 2]
+assert C > 0 and -3 < k < 3.5, (C, k)
+flow = r["flow"][:]
+D, W = flow[:, 0], flow[:, 1]
+assert (W > 0).all() and W[-1] > 3 * W[0], W
+phi = flow[:, 5]
+assert ((phi > 0.3) & (phi < 0.91)).all(), phi
+assert (flow[:, 4] > 0).all()
+assert "D3.56/r00/counts" in r and r["D3.56/r00/counts"].shape == (16,)
+PY
+check $? "silo-flow: every fit converges, Beverloo C > 0, flow rises with D, packing physical"
+echo "1..$n"
+exit $((fails > 0))
