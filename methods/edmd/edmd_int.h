@@ -85,7 +85,8 @@ struct gr_edmd {
     edmd_ev *lf;             /* leaves: a copy of each grain's earliest event */
     int32_t *emin;           /* slot of the earliest event, -1 if none */
     edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
-    int32_t P;               /* leaves (power of two >= n) */
+    int32_t P;               /* leaves (power of K >= n) */
+    int tshift;              /* log2 of the tree's branching K (1: binary) */
 
     double t;                /* current time */
     double t_prev_coll;

@@ -20,6 +20,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->v_threshold = 1e-4;
     p->fields = 0;
     p->sort_every = -1.0;
+    p->tree_arity = 2;
 }
 
 int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
@@ -34,6 +35,15 @@ int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
     p->collapse = (gr_edmd_collapse)v;
     if (gr_scene_get_choice(sc, "edmd", "fields", yesno, 0, &p->fields, err))
         return err->code;
+    long arity = 2;
+    if (gr_scene_get_long(sc, "edmd", "tree_arity", 2, &arity, err))
+        return err->code;
+    if (arity != 2 && arity != 4) {
+        char where[1200];
+        gr_scene_where(sc, "edmd", "tree_arity", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: [edmd] key 'tree_arity' must be 2 or 4, got %ld", where, arity);
+    }
+    p->tree_arity = (int)arity;
     if (gr_scene_get_double(sc, "edmd", "cell", 0.0, &p->cell, err) ||
         gr_scene_get_double(sc, "edmd", "tc", p->tc, &p->tc, err) ||
         gr_scene_get_double(sc, "edmd", "v_threshold", p->v_threshold, &p->v_threshold, err) ||
@@ -318,12 +328,13 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
         rc = check_start(s, err);
     if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
         rc = err->code;
+    s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
     if (!rc)
         rc = edmd_events_init(s, err);
     s->t = 0.0;
     s->t_prev_coll = -EDMD_INF;
     if (!rc && s->prm.algorithm == GR_EDMD_TREE)
-        rc = edmd_schedule_all(s, err);
+        rc = s->sort_period ? edmd_sort(s, err) : edmd_schedule_all(s, err);
     if (rc) {
         gr_edmd_free(s);
         return rc;
@@ -384,8 +395,8 @@ int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
 
 /* ---- the method table ---- */
 
-static const char *const param_keys[] = {"algorithm", "cell",   "collapse",   "tc",
-                                         "v_threshold", "fields", "sort_every", NULL};
+static const char *const param_keys[] = {"algorithm",  "cell",       "collapse",   "tc", "v_threshold",
+                                         "fields",     "sort_every", "tree_arity", NULL};
 
 static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
 {

@@ -13,13 +13,18 @@
 
 int edmd_events_init(gr_edmd *s, gr_err *err)
 {
-    int32_t P = 2; /* at least two leaves: every leaf has a sibling */
+    int K = 1 << s->tshift;
+    int32_t P = K; /* at least one full group of leaves */
     while ((size_t)P < s->n)
-        P *= 2;
+        P *= K;
     s->P = P;
-    s->lf = malloc((size_t)P * sizeof *s->lf);
+    /* groups of K siblings start on 64-byte lines */
+    size_t lb = ((size_t)P * sizeof *s->lf + 63) & ~(size_t)63;
+    s->lf = aligned_alloc(64, lb);
     s->emin = malloc((size_t)P * sizeof *s->emin);
-    s->node = calloc((size_t)P, sizeof *s->node);
+    s->node = aligned_alloc(64, lb);
+    if (s->node)
+        memset(s->node, 0, lb);
     s->ecap = 8;
     s->ev = malloc(s->n * (size_t)s->ecap * sizeof *s->ev);
     if (!s->lf || !s->emin || !s->node || !s->ev)
@@ -118,8 +123,11 @@ void edmd_list_remove(gr_edmd *s, int32_t i, int32_t k)
 }
 
 /* Nodes hold the winner's time beside its index, so a comparison reads the
- * sibling node (same cache line) instead of chasing the leaves at random. Ties
- * go to the lower index, so simultaneous events pop in a fixed order. */
+ * sibling nodes (one cache line) instead of chasing the leaves at random.
+ * Ties go to the lower index, so simultaneous events pop in a fixed order.
+ * K = 2 is the slides' complete binary tree (node k has children 2k, 2k+1);
+ * K = 4 elides every other level of it (children 4k..4k+3): half the
+ * levels, the same comparisons, half the cache lines per update. */
 static inline int earlier(double ta, int32_t a, double tb, int32_t b)
 {
     return ta < tb || (ta == tb && a < b);
@@ -129,10 +137,16 @@ void edmd_tree_update(gr_edmd *s, int32_t i)
 {
     edmd_node *node = s->node;
     const edmd_ev *lf = s->lf;
-    int32_t k = (s->P + i) >> 1;
-    int32_t a = i & ~1, b = a + 1;
-    int32_t w = earlier(lf[b].t, b, lf[a].t, a) ? b : a;
-    double tw = lf[w].t;
+    const int b = s->tshift, K = 1 << b;
+    int32_t k = (s->P + i) >> b;
+    int32_t g = (k << b) - s->P;
+    int32_t w = g;
+    double tw = lf[g].t;
+    for (int q = 1; q < K; q++)
+        if (lf[g + q].t < tw) { /* ties keep the lower index */
+            tw = lf[g + q].t;
+            w = g + q;
+        }
     for (;;) {
         if (node[k].i == w && node[k].t == tw)
             return; /* unchanged: nothing above changes either */
@@ -140,34 +154,43 @@ void edmd_tree_update(gr_edmd *s, int32_t i)
         node[k].i = w;
         if (k == 1)
             return;
-        const edmd_node *sib = &node[k ^ 1];
-        if (earlier(sib->t, sib->i, tw, w)) {
-            tw = sib->t;
-            w = sib->i;
-        }
-        k >>= 1;
+        const edmd_node *sib = &node[k & ~(K - 1)];
+        for (int q = 0; q < K; q++)
+            if (earlier(sib[q].t, sib[q].i, tw, w)) {
+                tw = sib[q].t;
+                w = sib[q].i;
+            }
+        k >>= b;
     }
 }
 
 void edmd_tree_build(gr_edmd *s)
 {
     int32_t P = s->P;
+    const int b = s->tshift, K = 1 << b;
     for (int32_t k = P - 1; k >= 1; k--) {
-        int32_t a, b;
-        double ta, tb;
-        if (2 * k >= P) {
-            a = 2 * k - P;
-            b = a + 1;
-            ta = s->lf[a].t;
-            tb = s->lf[b].t;
+        if (k > 1 && k < K)
+            continue; /* unused slots below the root's children */
+        int32_t c = k << b, w;
+        double tw;
+        if (c >= P) {
+            w = c - P;
+            tw = s->lf[w].t;
+            for (int q = 1; q < K; q++)
+                if (s->lf[c - P + q].t < tw) {
+                    tw = s->lf[c - P + q].t;
+                    w = c - P + q;
+                }
         } else {
-            a = s->node[2 * k].i;
-            b = s->node[2 * k + 1].i;
-            ta = s->node[2 * k].t;
-            tb = s->node[2 * k + 1].t;
+            w = s->node[c].i;
+            tw = s->node[c].t;
+            for (int q = 1; q < K; q++)
+                if (earlier(s->node[c + q].t, s->node[c + q].i, tw, w)) {
+                    tw = s->node[c + q].t;
+                    w = s->node[c + q].i;
+                }
         }
-        int bw = earlier(tb, b, ta, a);
-        s->node[k].i = bw ? b : a;
-        s->node[k].t = bw ? tb : ta;
+        s->node[k].i = w;
+        s->node[k].t = tw;
     }
 }
