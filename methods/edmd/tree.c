@@ -168,29 +168,32 @@ void edmd_tree_build(gr_edmd *s)
 {
     int32_t P = s->P;
     const int b = s->tshift, K = 1 << b;
-    for (int32_t k = P - 1; k >= 1; k--) {
-        if (k > 1 && k < K)
-            continue; /* unused slots below the root's children */
-        int32_t c = k << b, w;
-        double tw;
-        if (c >= P) {
-            w = c - P;
-            tw = s->lf[w].t;
-            for (int q = 1; q < K; q++)
-                if (s->lf[c - P + q].t < tw) {
-                    tw = s->lf[c - P + q].t;
-                    w = c - P + q;
-                }
-        } else {
-            w = s->node[c].i;
-            tw = s->node[c].t;
-            for (int q = 1; q < K; q++)
-                if (earlier(s->node[c + q].t, s->node[c + q].i, tw, w)) {
-                    tw = s->node[c + q].t;
-                    w = s->node[c + q].i;
-                }
+    /* level d holds nodes K^d .. 2 K^d - 1 (for K = 4 the gaps between
+     * levels are unused); the last level's children are the leaves */
+    int32_t first = P / K;
+    for (; first >= 1; first /= K) {
+        for (int32_t k = first; k < 2 * first; k++) {
+            int32_t c = k << b, w;
+            double tw;
+            if (c >= P) {
+                w = c - P;
+                tw = s->lf[w].t;
+                for (int q = 1; q < K; q++)
+                    if (s->lf[c - P + q].t < tw) {
+                        tw = s->lf[c - P + q].t;
+                        w = c - P + q;
+                    }
+            } else {
+                w = s->node[c].i;
+                tw = s->node[c].t;
+                for (int q = 1; q < K; q++)
+                    if (earlier(s->node[c + q].t, s->node[c + q].i, tw, w)) {
+                        tw = s->node[c + q].t;
+                        w = s->node[c + q].i;
+                    }
+            }
+            s->node[k].i = w;
+            s->node[k].t = tw;
         }
-        s->node[k].i = w;
-        s->node[k].t = tw;
     }
 }
