@@ -239,7 +239,7 @@ static int wall_pressure(const course_opts *o, unsigned long seed, long n, doubl
         return err->code;
     /* relax (the speeds reach Maxwell's law in a few collisions per disk),
      * then average over a time with many wall hits per disk */
-    double t_relax = 20 * L / v0, t_meas = (o->quick ? 200 : 2000) * L / v0;
+    double t_relax = 20 * L / v0, t_meas = (o->quick ? 200 : 500) * L / v0;
     int rc = gr_edmd_advance(s, t_relax, 0, err);
     if (!rc) {
         gr_edmd_reset_averages(s);
