@@ -241,6 +241,58 @@ static void inelastic_bookkeeping(void **st)
     gr_particles_free(p);
 }
 
+/* A binary mixture (diameters 1 and 1.4, masses 1 and 3) and a
+ * polydisperse gas: conservation, no overlap, and the naive algorithm's
+ * sequence of events. */
+static void mixtures(void **st)
+{
+    (void)st;
+    for (int k = 0; k < 2; k++) {
+        long n = 120;
+        double L = 24;
+        gr_scene sc = edmd_box(L, L, 0, 1.0);
+        gr_particles *p = edmd_lattice(n, 0, 0, L, L, 1.0, 0, 16 + k);
+        for (long i = 0; i < n; i++) {
+            double d = k == 0 ? (i % 3 == 0 ? 1.4 : 1.0) : 0.8 + 0.6 * fmod(0.618 * i, 1.0);
+            p->radius[i] = 0.5 * d;
+            p->mass[i] = k == 0 ? (i % 3 == 0 ? 3.0 : 1.0) : d * d;
+            p->inertia[i] = 0.5 * p->mass[i] * p->radius[i] * p->radius[i];
+            p->species[i] = k == 0 ? (i % 3 == 0) : 0;
+        }
+        double e0 = edmd_energy(p, 0);
+        sequence q[2];
+        for (int a = 0; a < 2; a++) {
+            gr_edmd *s = make(&sc, p, a ? GR_EDMD_NAIVE : GR_EDMD_TREE);
+            q[a] = (sequence){0, 5000, malloc(5000 * sizeof(long)), malloc(5000 * sizeof(long)),
+                              malloc(5000 * sizeof(double))};
+            gr_edmd_set_event_hook(s, record, &q[a]);
+            gr_err e = {0};
+            assert_int_equal(gr_edmd_advance(s, INFINITY, 5000, &e), GR_OK);
+            if (a == 0) {
+                gr_edmd_set_event_hook(s, NULL, NULL);
+                assert_int_equal(gr_edmd_advance(s, INFINITY, 200000, &e), GR_OK);
+                gr_particles *r = gr_particles_create(0, &e);
+                assert_int_equal(gr_edmd_snapshot(s, r, &e), GR_OK);
+                double de = fabs(edmd_energy(r, 0) - e0) / e0, ov = edmd_max_overlap(r, 0, 0);
+                printf("# %s: 2e5 collisions, |dE|/E = %.2e, overlap %.2e\n", k ? "polydisperse" : "binary mixture",
+                       de, ov);
+                assert_true(de < 1e-10);
+                assert_true(ov < 1e-9);
+                gr_particles_free(r);
+            }
+            gr_edmd_free(s);
+        }
+        long diff = -1;
+        for (long c = 0; c < 5000 && diff < 0; c++)
+            if (q[0].i[c] != q[1].i[c] || q[0].j[c] != q[1].j[c] || q[0].t[c] != q[1].t[c])
+                diff = c;
+        assert_int_equal(diff, -1);
+        for (int a = 0; a < 2; a++)
+            free(q[a].i), free(q[a].j), free(q[a].t);
+        gr_particles_free(p);
+    }
+}
+
 static void refuses_bad_starts(void **st)
 {
     (void)st;
@@ -276,6 +328,7 @@ int main(void)
         cmocka_unit_test(same_sequence_as_naive),
         cmocka_unit_test(resort_keeps_sequence),
         cmocka_unit_test(inelastic_bookkeeping),
+        cmocka_unit_test(mixtures),
         cmocka_unit_test(refuses_bad_starts),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
