@@ -10,7 +10,7 @@
 #define SCALARS(X)                                                                                 \
     X(t) X(t_prev_coll) X(stuck) X(cnt) X(steps) X(m_t) X(m_K) X(m_Krot) X(m_U) X(m_Smvy) X(m_Sm)  \
     X(a_t0) X(a_K) X(a_Krot) X(a_U) X(a_mom) X(a_virial) X(a_inj) X(a_diss) X(a_pair0) X(a_wall0) \
-    X(e_inj) X(e_diss) X(obs_t0) X(obs_mom) X(ecap) X(last_sort)
+    X(e_inj) X(e_diss) X(obs_t0) X(obs_mom) X(ecap) X(last_sort) X(outflow)
 
 #define SIZE_OF(f) +sizeof(((gr_edmd *)0)->f)
 enum { SCALAR_BYTES = 0 SCALARS(SIZE_OF) };
@@ -60,7 +60,8 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_f64(ck, "edmd.mass", s->m, n, err) ||
         gr_ckpt_put_f64(ck, "edmd.inertia", s->inertia, n, err) ||
         gr_ckpt_put_bytes(ck, "edmd.species", s->species, n * sizeof *s->species, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err))
+        gr_ckpt_put_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.gone", s->gone, n, err))
         return err->code;
     if (s->cacc && gr_ckpt_put_f64(ck, "edmd.fields", (const double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;
@@ -103,7 +104,8 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_f64(ck, "edmd.mass", s->m, n, err) ||
         gr_ckpt_get_f64(ck, "edmd.inertia", s->inertia, n, err) ||
         gr_ckpt_get_bytes(ck, "edmd.species", s->species, n * sizeof *s->species, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err))
+        gr_ckpt_get_bytes(ck, "edmd.order", s->order, n * sizeof *s->order, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.gone", s->gone, n, err))
         return err->code;
     if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;

@@ -8,28 +8,29 @@
 #include <math.h>
 
 #include "edmd_int.h"
+#include "init.h"
 
-/* Restitution after the guard against inelastic collapse. */
-static double guarded(gr_edmd *s, double base, double gn, double tl_i, double tl_j, double t)
+/* The guard against inelastic collapse: a guarded collision is elastic and
+ * smooth (no tangential impulse), so that neither the normal nor the
+ * tangential rule can drain energy in an accumulation of collisions (a
+ * rough grain wedged in a corner collapses through friction alone). */
+static int guarded(gr_edmd *s, int dissipative, double gn, double tl_i, double tl_j, double t)
 {
-    if (base >= 1.0)
-        return base;
+    if (!dissipative)
+        return 0;
+    int on = 0;
     switch (s->prm.collapse) {
     case GR_EDMD_COLLAPSE_TC:
-        if (t - tl_i < s->prm.tc || t - tl_j < s->prm.tc) {
-            s->cnt.elastic_guard++;
-            return 1.0;
-        }
-        return base;
+        on = t - tl_i < s->prm.tc || t - tl_j < s->prm.tc;
+        break;
     case GR_EDMD_COLLAPSE_THRESHOLD:
-        if (-gn < s->prm.v_threshold) {
-            s->cnt.elastic_guard++;
-            return 1.0;
-        }
-        return base;
+        on = -gn < s->prm.v_threshold;
+        break;
     default:
-        return base;
+        break;
     }
+    s->cnt.elastic_guard += (uint64_t)on;
+    return on;
 }
 
 /* Tangential impulse: sticking with restitution beta, capped by Coulomb. */
@@ -68,11 +69,12 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double vy0i = a->vy, vy0j = b->vy;
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0) {
-        double al = guarded(s, s->alpha, gn, s->tlast[i], s->tlast[j], t);
+        int guard = guarded(s, s->alpha < 1.0 || (s->rough && s->beta < 1.0), gn, s->tlast[i], s->tlast[j], t);
+        double al = guard ? 1.0 : s->alpha;
         double mred = mi * mj / (mi + mj);
         Jn = -(1.0 + al) * mred * gn;
         double tx = -ny, ty = nx;
-        if (s->rough) {
+        if (s->rough && !guard) {
             double gt = (b->vx - a->vx) * tx + (b->vy - a->vy) * ty - (s->w[j] * b->r + s->w[i] * a->r);
             double inv_mt = 1.0 / mi + 1.0 / mj + a->r * a->r / s->inertia[i] + b->r * b->r / s->inertia[j];
             Jt = tangential_impulse(s, gt, inv_mt, Jn);
@@ -137,6 +139,11 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     case GR_TOP: ny = -1.0; break;
     case GR_BOTTOM: ny = 1.0; break;
     default:
+        if (wall >= W_SEG) {
+            edmd_segment_normal(s, wall - W_SEG, a->x, a->y, &nx, &ny);
+            side = -1;
+            break;
+        }
         ny = 1.0;
         side = GR_BOTTOM;
         switch (s->floor) {
@@ -154,10 +161,11 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     double vy0 = a->vy;
     double Jn = 0.0;
     if (gn < 0.0) {
-        double e = guarded(s, s->alpha_w, gn, s->tlast[i], -EDMD_INF, t);
+        int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, s->tlast[i], -EDMD_INF, t);
+        double e = guard ? 1.0 : s->alpha_w;
         Jn = -(1.0 + e) * m * gn;
         double Jt = 0.0, tx = -ny, ty = nx;
-        if (s->rough) {
+        if (s->rough && !guard) {
             double gt = a->vx * tx + a->vy * ty - s->w[i] * a->r;
             Jt = tangential_impulse(s, gt, 1.0 / m + a->r * a->r / s->inertia[i], Jn);
             s->w[i] -= a->r * Jt / s->inertia[i];
@@ -178,8 +186,10 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
         s->e_diss -= dE;
         s->a_diss -= dE;
     }
-    s->a_mom[side] += Jn;
-    s->obs_mom += Jn;
+    if (side >= 0) {
+        s->a_mom[side] += Jn;
+        s->obs_mom += Jn;
+    }
     if (s->cacc) {
         /* the wall's share of the collisional stress and dissipation */
         edmd_cellacc *c = &s->cacc[a->cell];
@@ -195,4 +205,50 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     s->cnt.wall++;
     if (s->hook)
         s->hook(s->hook_user, 1, (long)s->id[i], -1 - wall, t);
+}
+
+/* A grain leaves through an open side or below the silo: it is reinserted
+ * at rest at a free spot of the silo's reinsertion band, or gone. */
+int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err)
+{
+    edmd_p *a = &s->p[i];
+    double m = s->m[i], g = s->g;
+    edmd_measure_advance(s, t);
+    if (s->cacc)
+        edmd_field_flush(s, i, t);
+    edmd_advance_p(a, t, g);
+    double krot = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
+    s->m_K -= 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + krot;
+    s->m_Krot -= krot;
+    s->m_U -= m * g * a->y;
+    s->m_Smvy -= m * a->vy;
+    s->m_Sm -= m;
+    s->outflow++;
+    a->ncol++;
+    s->tlast[i] = t;
+    edmd_cell_remove(s, i);
+    a->cell = -1;
+    s->gone[i] = 1;
+    if (s->hook)
+        s->hook(s->hook_user, 1, (long)s->id[i], -1 - W_EXIT, t);
+    if (!s->reinsert)
+        return GR_OK;
+    if (!s->scratch && !(s->scratch = gr_particles_create(s->n, err)))
+        return err->code;
+    if (gr_edmd_snapshot(s, s->scratch, err))
+        return err->code;
+    double x, y;
+    if (!gr_reinsert_spot(s->sc_silo, s->scratch, a->r, s->rng, 1000, &x, &y))
+        return GR_OK; /* no room: the grain stays out */
+    s->gone[i] = 0;
+    a->x = x;
+    a->y = y;
+    a->vx = a->vy = 0.0;
+    s->w[i] = 0.0;
+    a->t = t;
+    s->tacc[i] = t;
+    edmd_cell_insert(s, i, edmd_cell_of(s, x, y));
+    s->m_U += m * g * y;
+    s->m_Sm += m;
+    return GR_OK;
 }

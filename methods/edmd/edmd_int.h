@@ -17,14 +17,17 @@ enum { EV_PAIR = 0, EV_CROSS = 1, EV_WALL = 2 };
 enum { DIR_LEFT = 0, DIR_RIGHT = 1, DIR_DOWN = 2, DIR_UP = 3 };
 /* Wall ids: the four sides (GR_LEFT...) and the moving floor. */
 enum { W_FLOOR = 4, W_COUNT = 5 };
+/* Exits (a grain leaving through an open side or below the silo) are wall
+ * events W_EXIT; segment k of the scene is wall W_SEG + k. */
+enum { W_EXIT = 5, W_SEG = 8 };
 
 typedef struct {
     double t;
-    int32_t partner; /* >= 0: the other grain; < 0: -1 - (kind << 3 | direction or wall) */
+    int32_t partner; /* >= 0: the other grain; < 0: -1 - (direction or wall << 2 | kind) */
     uint32_t pncol;  /* partner's collision counter when predicted */
 } edmd_ev;
-static inline int edmd_ev_kind(const edmd_ev *e) { return e->partner >= 0 ? EV_PAIR : (-1 - e->partner) >> 3; }
-static inline int edmd_ev_sub(const edmd_ev *e) { return e->partner >= 0 ? e->partner : (-1 - e->partner) & 7; }
+static inline int edmd_ev_kind(const edmd_ev *e) { return e->partner >= 0 ? EV_PAIR : (-1 - e->partner) & 3; }
+static inline int edmd_ev_sub(const edmd_ev *e) { return e->partner >= 0 ? e->partner : (-1 - e->partner) >> 2; }
 
 /* The hot part of a particle: one cache line. Position and velocity are
  * those at time t, the particle's last state change (lazy advancement). */
@@ -69,6 +72,18 @@ struct gr_edmd {
     gr_floor_motion floor;   /* GR_FLOOR_FIXED: the bottom is an ordinary side */
     double fA, fomega, fV0;  /* amplitude, angular frequency, HF speed A omega */
     double rmax;
+    /* segments (silo walls, gates) and exits */
+    int nseg;
+    gr_segment *seg;
+    double *seg_len;
+    int32_t *cseg_start, *cseg; /* per cell, the segments within reach (CSR) */
+    double y_exit;           /* grains whose centre falls below leave; -INF: none */
+    int open[4];             /* open sides: grains crossing them leave */
+    int reinsert;
+    gr_scene *sc_silo;       /* the silo part of the scene, for gr_reinsert_spot */
+    uint8_t *gone;           /* per grain: left and not reinserted */
+    uint64_t outflow;
+    gr_particles *scratch;   /* snapshot for reinsertion */
 
     /* cells */
     int nx, ny;
@@ -181,6 +196,13 @@ int edmd_cell_of(const gr_edmd *s, double x, double y);
 int edmd_predict_all(gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
+int edmd_segments_setup(gr_edmd *s, const gr_scene *sc, gr_err *err);
+double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);
+double edmd_segment_time(const gr_edmd *s, int32_t i, int k, double t_from, double horizon);
+/* unit normal from segment k to a grain at (x, y), and its distance */
+double edmd_segment_normal(const gr_edmd *s, int k, double x, double y, double *nx, double *ny);
+/* collide.c: a grain leaves (reinserted at the top of the silo or gone) */
+int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err);
 
 /* collide.c: return the energy change of the event */
 void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
@@ -198,6 +220,8 @@ double edmd_kinetic(const gr_edmd *s, int32_t i, double t);
 int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
 int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
 int edmd_schedule_all(gr_edmd *s, gr_err *err);
+void edmd_cell_remove(gr_edmd *s, int32_t i);
+void edmd_cell_insert(gr_edmd *s, int32_t i, int c);
 
 /* sort.c: renumber grains along a Morton curve over the cells */
 int edmd_sort_setup(gr_edmd *s, gr_err *err);

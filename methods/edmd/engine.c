@@ -7,7 +7,7 @@
 
 #include "edmd_int.h"
 
-static void cell_remove(gr_edmd *s, int32_t i)
+void edmd_cell_remove(gr_edmd *s, int32_t i)
 {
     edmd_p *p = &s->p[i];
     int32_t pr = s->cprev[i], nx = p->cnext;
@@ -19,7 +19,7 @@ static void cell_remove(gr_edmd *s, int32_t i)
         s->cprev[nx] = pr;
 }
 
-static void cell_insert(gr_edmd *s, int32_t i, int c)
+void edmd_cell_insert(gr_edmd *s, int32_t i, int c)
 {
     edmd_p *p = &s->p[i];
     p->cell = c;
@@ -35,7 +35,7 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
     for (size_t i = 0; i < s->n; i++)
         edmd_list_clear(s, (int32_t)i);
     for (size_t i = 0; i < s->n; i++)
-        if (edmd_predict_all(s, (int32_t)i))
+        if (!s->gone[i] && edmd_predict_all(s, (int32_t)i))
             return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
     edmd_tree_build(s);
     return GR_OK;
@@ -47,7 +47,7 @@ static void do_cross(gr_edmd *s, int32_t i, int dir)
     if (s->cacc)
         edmd_field_flush(s, i, s->t);
     int ix = p->cell % s->nx, iy = p->cell / s->nx;
-    cell_remove(s, i);
+    edmd_cell_remove(s, i);
     switch (dir) {
     case DIR_RIGHT:
         if (++ix == s->nx) {
@@ -74,7 +74,7 @@ static void do_cross(gr_edmd *s, int32_t i, int dir)
         }
         break;
     }
-    cell_insert(s, i, ix + s->nx * iy);
+    edmd_cell_insert(s, i, ix + s->nx * iy);
 }
 
 static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *err)
@@ -144,10 +144,26 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             done++;
             s->steps++;
         } else if (kind == EV_WALL) {
-            if (check_collapse(s, i, -1, t, err))
+            int w = edmd_ev_sub(&ev);
+            if (w >= W_SEG && t >= s->seg[w - W_SEG].open_time) { /* the gate has opened */
+                s->cnt.stale++;
+                edmd_list_remove(s, i, e);
+                edmd_tree_update(s, i);
+                continue;
+            }
+            if (w != W_EXIT && check_collapse(s, i, -1, t, err))
                 return err->code;
             s->t = t;
-            edmd_collide_wall(s, i, edmd_ev_sub(&ev), t);
+            if (w == W_EXIT) {
+                if (edmd_exit(s, i, t, err))
+                    return err->code;
+                edmd_list_clear(s, i);
+                if (!s->gone[i] && edmd_predict_all(s, i))
+                    return OOM(s, err);
+                edmd_tree_update(s, i);
+                continue;
+            }
+            edmd_collide_wall(s, i, w, t);
             edmd_list_clear(s, i);
             if (edmd_predict_all(s, i))
                 return OOM(s, err);
@@ -181,6 +197,8 @@ int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         int32_t bi = -1, bj = -1;
         for (int32_t i = 0; i < n; i++)
             for (int32_t j = i + 1; j < n; j++) {
+                if (s->gone[i] || s->gone[j])
+                    continue;
                 double t = edmd_pair_time(s, &s->p[i], &s->p[j]);
                 if (t < best) {
                     best = t;
@@ -189,9 +207,13 @@ int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
                 }
             }
         for (int32_t i = 0; i < n; i++)
-            for (int w = 0; w < W_COUNT; w++) {
-                int rel = w == W_FLOOR ? s->floor != GR_FLOOR_FIXED
-                                       : s->hard[w] && !(w == GR_BOTTOM && s->floor != GR_FLOOR_FIXED);
+            for (int w = 0; w < W_SEG + s->nseg; w++) {
+                if (s->gone[i] || (w > W_EXIT && w < W_SEG))
+                    continue;
+                int rel = w == W_FLOOR  ? s->floor != GR_FLOOR_FIXED
+                          : w == W_EXIT ? s->y_exit > -EDMD_INF || s->open[0] || s->open[1] || s->open[3]
+                          : w >= W_SEG  ? 1
+                                        : s->hard[w] && !(w == GR_BOTTOM && s->floor != GR_FLOOR_FIXED);
                 if (!rel)
                     continue;
                 double t = edmd_wall_time(s, i, w, s->t, EDMD_INF);
@@ -210,7 +232,11 @@ int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         s->t = best;
         if (bj >= 0)
             edmd_collide_pair(s, bi, bj, best);
-        else
+        else if (-1 - bj == W_EXIT) {
+            if (edmd_exit(s, bi, best, err))
+                return err->code;
+            continue;
+        } else
             edmd_collide_wall(s, bi, -1 - bj, best);
         done++;
         s->steps++;

@@ -23,6 +23,8 @@ static void resync(gr_edmd *s)
     double K = 0, Kr = 0, U = 0, Sm = 0, Smvy = 0, t = s->t, g = s->g;
     for (size_t i = 0; i < s->n; i++) {
         const edmd_p *p = &s->p[i];
+        if (s->gone[i])
+            continue;
         K += edmd_kinetic(s, (int32_t)i, t);
         Kr += 0.5 * s->inertia[i] * s->w[i] * s->w[i];
         U += s->m[i] * g * edmd_y_at(p, t, g);
@@ -69,9 +71,9 @@ void edmd_measure_advance(gr_edmd *s, double t)
 void edmd_field_flush(gr_edmd *s, int32_t i, double t)
 {
     double d = t - s->tacc[i];
-    if (!(d > 0.0))
-        return;
     const edmd_p *p = &s->p[i];
+    if (!(d > 0.0) || p->cell < 0)
+        return;
     double g = s->g, m = s->m[i], vx = p->vx;
     double vy = edmd_vy_at(p, s->tacc[i], g);
     double d2 = d * d, d3 = d2 * d;

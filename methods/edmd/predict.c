@@ -105,6 +105,9 @@ int edmd_wall_relevant(const gr_edmd *s, int cell, int wall)
         return s->hard[GR_BOTTOM] && s->floor == GR_FLOOR_FIXED && iy == 0;
     case W_FLOOR:
         return s->floor != GR_FLOOR_FIXED && (s->ybot + iy * s->ch < s->fA + s->rmax || iy == 0);
+    case W_EXIT:
+        return (s->y_exit > -EDMD_INF && s->ybot + iy * s->ch <= s->y_exit) || (s->open[GR_LEFT] && ix == 0) ||
+               (s->open[GR_RIGHT] && ix == s->nx - 1) || (s->open[GR_TOP] && iy == s->ny - 1);
     default:
         return 0;
     }
@@ -115,15 +118,25 @@ typedef struct {
     const edmd_p *p;
     double g, A, om, M;
     int nev;
+    int point;       /* 1: h = |r(t) - E|^2 - R^2 for a segment end E */
+    double ex, ey;
 } floor_ctx;
 
 static double fh(floor_ctx *c, double t)
 {
     c->nev++;
+    if (c->point) {
+        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
+        return qx * qx + qy * qy - c->p->r * c->p->r;
+    }
     return edmd_y_at(c->p, t, c->g) - c->p->r - c->A * cos(c->om * t);
 }
 static double fdh(const floor_ctx *c, double t)
 {
+    if (c->point) {
+        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
+        return 2.0 * (qx * c->p->vx + qy * edmd_vy_at(c->p, t, c->g));
+    }
     return edmd_vy_at(c->p, t, c->g) + c->A * c->om * sin(c->om * t);
 }
 
@@ -155,6 +168,32 @@ static double first_root(floor_ctx *c, double a, double ha, double b, double hb,
     return first_root(c, m, hm, b, hb, depth + 1);
 }
 
+/* First contact in [a, b] of a grain with a segment end (ex, ey) under
+ * gravity (a quartic): bounded subdivision as for the floor, with the
+ * curvature bound of |r - E|^2 over the interval. */
+double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b)
+{
+    double g = s->g;
+    if (!(b > a))
+        return EDMD_INF;
+    double L = b - a, vya = edmd_vy_at(p, a, g), vyb = edmd_vy_at(p, b, g);
+    double vmax2 = p->vx * p->vx + fmax(vya * vya, vyb * vyb);
+    double qy = fabs(edmd_y_at(p, a, g) - ey) + fabs(vya) * L + 0.5 * g * L * L;
+    floor_ctx c = {p, g, 0, 0, 2.0 * (vmax2 + g * qy) + 1e-300, 0, 1, ex, ey};
+    double ha = fh(&c, a), dha = fdh(&c, a);
+    if (ha <= 0.0) {
+        if (dha <= 0.0)
+            return a;
+        a += dha / c.M;
+        if (a >= b)
+            return EDMD_INF;
+        ha = fh(&c, a);
+        if (ha <= 0.0)
+            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
+    }
+    return first_root(&c, a, ha, b, fh(&c, b), 0);
+}
+
 static double floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
 {
     double g = s->g, A = s->fA, om = s->fomega;
@@ -173,7 +212,7 @@ static double floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, doubl
         b = horizon;
     if (!(b > a))
         return EDMD_INF;
-    floor_ctx c = {p, g, A, om, g + A * om * om, 0};
+    floor_ctx c = {p, g, A, om, g + A * om * om, 0, 0, 0, 0};
     double ha = fh(&c, a), dha = fdh(&c, a);
     if (ha <= 0.0) {
         if (dha <= 0.0)
@@ -242,6 +281,18 @@ double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double hor
         return p->t + edmd_rise_time(s->H - p->r - p->y, p->vy, s->g);
     case GR_BOTTOM:
         return p->t + edmd_fall_time(p->y - p->r, p->vy, s->g);
+    case W_EXIT: {
+        double te = EDMD_INF;
+        if (s->y_exit > -EDMD_INF)
+            te = fmin(te, edmd_fall_time(p->y - s->y_exit, p->vy, s->g));
+        if (s->open[GR_LEFT] && p->vx < 0.0)
+            te = fmin(te, p->x > 0.0 ? p->x / -p->vx : 0.0);
+        if (s->open[GR_RIGHT] && p->vx > 0.0)
+            te = fmin(te, p->x < s->W ? (s->W - p->x) / p->vx : 0.0);
+        if (s->open[GR_TOP])
+            te = fmin(te, edmd_rise_time(s->H - p->y, p->vy, s->g));
+        return p->t + te;
+    }
     case W_FLOOR: {
         double a = t_from > p->t ? t_from : p->t;
         switch (s->floor) {
@@ -254,6 +305,8 @@ double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double hor
         }
     }
     default:
+        if (wall >= W_SEG)
+            return edmd_segment_time(s, i, wall - W_SEG, t_from, horizon);
         return EDMD_INF;
     }
 }
@@ -286,6 +339,14 @@ static int push_cross_and_walls(gr_edmd *s, int32_t i)
         double tw = edmd_wall_time(s, i, w, now, tc);
         if (tw <= tc && tw < EDMD_INF && edmd_ev_push(s, i, tw > now ? tw : now, EV_WALL, w, 0))
             return GR_ERUN;
+    }
+    if (s->nseg) {
+        int c = s->p[i].cell;
+        for (int32_t q = s->cseg_start[c]; q < s->cseg_start[c + 1]; q++) {
+            double tw = edmd_segment_time(s, i, s->cseg[q], now, tc);
+            if (tw <= tc && tw < EDMD_INF && edmd_ev_push(s, i, tw > now ? tw : now, EV_WALL, W_SEG + s->cseg[q], 0))
+                return GR_ERUN;
+        }
     }
     return GR_OK;
 }

@@ -76,6 +76,9 @@ int edmd_sort(gr_edmd *s, gr_err *err)
     for (size_t q = 0; q < nc; q++)
         for (int32_t i = s->chead[s->corder[q]]; i >= 0; i = s->p[i].cnext)
             perm[k++] = i;
+    for (size_t i = 0; i < n; i++) /* grains that left, in their order */
+        if (s->gone[i])
+            perm[k++] = (int32_t)i;
     for (size_t j = 0; j < n; j++)
         inv[perm[j]] = (int32_t)j;
     PERMUTE(s->p, edmd_p);
@@ -86,6 +89,7 @@ int edmd_sort(gr_edmd *s, gr_err *err)
     PERMUTE(s->tacc, double);
     PERMUTE(s->id, int64_t);
     PERMUTE(s->species, int32_t);
+    PERMUTE(s->gone, uint8_t);
     for (size_t j = 0; j < n; j++)
         s->order[j] = (size_t)inv[s->order[j]];
     /* cell lists in the new numbering, each in increasing index */
@@ -93,6 +97,9 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         s->chead[c] = -1;
     for (size_t j = n; j-- > 0;) {
         edmd_p *p = &s->p[j];
+        p->nev = 0;
+        if (s->gone[j])
+            continue;
         p->cnext = s->chead[p->cell];
         s->cprev[j] = -1;
         if (p->cnext >= 0)

@@ -80,6 +80,13 @@ void gr_edmd_free(gr_edmd *s)
     free(s->node);
     free(s->cacc);
     free(s->species);
+    free(s->seg);
+    free(s->seg_len);
+    free(s->cseg_start);
+    free(s->cseg);
+    free(s->gone);
+    free(s->sc_silo);
+    gr_particles_free(s->scratch);
     gr_rng_free(s->rng);
     free(s);
 }
@@ -117,6 +124,22 @@ static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
             return gr_fail(err, GR_EINPUT, "%s: [floor] needs amplitude >= 0 and omega > 0", sc->path);
         if (s->floor == GR_FLOOR_SINE || s->floor == GR_FLOOR_SAWTOOTH)
             s->ybot = -s->fA;
+    }
+    for (int k = 0; k < 4; k++)
+        s->open[k] = sc->side[k] == GR_BC_OPEN;
+    s->y_exit = -EDMD_INF;
+    if (sc->silo.present)
+        s->y_exit = sc->silo.exit_below;
+    else if (s->open[GR_BOTTOM])
+        s->y_exit = s->ybot;
+    s->reinsert = sc->silo.present && sc->silo.reinsert;
+    if (s->reinsert) {
+        /* gr_reinsert_spot reads the silo only: keep a copy without pointers */
+        if (!(s->sc_silo = calloc(1, sizeof *s->sc_silo)))
+            return gr_fail(err, GR_ERUN, "edmd: out of memory");
+        s->sc_silo->silo = sc->silo;
+        s->sc_silo->width = sc->width;
+        s->sc_silo->height = sc->height;
     }
     for (int k = 0; k < sc->nsegments; k++)
         if (sc->segments[k].vibrating)
@@ -163,7 +186,8 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
     s->id = calloc(n, sizeof *s->id);
     s->order = calloc(n, sizeof *s->order);
     s->species = calloc(n, sizeof *s->species);
-    if (!s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->cprev || !s->id || !s->order ||
+    s->gone = calloc(n, 1);
+    if (!s->gone || !s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->cprev || !s->id || !s->order ||
         !s->species)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
     size_t k = 0;
@@ -292,7 +316,7 @@ static int setup_cells(gr_edmd *s, gr_err *err)
     if (!s->wmask)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu cells", nc);
     for (size_t c = 0; c < nc; c++)
-        for (int w = 0; w < W_COUNT; w++)
+        for (int w = 0; w <= W_EXIT; w++)
             if (edmd_wall_relevant(s, (int)c, w))
                 s->wmask[c] |= (uint8_t)(1u << w);
     if (s->prm.algorithm == GR_EDMD_TREE) {
@@ -324,6 +348,8 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
         rc = setup_particles(s, init, err);
     if (!rc)
         rc = setup_cells(s, err);
+    if (!rc)
+        rc = edmd_segments_setup(s, sc, err);
     if (!rc)
         rc = check_start(s, err);
     if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
@@ -376,16 +402,17 @@ int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
     for (size_t k = 0; k < s->n; k++) {
         size_t i = s->order[k];
         const edmd_p *p = &s->p[i];
-        double x = edmd_x_at(p, t), y = edmd_y_at(p, t, g);
+        int gone = s->gone[i];
+        double x = gone ? p->x : edmd_x_at(p, t), y = gone ? p->y : edmd_y_at(p, t, g);
         if (s->periodic_x)
             x -= s->W * floor(x / s->W);
         if (s->periodic_y)
             y -= Ly * floor((y - s->ybot) / Ly);
-        long j = gr_particles_push(out, x, y, p->r, s->m[i], 0, s->species[i], err);
+        long j = gr_particles_push(out, x, y, p->r, s->m[i], gone ? GR_PF_GONE : 0, s->species[i], err);
         if (j < 0)
             return err->code;
-        out->vx[j] = p->vx;
-        out->vy[j] = edmd_vy_at(p, t, g);
+        out->vx[j] = gone ? 0.0 : p->vx;
+        out->vy[j] = gone ? 0.0 : edmd_vy_at(p, t, g);
         out->omega[j] = s->w[i];
         out->inertia[j] = s->inertia[i];
         out->id[j] = s->id[i];
@@ -430,7 +457,7 @@ static int m_observe(void *st, gr_obs *o, gr_err *err)
     gr_particles_free(p);
     o->t = s->t;
     o->steps = s->steps;
-    o->outflow = 0;
+    o->outflow = s->outflow;
     double len = 0.0, Ly = s->H - s->ybot;
     for (int k = 0; k < 4; k++)
         if (s->hard[k])
@@ -450,7 +477,8 @@ const gr_method_type gr_edmd_method = {
     .name = "edmd",
     .summary = "event-driven inelastic hard disks (cells, event tree, exact averages)",
     .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_PERIODIC | GR_FEAT_VIBRATING_FLOOR |
-                GR_FEAT_HF_FLOOR | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE,
+                GR_FEAT_HF_FLOOR | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE | GR_FEAT_SEGMENTS | GR_FEAT_ORIFICE |
+                GR_FEAT_OPEN_SIDE | GR_FEAT_REINSERT,
     .param_keys = param_keys,
     .create = m_create,
     .advance = m_advance,

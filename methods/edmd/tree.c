@@ -97,7 +97,7 @@ int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uin
     int32_t k = p->nev++;
     edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap + k;
     v->t = t;
-    v->partner = kind == EV_PAIR ? partner : -1 - (kind << 3 | partner);
+    v->partner = kind == EV_PAIR ? partner : -1 - (partner << 2 | kind);
     v->pncol = pncol;
     if (t < s->lf[i].t) {
         s->lf[i] = *v;
