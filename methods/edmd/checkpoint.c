@@ -80,9 +80,10 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
                        "(or fields differ): not the same scene",
                        (unsigned long long)dims[0], (unsigned long long)dims[2], n, nc);
     if (dims[1] != (uint64_t)s->ecap) {
-        edmd_ev *ev = realloc(s->ev, n * (size_t)dims[1] * sizeof *ev);
+        edmd_ev *ev = edmd_ev_alloc(n * (size_t)dims[1]);
         if (!ev)
             return gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists");
+        free(s->ev);
         s->ev = ev;
         s->ecap = (int32_t)dims[1];
     }

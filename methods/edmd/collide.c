@@ -63,9 +63,11 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double nx = dx / dist, ny = dy / dist;
     double gn = (b->vx - a->vx) * nx + (b->vy - a->vy) * ny;
     double mi = s->m[i], mj = s->m[j];
-    double e0 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double f0 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + 0.5 * s->inertia[j] * s->w[j] * s->w[j];
-    double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i] + 0.5 * s->inertia[j] * s->w[j] * s->w[j];
+    /* spins enter only for rough disks */
+    double ri0 = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
+    double rj0 = s->rough ? 0.5 * s->inertia[j] * s->w[j] * s->w[j] : 0.0;
+    double e0 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + ri0;
+    double f0 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + rj0;
     double vy0i = a->vy, vy0j = b->vy;
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0) {
@@ -87,12 +89,13 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
         b->vx += Jx / mj;
         b->vy += Jy / mj;
     }
-    double e1 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double f1 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + 0.5 * s->inertia[j] * s->w[j] * s->w[j];
-    double kr1 = 0.5 * s->inertia[i] * s->w[i] * s->w[i] + 0.5 * s->inertia[j] * s->w[j] * s->w[j];
+    double ri1 = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
+    double rj1 = s->rough ? 0.5 * s->inertia[j] * s->w[j] * s->w[j] : 0.0;
+    double e1 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + ri1;
+    double f1 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + rj1;
     double dE = (e1 - e0) + (f1 - f0);
     s->m_K += dE;
-    s->m_Krot += kr1 - kr0;
+    s->m_Krot += (ri1 + rj1) - (ri0 + rj0);
     s->m_Smvy += mi * (a->vy - vy0i) + mj * (b->vy - vy0j);
     s->e_diss -= dE;
     s->a_diss -= dE;
@@ -101,7 +104,8 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
         edmd_measure_pair(s, i, j, -(Jn * nx + Jt * -ny), -(Jn * ny + Jt * nx), e1 - e0, f1 - f0, -dx, -dy);
     a->ncol++;
     b->ncol++;
-    s->tlast[i] = s->tlast[j] = t;
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
+        s->tlast[i] = s->tlast[j] = t;
     s->cnt.pair++;
     if (s->hook) {
         long ia = (long)s->id[i], ib = (long)s->id[j];

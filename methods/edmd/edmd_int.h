@@ -181,6 +181,7 @@ static inline double edmd_fall_time(double dy, double vy, double g)
 
 /* tree.c: event pool, per-particle lists, complete binary tree */
 int edmd_events_init(gr_edmd *s, gr_err *err);
+edmd_ev *edmd_ev_alloc(size_t count);
 int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol);
 void edmd_list_clear(gr_edmd *s, int32_t i);
 void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);

@@ -176,7 +176,10 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
     if (n >= (size_t)INT32_MAX / 2)
         return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
     s->n = n;
-    s->p = calloc(n, sizeof *s->p);
+    /* one grain per 64-byte line */
+    s->p = aligned_alloc(64, (n * sizeof *s->p + 63) & ~(size_t)63);
+    if (s->p)
+        memset(s->p, 0, n * sizeof *s->p);
     s->w = calloc(n, sizeof *s->w);
     s->m = calloc(n, sizeof *s->m);
     s->inertia = calloc(n, sizeof *s->inertia);

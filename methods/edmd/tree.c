@@ -11,6 +11,12 @@
 
 #include "edmd_int.h"
 
+/* Slabs start on 64-byte lines (a slab of 8 events is two lines). */
+edmd_ev *edmd_ev_alloc(size_t count)
+{
+    return aligned_alloc(64, (count * sizeof(edmd_ev) + 63) & ~(size_t)63);
+}
+
 int edmd_events_init(gr_edmd *s, gr_err *err)
 {
     int K = 1 << s->tshift;
@@ -26,7 +32,7 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
     if (s->node)
         memset(s->node, 0, lb);
     s->ecap = 8;
-    s->ev = malloc(s->n * (size_t)s->ecap * sizeof *s->ev);
+    s->ev = edmd_ev_alloc(s->n * (size_t)s->ecap);
     if (!s->lf || !s->emin || !s->node || !s->ev)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event calendar of %zu grains", s->n);
     for (int32_t i = 0; i < P; i++) {
@@ -45,11 +51,12 @@ static int grow(gr_edmd *s)
     size_t n = s->n, c = (size_t)s->ecap;
     if (c > 4096)
         return GR_ERUN;
-    edmd_ev *ev = realloc(s->ev, n * 2 * c * sizeof *ev);
+    edmd_ev *ev = edmd_ev_alloc(n * 2 * c);
     if (!ev)
         return GR_ERUN;
-    for (size_t i = n; i-- > 0;)
-        memmove(ev + i * 2 * c, ev + i * c, (size_t)s->p[i].nev * sizeof *ev);
+    for (size_t i = 0; i < n; i++)
+        memcpy(ev + i * 2 * c, s->ev + i * c, (size_t)s->p[i].nev * sizeof *ev);
+    free(s->ev);
     s->ev = ev;
     s->ecap = (int32_t)(2 * c);
     return GR_OK;
