@@ -75,6 +75,12 @@ cmd_demo() {
 
 cmd_bench() {
     cmd_build
+    # Peers are heavy and only the comparison needs them: install on demand.
+    if [[ " $* " == *" --peer lammps "* || " $* " == *" --peer=lammps "* ]] && ! command -v lmp >/dev/null; then
+        say "installing the LAMMPS peer (Debian package lammps)"
+        as_root apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive as_root apt-get install -y -qq lammps >&2
+    fi
     "$BUILD/experiments/grano" bench "$@"
 }
 
@@ -86,7 +92,8 @@ usage: ./grano.sh COMMAND
   demo            build, then run the silo discharge demo (results/demo.h5, results/demo.png)
   test [--slow]   build, then the meson suites (unit, method, experiment; slow with --slow),
                   then the unit suite again under address and undefined-behaviour sanitizers
-  bench ARGS      build, then grano bench ARGS (e.g. ./grano.sh bench dem)
+  bench ARGS      build, then grano bench ARGS (e.g. ./grano.sh bench dem); with
+                  --peer lammps, Debian's lammps package is installed if missing
   run ARGS        build, then grano ARGS (e.g. ./grano.sh run run experiments/scenes/box.ini)
 USAGE
 }
