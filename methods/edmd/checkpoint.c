@@ -51,7 +51,6 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
         gr_ckpt_put_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_save(s->rng, ck, "edmd.rng", err))
         return err->code;
@@ -97,7 +96,6 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.emin", s->emin, (size_t)s->P * sizeof *s->emin, err) ||
         gr_ckpt_get_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_load(s->rng, ck, "edmd.rng", err))
         return err->code;

@@ -34,7 +34,8 @@ static inline int edmd_ev_sub(const edmd_ev *e) { return e->partner >= 0 ? e->pa
 typedef struct {
     double x, y, vx, vy, t, r;
     int32_t cell;    /* event cell, -1 when not in a cell (naive) */
-    int32_t nev;     /* events in its slab */
+    int16_t nev;     /* events in its slab */
+    int16_t emin;    /* slot of its earliest event, -1 if none */
     int32_t cnext;   /* next particle in its cell */
     uint32_t ncol;   /* state changes so far (collision counter) */
 } edmd_p;
@@ -98,7 +99,6 @@ struct gr_edmd {
     edmd_ev *ev;             /* n slabs of ecap events */
     int32_t ecap;
     edmd_ev *lf;             /* leaves: a copy of each grain's earliest event */
-    int32_t *emin;           /* slot of the earliest event, -1 if none */
     edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
     int32_t P;               /* leaves (power of K >= n) */
     int tshift;              /* log2 of the tree's branching K (1: binary) */

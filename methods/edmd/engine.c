@@ -117,7 +117,7 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         if (!(t <= t_end) || t == EDMD_INF)
             break;
         edmd_ev ev = s->lf[i];
-        int32_t e = s->emin[i];
+        int32_t e = s->p[i].emin;
         /* the slabs are rewritten next: start fetching them now */
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
         if (ev.partner >= 0)

@@ -107,10 +107,10 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         s->chead[p->cell] = (int32_t)j;
         p->nev = 0;
     }
-    for (int32_t i = 0; i < s->P; i++) {
+    for (int32_t i = 0; i < s->P; i++)
         s->lf[i].t = EDMD_INF;
-        s->emin[i] = -1;
-    }
+    for (size_t j = 0; j < n; j++)
+        s->p[j].emin = -1;
     free(perm);
     free(inv);
     free(buf);

@@ -76,7 +76,6 @@ void gr_edmd_free(gr_edmd *s)
     free(s->corder);
     free(s->ev);
     free(s->lf);
-    free(s->emin);
     free(s->node);
     free(s->cacc);
     free(s->species);

@@ -27,20 +27,19 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
     /* groups of K siblings start on 64-byte lines */
     size_t lb = ((size_t)P * sizeof *s->lf + 63) & ~(size_t)63;
     s->lf = aligned_alloc(64, lb);
-    s->emin = malloc((size_t)P * sizeof *s->emin);
     s->node = aligned_alloc(64, lb);
     if (s->node)
         memset(s->node, 0, lb);
     s->ecap = 8;
     s->ev = edmd_ev_alloc(s->n * (size_t)s->ecap);
-    if (!s->lf || !s->emin || !s->node || !s->ev)
+    if (!s->lf || !s->node || !s->ev)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event calendar of %zu grains", s->n);
-    for (int32_t i = 0; i < P; i++) {
+    for (int32_t i = 0; i < P; i++)
         s->lf[i] = (edmd_ev){EDMD_INF, 0, 0};
-        s->emin[i] = -1;
-    }
-    for (size_t i = 0; i < s->n; i++)
+    for (size_t i = 0; i < s->n; i++) {
         s->p[i].nev = 0;
+        s->p[i].emin = -1;
+    }
     edmd_tree_build(s);
     return GR_OK;
 }
@@ -49,7 +48,7 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
 static int grow(gr_edmd *s)
 {
     size_t n = s->n, c = (size_t)s->ecap;
-    if (c > 4096)
+    if (c >= 16384) /* slots must fit the 16-bit counters */
         return GR_ERUN;
     edmd_ev *ev = edmd_ev_alloc(n * 2 * c);
     if (!ev)
@@ -73,7 +72,7 @@ static void rescan(gr_edmd *s, int32_t i)
             be = k;
         }
     s->lf[i] = be >= 0 ? v[be] : (edmd_ev){EDMD_INF, 0, 0};
-    s->emin[i] = be;
+    s->p[i].emin = (int16_t)be;
 }
 
 /* Drop the pair events of a full slab whose partner has changed state
@@ -89,7 +88,7 @@ static void compact(gr_edmd *s, int32_t i)
         }
         v[m++] = v[k];
     }
-    s->p[i].nev = m;
+    s->p[i].nev = (int16_t)m;
     rescan(s, i);
 }
 
@@ -108,7 +107,7 @@ int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uin
     v->pncol = pncol;
     if (t < s->lf[i].t) {
         s->lf[i] = *v;
-        s->emin[i] = k;
+        s->p[i].emin = (int16_t)k;
     }
     return GR_OK;
 }
@@ -117,7 +116,7 @@ void edmd_list_clear(gr_edmd *s, int32_t i)
 {
     s->p[i].nev = 0;
     s->lf[i].t = EDMD_INF;
-    s->emin[i] = -1;
+    s->p[i].emin = -1;
 }
 
 /* Remove slot k (the last slot moves into it) and find the new earliest. */
