@@ -116,12 +116,15 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         double t = s->node[1].t;
         if (!(t <= t_end) || t == EDMD_INF)
             break;
-        edmd_ev ev = s->lf[i];
-        int32_t e = s->p[i].emin;
-        /* the slabs are rewritten next: start fetching them now */
+        /* the grain, its leaf and its slab are all needed: fetch them at once */
+        __builtin_prefetch(&s->p[i], 1);
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
-        if (ev.partner >= 0)
+        edmd_ev ev = s->lf[i];
+        if (ev.partner >= 0) {
+            __builtin_prefetch(&s->p[ev.partner], 1);
             __builtin_prefetch(s->ev + (size_t)ev.partner * (size_t)s->ecap, 1);
+        }
+        int32_t e = s->p[i].emin;
         int kind = edmd_ev_kind(&ev);
         if (kind == EV_PAIR) {
             int32_t j = ev.partner;
