@@ -93,11 +93,14 @@ void gr_edmd_free(gr_edmd *s)
 static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
 {
     const gr_material *mt = &sc->mat;
-    if (mt->tangential != GR_TANG_NONE && mt->tangential != GR_TANG_COULOMB)
+    if (mt->tangential != GR_TANG_NONE && mt->tangential != GR_TANG_COULOMB) {
+        char where[1200];
+        gr_scene_where(sc, "material", "tangential", where, sizeof where);
         return gr_fail(err, GR_EINPUT,
                        "%s: method 'edmd' has no viscous, regularised or spring tangential law: "
                        "rough hard disks use [material] tangential_restitution and mu",
-                       sc->path);
+                       where);
+    }
     s->W = sc->width;
     s->H = sc->height;
     s->g = sc->gravity;
