@@ -181,12 +181,14 @@ static inline double edmd_fall_time(double dy, double vy, double g)
 
 /* tree.c: event pool, per-particle lists, complete binary tree */
 int edmd_events_init(gr_edmd *s, gr_err *err);
+void *edmd_big_alloc(size_t bytes);
 edmd_ev *edmd_ev_alloc(size_t count);
 int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol);
 void edmd_list_clear(gr_edmd *s, int32_t i);
 void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);
 void edmd_tree_update(gr_edmd *s, int32_t i);
 void edmd_tree_build(gr_edmd *s);
+void edmd_tree_prefetch(const gr_edmd *s, int32_t i);
 static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1].i; }
 
 /* predict.c */
@@ -195,6 +197,7 @@ double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double hor
 double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir);
 int edmd_cell_of(const gr_edmd *s, double x, double y);
 int edmd_predict_all(gr_edmd *s, int32_t i);
+void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
 int edmd_segments_setup(gr_edmd *s, const gr_scene *sc, gr_err *err);

@@ -179,7 +179,7 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
         return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
     s->n = n;
     /* one grain per 64-byte line */
-    s->p = aligned_alloc(64, (n * sizeof *s->p + 63) & ~(size_t)63);
+    s->p = edmd_big_alloc(n * sizeof *s->p);
     if (s->p)
         memset(s->p, 0, n * sizeof *s->p);
     s->w = calloc(n, sizeof *s->w);
