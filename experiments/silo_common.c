@@ -52,6 +52,9 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
     char open[64] = "";
     if (isfinite(open_time))
         snprintf(open, sizeof open, "open_time = %.17g\n", open_time);
+    char band[160] = "";
+    if (c->reinsert && c->band_hi > c->band_lo)
+        snprintf(band, sizeof band, "reinsert_bottom = %.17g\nreinsert_top = %.17g\n", c->band_lo, c->band_hi);
     char hop[256] = "hopper = no\n";
     if (c->hopper)
         snprintf(hop, sizeof hop, "hopper = yes\nhopper_outlet = %.17g\nhopper_bottom = %.17g\nhopper_top = %.17g\n",
@@ -70,13 +73,13 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
              "gamma_t = 300\nmu = 0.5\n"
              "[species]\ndiameter = 1\ncount = %ld\n"
              "[silo]\nwidth = %.17g\nheight = %.17g\nbase = %.17g\norifice = %.17g\n%s"
-             "walls = grains\nexit_below = %.17g\n%sreinsert = %s\n"
+             "walls = grains\nexit_below = %.17g\n%sreinsert = %s\n%s"
              "[init]\nkind = lattice\nregion = 1 %.17g %.17g %.17g\nspacing = %.17g\n"
              "velocity = gaussian\nv0 = 1\n"
              "[dem]\ndt = %.17g\nthreads = 1\nmax_overlap = 0.25\n"
              "[run]\nuntil = 1\n",
              (unsigned long long)c->seed, W + 2, dom_h, c->n, W, H, b, c->orifice, open, b - 1.5, hop,
-             c->reinsert ? "yes" : "no", r0, W + 1, r1, SPACING, c->dt);
+             c->reinsert ? "yes" : "no", band, r0, W + 1, r1, SPACING, c->dt);
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
     gr_scene *sc = gr_scene_parse(text, "silo (generated)", names, err);
@@ -209,7 +212,10 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
 int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **scp, void **state, gr_err *err)
 {
     const gr_method_type *m = gr_method_find("dem");
-    gr_scene *sc = silo_scene(c, 0.0, err);
+    silo_cfg co = *c;
+    if (co.reinsert)
+        co.band_lo = s->top + 1.0, co.band_hi = s->top + 5.0;
+    gr_scene *sc = silo_scene(&co, 0.0, err);
     if (!sc)
         return err->code;
     int rc = gr_method_create(m, sc, s->p, state, err);
@@ -452,6 +458,12 @@ int silo_sweep_run(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
                         rc = gr_fail(err, GR_ERUN, "unit %s failed: %s", lab,
                                      slot[u].msg[0] ? slot[u].msg
                                                     : (WIFSIGNALED(status) ? "killed by a signal" : "no message"));
+                    }
+                } else if (access(paths[u], F_OK) != 0) {
+                    if (!rc) {
+                        char lab[256];
+                        label(u, ctx, lab, sizeof lab);
+                        rc = gr_fail(err, GR_ERUN, "unit %s ended without writing %s", lab, paths[u]);
                     }
                 } else
                     slot[u].progress = 1;

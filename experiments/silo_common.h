@@ -30,6 +30,7 @@ typedef struct {
     double dt;           /* DEM time step */
     double ke_tol;       /* settled when kinetic energy per grain < ke_tol (m g d) */
     double fill_max;     /* give up settling at this simulated time */
+    double band_lo, band_hi; /* reinsertion band; 0: the scene default */
 } silo_cfg;
 
 /* The thesis silo (section 3.1) at full size, orifice D. */
@@ -60,7 +61,10 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
 void silo_settled_free(silo_settled *s);
 
 /* A DEM state from the settled grains whose orifice opens at its first step
- * (its clock restarts at 0, so times are times after opening). */
+ * (its clock restarts at 0, so times are times after opening). Grains that
+ * leave are reinserted (when c->reinsert) in a band from 1 d to 5 d above
+ * the settled packing's highest grain, so that they land on its surface
+ * and the height stays constant. */
 int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, void **state,
               gr_err *err);
 

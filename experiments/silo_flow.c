@@ -28,7 +28,7 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     snprintf(buf, n,
-             "silo-flow 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g ke=%.17g "
+             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g ke=%.17g "
              "discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g",
              b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
              (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->discard, c->block, c->nblocks,

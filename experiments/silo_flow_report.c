@@ -17,6 +17,16 @@ enum { FIT_BEV, FIT_SIG_ALL, FIT_SIG_SMALL, FIT_SIG_LARGE, FIT_DENS, FIT_MOD, NF
 enum { C_D, C_W, C_WERR, C_PERBLOCK, C_SIGW, C_PHI, C_PHIERR, C_BULK, C_NBLK, C_KAPPA, NCOL };
 static const char *const flow_cols = "D,W,W_err,grains_per_block,sigma_w,packing,packing_err,bulk_packing,blocks,kappa_w";
 
+/* A number gnuplot reads back: NaN for failed fits. */
+static const char *gp_num(char *buf, double v)
+{
+    if (isfinite(v))
+        snprintf(buf, 32, "%.10g", v);
+    else
+        snprintf(buf, 32, "NaN");
+    return buf;
+}
+
 static int put(gr_h5md *h, const char *name, size_t rows, size_t cols, const char *cols_csv,
                const char *desc, const double *v, gr_err *err)
 {
@@ -89,8 +99,12 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     for (size_t o = 0; o < n; o++)
         if (tab[o * NCOL + C_D] > Dmax)
             Dmax = tab[o * NCOL + C_D], Wmax = tab[o * NCOL + C_W];
-    fprintf(gp, "rho = %.10g\nC = %.10g\nk = %.10g\nB(D) = D > k ? C*rho*(D-k)**1.5 : 0\n", rho, fb[0], fb[2]);
-    fprintf(gp, "Cm = %.10g\nam = %.10g\nbm = %.10g\nM(D) = Cm*rho*(1-am*exp(-bm*D))*D**1.5\n", fm[0], fm[2], fm[4]);
+    char b1[32], b2[32], b3[32], b4[32];
+    fprintf(gp, "rho = %s\nC = %s\nk = %s\nB(D) = D > k ? C*rho*(D-k)**1.5 : 0\n", gp_num(b1, rho),
+            gp_num(b2, fb[0]), gp_num(b3, fb[2]));
+    fprintf(gp, "Cm = %s\nam = %s\nbm = %s\nM(D) = Cm*rho*(1-am*exp(-bm*D))*D**1.5\n", gp_num(b1, fm[0]),
+            gp_num(b2, fm[2]), gp_num(b3, fm[4]));
+    (void)b4;
     fprintf(gp, "set multiplot layout 1,2 title 'Flow rate against orifice width (thesis fig. 4.1); a block of %ld steps is %g {/Symbol t}'\n",
             c->block, bt);
     fprintf(gp, "set xlabel 'D / d'\nset ylabel 'W / (grains {/Symbol t}^{-1})'\nset key top left\nset xrange [0:*]\nset yrange [0:*]\n");
@@ -174,8 +188,10 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     fprintf(gp, "$t << EOD\n");
     for (size_t o = 0; o < n; o++)
         fprintf(gp, "%g %g %g\n", tab[o * NCOL + C_D], tab[o * NCOL + C_W], tab[o * NCOL + C_WERR]);
-    fprintf(gp, "EOD\nrho = %.10g\nC = %.10g\nk = %.10g\nB(D) = D > k ? C*rho*(D-k)**1.5 : 1/0\n", rho, fb[0], fb[2]);
-    fprintf(gp, "Cm = %.10g\nam = %.10g\nbm = %.10g\nM(D) = Cm*rho*(1-am*exp(-bm*D))*D**1.5\n", fm[0], fm[2], fm[4]);
+    fprintf(gp, "EOD\nrho = %s\nC = %s\nk = %s\nB(D) = D > k ? C*rho*(D-k)**1.5 : 1/0\n", gp_num(b1, rho),
+            gp_num(b2, fb[0]), gp_num(b3, fb[2]));
+    fprintf(gp, "Cm = %s\nam = %s\nbm = %s\nM(D) = Cm*rho*(1-am*exp(-bm*D))*D**1.5\n", gp_num(b1, fm[0]),
+            gp_num(b2, fm[2]), gp_num(b3, fm[4]));
     fprintf(gp, "set multiplot layout 1,2 title 'Flow with the modified law W = C {/Symbol r}(1 - a e^{-bD}) g^{1/2} D^{3/2} (thesis eqs. 4.14-4.15, fig. 4.6)'\n");
     fprintf(gp, "set xlabel 'D / d'\nset ylabel 'W / (grains {/Symbol t}^{-1})'\nset key top left\n");
     for (int lg = 0; lg < 2; lg++) {
@@ -224,7 +240,7 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
     double *cnt = malloc(nb * nr * sizeof *cnt), *phi = malloc(nb * nr * sizeof *phi);
     double *cost = calloc(n * nr * 7, sizeof *cost);
     double fits[NFITS * 9], pdf[NB * 5], pstat[2][4];
-    char fitmsg[512] = "";
+    char fitmsg[1024] = "";
     int rc = tab && wser && dev[0] && dev[1] && cnt && phi && cost ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
     double par[10] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
                       (double)c->discard, (double)c->block, (double)c->nblocks, c->lift, (double)c->seed};
@@ -322,12 +338,14 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
         ok = gr_fit_density_law(D, P, Pe, n, pd0, &f, &e) == GR_OK;
         if (!ok) /* the block errors can be far too small: unweighted */
             ok = gr_fit_density_law(D, P, NULL, n, pd0, &f, &e) == GR_OK;
-        if (!ok && summary && nsum)
-            snprintf(fitmsg, sizeof fitmsg, "  density-law fit failed: %.400s\n", e.msg);
+        if (!ok)
+            snprintf(fitmsg, sizeof fitmsg, "  density-law fit failed: %.300s\n", e.msg);
         fit_row(&f, ok, fits + FIT_DENS * 9);
         double a0 = ok && f.p[1] > 0 ? f.p[1] : 0.3, b0 = ok && f.p[2] > 0 ? f.p[2] : 0.3;
         double p0[3] = {Cb, a0, b0};
         ok = gr_fit_beverloo_mod(&bp, D, W, We, n, p0, &f, &e) == GR_OK;
+        if (!ok)
+            snprintf(fitmsg + strlen(fitmsg), sizeof fitmsg - strlen(fitmsg), "  modified-law fit failed: %.300s\n", e.msg);
         fit_row(&f, ok, fits + FIT_MOD * 9);
         /* fluctuation histograms against eq. 4.4 and a Gaussian */
         for (int g = 0; g < 2 && !rc; g++) {
