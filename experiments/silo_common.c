@@ -12,6 +12,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <gsl/gsl_sort_double.h>
+
 #include "fields.h"
 #include "init.h"
 #include "progress.h"
@@ -94,6 +96,23 @@ double silo_top(const gr_particles *p)
         if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && p->y[i] > top)
             top = p->y[i];
     return top;
+}
+
+double silo_surface(const gr_particles *p, size_t k, double *buf)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
+            buf[m++] = p->y[i];
+    if (!m)
+        return -INFINITY;
+    k = k < m ? k : m;
+    double *top = buf + m; /* room for k more */
+    gsl_sort_largest(top, k, buf, 1, m);
+    double s = 0;
+    for (size_t i = 0; i < k; i++)
+        s += top[i];
+    return s / (double)k;
 }
 
 double silo_packing(const gr_particles *p, double x0, double y0, double x1, double y1)

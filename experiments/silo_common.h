@@ -73,6 +73,10 @@ int silo_advance(void *state, uint64_t steps, gr_err *err);
 
 /* Highest mobile grain of a snapshot (-INFINITY if none). */
 double silo_top(const gr_particles *p);
+/* Height of the free surface: the mean height of the k highest mobile
+ * grains (one layer for k = the silo width), robust to a loose grain perched
+ * on top. */
+double silo_surface(const gr_particles *p, size_t k, double *buf);
 /* Mean packing fraction of the mobile grains over a rectangle (exact disk
  * areas). */
 double silo_packing(const gr_particles *p, double x0, double y0, double x1, double y1);

@@ -31,7 +31,7 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
-                     "silo-start 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g "
+                     "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g "
                      "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu lags=",
                      b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
                      (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->fs, c->min_steps,
@@ -268,7 +268,15 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
             rc = err->code;
     /* the window is centred in the silo across and in the settled packing's height */
     double win[2] = {xl + 0.5 * (W - c->window), base + 0.5 * (set.top - base) - 0.5 * c->window};
-    double top0 = set.top;
+    /* the thesis follows the discharge "hasta que el grano más alto cae dos
+     * veces su diámetro"; the highest single grain is often a loose one
+     * perched on the surface that rolls off at once, so the surface is the
+     * mean height of the highest layer (as many grains as the silo is wide) */
+    size_t klayer = (size_t)lround(cfg.width);
+    double *ybuf = malloc(((size_t)cfg.n + klayer + 1) * sizeof *ybuf);
+    if (!ybuf && !rc)
+        rc = gr_fail(err, GR_ERUN, "out of memory");
+    double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0, top = top0;
     long f = 0, step = 0;
     while (!rc) {
         if ((rc = m->snapshot(st, snap, err)))
@@ -301,7 +309,8 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         }
         if (rc)
             break;
-        double top = silo_top(snap);
+        if (f % 10 == 0)
+            top = silo_surface(snap, klayer, ybuf);
         if (f % 10 == 0 && nts + 3 <= tscap) {
             gr_obs ob;
             gr_obs_clear(&ob);
@@ -321,7 +330,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)
-        rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
+        set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
     for (size_t j = 0; j < c->ntimes; j++)
         gr_field_free(fld[j]);
     if (st)
@@ -329,6 +338,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     gr_scene_free(sc);
     gr_particles_free(snap);
     free(ts);
+    free(ybuf);
     silo_settled_free(&set);
     ustate_free(&u);
     return rc;
@@ -342,7 +352,8 @@ static void usage(FILE *f)
         "usage: grano silo-start [options]\n\n"
         "The start of a silo discharge (thesis chapter 3) on the soft DEM backend:\n"
         "fill through a hopper, settle, open the orifice, and follow the grains until\n"
-        "the top grain has fallen two diameters, for each orifice and realisation.\n"
+        "the surface (its highest layer) has fallen two diameters, for each orifice\n"
+        "and realisation.\n"
         "Writes DIR/silo-start.h5, .dat tables and the figures fig3_1 ... fig3_6.\n\n"
         "options:\n"
         "  -D, --orifices LIST  orifice widths in d, comma separated (default 3.8,11)\n"
