@@ -9,6 +9,9 @@
 #include "rng.h"
 
 #define EDMD_INF INFINITY
+/* Trees with at least this many leaves (and their grains) outgrow the
+ * caches: prefetching pays from there on. */
+#define EDMD_PREFETCH_P 32768
 
 /* Event kinds; `partner` holds the other particle, the crossing direction
  * or the wall id. */

@@ -119,6 +119,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         /* the grain, its leaf and its slab are all needed: fetch them at once */
         __builtin_prefetch(&s->p[i], 1);
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
+        if (s->P >= EDMD_PREFETCH_P)
+            edmd_tree_prefetch(s, i);
         edmd_ev ev = s->lf[i];
         if (ev.partner >= 0) {
             __builtin_prefetch(&s->p[ev.partner], 1);
@@ -136,7 +138,6 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             }
             if (check_collapse(s, i, j, t, err))
                 return err->code;
-            edmd_tree_prefetch(s, i);
             edmd_tree_prefetch(s, j);
             edmd_prefetch_block(s, i);
             edmd_prefetch_block(s, j);

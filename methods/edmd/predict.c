@@ -392,10 +392,8 @@ static int block_cells(const gr_edmd *s, int32_t i, int cells[9])
  * step of each in turn, puts their misses in flight together; the pair
  * loops that follow then read cached lines. Read-only, so it changes no
  * result. A few steps cover the lists of cells about a diameter wide. */
-void edmd_prefetch_block(const gr_edmd *s, int32_t i)
+static void walk_side_by_side(const gr_edmd *s, const int *cells, int ns)
 {
-    int cells[9];
-    int ns = block_cells(s, i, cells);
     int32_t cur[9];
     for (int k = 0; k < ns; k++)
         cur[k] = s->chead[cells[k]];
@@ -412,6 +410,12 @@ void edmd_prefetch_block(const gr_edmd *s, int32_t i)
     /* the loads feed nothing: keep the compiler from dropping them */
     for (int k = 0; k < ns; k++)
         __asm__ volatile("" : : "r"(cur[k]));
+}
+
+void edmd_prefetch_block(const gr_edmd *s, int32_t i)
+{
+    int cells[9];
+    walk_side_by_side(s, cells, block_cells(s, i, cells));
 }
 
 /* All events of particle i (its list is empty): crossing, walls, pairs in
@@ -433,8 +437,6 @@ int edmd_predict_all(gr_edmd *s, int32_t i)
  * neighbours (events with the others are already in some list). */
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
 {
-    if (push_cross_and_walls(s, i))
-        return GR_ERUN;
     int c = s->p[i].cell, ix = c % s->nx, iy = c / s->nx;
     int seen[3], ns = 0;
     for (int k = -1; k <= 1; k++) {
@@ -453,8 +455,13 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
         if (dup)
             continue;
         seen[ns++] = cc;
-        if (push_pairs_in_cell(s, i, cc))
-            return GR_ERUN;
     }
+    if (s->P >= EDMD_PREFETCH_P)
+        walk_side_by_side(s, seen, ns); /* overlaps the crossing and wall times */
+    if (push_cross_and_walls(s, i))
+        return GR_ERUN;
+    for (int k = 0; k < ns; k++)
+        if (push_pairs_in_cell(s, i, seen[k]))
+            return GR_ERUN;
     return GR_OK;
 }
