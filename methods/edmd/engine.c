@@ -138,9 +138,11 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             }
             if (check_collapse(s, i, j, t, err))
                 return err->code;
-            edmd_tree_prefetch(s, j);
-            edmd_prefetch_block(s, i);
-            edmd_prefetch_block(s, j);
+            if (s->P >= EDMD_PREFETCH_P) {
+                edmd_tree_prefetch(s, j);
+                edmd_prefetch_block(s, i);
+                edmd_prefetch_block(s, j);
+            }
             s->t = t;
             edmd_collide_pair(s, i, j, t);
             edmd_list_clear(s, i);
