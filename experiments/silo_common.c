@@ -422,7 +422,7 @@ int silo_sweep_run(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
             continue;
         sprintf(paths[u], "%s/%s-%s.part", sw->dir, sw->prefix, lab);
         keyf(u, ctx, keys[u], 2048);
-        if (silo_part_key_matches(paths[u], keys[u])) {
+        if (!sw->force && silo_part_key_matches(paths[u], keys[u])) {
             slot[u].progress = 1;
             (*done_before)++;
         } else {

@@ -96,6 +96,7 @@ typedef struct {
     const char *prefix;  /* part file names: <dir>/<prefix>-<unit label>.part */
     int progress;        /* progress line on a terminal */
     const char *what;    /* progress label */
+    int force;           /* redo every unit, whatever parts exist */
 } silo_sweep;
 
 /* label(unit) -> file-name label; key(unit) -> parameter key string. */

@@ -257,14 +257,7 @@ int cmd_silo_flow(int argc, char **argv)
     char **parts = calloc(nu, sizeof *parts);
     if (!parts)
         return 1;
-    if (force)
-        for (size_t u = 0; u < nu; u++) {
-            char lab[256], p[1400];
-            sf_label(u, &c, lab, sizeof lab);
-            snprintf(p, sizeof p, "%s/flow-%s.part", pdir, lab);
-            remove(p);
-        }
-    silo_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices"};
+    silo_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
     double t0 = gr_wall_seconds();
     int rc = silo_sweep_run(&sw, sf_unit, sf_label, sf_key, &c, parts, &reused, &e);
     double t_units = gr_wall_seconds() - t0;

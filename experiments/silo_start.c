@@ -504,14 +504,7 @@ int cmd_silo_start(int argc, char **argv)
     char **parts = calloc(nu, sizeof *parts);
     if (!parts)
         return 1;
-    if (force)
-        for (size_t u = 0; u < nu; u++) {
-            char lab[256], p[1400];
-            ss_label(u, &c, lab, sizeof lab);
-            snprintf(p, sizeof p, "%s/start-%s.part", pdir, lab);
-            remove(p);
-        }
-    silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges"};
+    silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges", force};
     double t0 = gr_wall_seconds();
     int rc = silo_sweep_run(&sw, ss_unit, ss_label, ss_key, &c, parts, &reused, &e);
     double t_units = gr_wall_seconds() - t0;
