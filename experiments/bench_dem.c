@@ -85,6 +85,7 @@ typedef struct {
     double lammps_rate;
     double lammps_seconds;
     double lammps_cpu_rate;
+    double rate1;         /* --scaling: one thread, timed interleaved with T */
 } bed_result;
 
 static int lammps_run(const gr_particles *p, double width, double height, long steps, double skin,
@@ -157,7 +158,32 @@ static int lammps_run(const gr_particles *p, double width, double height, long s
     return GR_OK;
 }
 
-static int bed(long n, long steps, long settle, long threads, double skin, const char *peer,
+/* One thread and T threads timed in alternating rounds on the same bed, so
+ * that a change of machine load hits both alike (the runs are bit-identical
+ * whatever the thread count, so switching mid-run changes nothing else). */
+static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_err *err)
+{
+    enum { ROUNDS = 4 };
+    double sec[2] = {0, 0};
+    long per = steps / ROUNDS > 0 ? steps / ROUNDS : 1;
+    for (int k = 0; k < ROUNDS; k++) {
+        for (int v = 0; v < 2; v++) {
+            d->par.threads = v ? threads : 1;
+            double t0 = bench_dem_now();
+            for (long s = 0; s < per; s++)
+                if (gr_dem_step(d, err))
+                    return err->code;
+            sec[v] += bench_dem_now() - t0;
+        }
+    }
+    d->par.threads = threads;
+    r->seconds = sec[1];
+    r->rate = (double)d->nmobile * (double)(per * ROUNDS) / sec[1];
+    r->rate1 = (double)d->nmobile * (double)(per * ROUNDS) / sec[0];
+    return GR_OK;
+}
+
+static int bed(long n, long steps, long settle, long threads, int scaling, double skin, const char *peer,
                const char *dir, bed_result *r, gr_err *err)
 {
     double width, height;
@@ -187,6 +213,12 @@ static int bed(long n, long steps, long settle, long threads, double skin, const
         rc = gr_dem_step(d, err);
     if (rc)
         goto done;
+    if (scaling) {
+        r->n = n;
+        r->bytes_per_grain = gr_dem_memory(d) / (double)d->n;
+        rc = time_scaling(d, steps, threads, r, err);
+        goto done;
+    }
     uint64_t b0 = d->builds;
     double t0 = bench_dem_now(), c0 = bench_dem_cpu();
     for (long k = 0; k < steps && !rc; k++)
@@ -434,13 +466,15 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: grano bench dem [--n N[,N...]] [--steps S] [--settle S] [--threads T] [--skin S]\n"
-            "                       [--peer lammps] [--dir DIR]\n"
+            "                       [--scaling] [--peer lammps] [--dir DIR]\n"
             "       grano bench dem --accuracy [--quick] [--dir DIR]\n\n"
             "Throughput (mobile particle-steps per second) on a dense settled bed of unit\n"
             "grains in a box of wall grains: Hertz kn = 1e5, gamma_n = 100, regularised\n"
             "friction gamma_t = 300, mu = 0.5, dt = 1.25e-4 (the thesis). Defaults: N =\n"
             "5000,20000,80000, 2000 timed steps after 1000 settling steps, 1 thread, skin 0.2.\n"
             "--peer lammps runs the same bed in Debian's lmp and prints the ratio.\n"
+            "--scaling times 1 and T threads in alternating rounds on the same bed and\n"
+            "prints the speedup (T from --threads, default 2 with --scaling).\n"
             "--accuracy sweeps dt for each integrator against the CVODE reference and writes\n"
             "DIR/dem_accuracy.dat and DIR/dem_accuracy.png (default DIR: .).\n");
 }
@@ -452,7 +486,7 @@ int bench_dem(int argc, char **argv)
     long steps = 2000, settle = 1000, threads = 1;
     double skin = 0.2;
     const char *peer = NULL, *dir = ".";
-    int accuracy = 0, quick = 0;
+    int accuracy = 0, quick = 0, scaling = 0, threads_given = 0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -461,6 +495,8 @@ int bench_dem(int argc, char **argv)
             return 0;
         } else if (!strcmp(a, "--accuracy")) {
             accuracy = 1;
+        } else if (!strcmp(a, "--scaling")) {
+            scaling = 1;
         } else if (!strcmp(a, "--quick")) {
             quick = 1;
         } else if (v && !strcmp(a, "--n")) {
@@ -478,6 +514,7 @@ int bench_dem(int argc, char **argv)
             settle = atol(argv[++i]);
         } else if (v && !strcmp(a, "--threads")) {
             threads = atol(argv[++i]);
+            threads_given = 1;
         } else if (v && !strcmp(a, "--skin")) {
             skin = atof(argv[++i]);
         } else if (v && !strcmp(a, "--peer")) {
@@ -498,6 +535,12 @@ int bench_dem(int argc, char **argv)
         fprintf(stderr, "grano bench dem: --steps and --threads must be positive, --settle and --skin not negative\n");
         return 2;
     }
+    if (scaling && !threads_given)
+        threads = 2;
+    if (scaling && (threads < 2 || peer)) {
+        fprintf(stderr, "grano bench dem: --scaling compares 1 thread with --threads T >= 2, without --peer\n");
+        return 2;
+    }
     if (mkdir(dir, 0777) && errno != EEXIST) {
         fprintf(stderr, "grano bench dem: cannot create %s: %s\n", dir, strerror(errno));
         return 2;
@@ -511,9 +554,17 @@ int bench_dem(int argc, char **argv)
     }
     for (int k = 0; k < nn; k++) {
         bed_result r = {0};
-        if (bed(ns[k], steps, settle, threads, skin, peer, dir, &r, &err)) {
+        if (bed(ns[k], steps, settle, threads, scaling, skin, peer, dir, &r, &err)) {
             fprintf(stderr, "grano bench dem: n = %ld: %s\n", ns[k], err.msg);
             return err.code;
+        }
+        if (scaling) {
+            printf("dem n=%ld: %.4g particle-steps/s on 1 thread, %.4g on %ld (alternating rounds)\n", r.n,
+                   r.rate1, r.rate, threads);
+            printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g threads=%ld speedup=%.3f\n", r.n,
+                   steps, r.rate, threads, r.rate / r.rate1);
+            fflush(stdout);
+            continue;
         }
         printf("dem n=%ld threads=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second x threads), %.1f bytes per grain\n",
                r.n, threads, r.seconds, r.rate, r.cpu_rate, r.bytes_per_grain);

@@ -147,7 +147,7 @@ typedef struct gr_dem {
 
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
  * the number of threads). */
-#define DEM_BLOCK 4096
+#define DEM_BLOCK 512
 
 /* Parameters: defaults, then the scene's [dem] section; checks the time
  * step against the contact time (GR_EINPUT naming the key). */

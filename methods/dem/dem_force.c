@@ -35,22 +35,42 @@ typedef struct {
     double *sel;        /* elastic energy */
     long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
     double *sseg;       /* per strip, per segment: fx, fy, fn */
+    size_t sstride;     /* doubles per strip in sseg: whole cache lines */
     int hist_full;      /* set when a grain ran out of history slots */
     long full_i;
 } dem_ctx;
 
-DEM_INLINE void track(dem_ctx *c, int s, double rel, long i, long j, double el)
+/* Per-strip tallies live on the strip's stack while it runs: strips of one
+ * colour run at once, and shared per-strip slots touched at every contact
+ * would put the threads' cache lines in a tug of war. */
+typedef struct {
+    double smax, sel;
+    long si, sj;
+    int s;
+} dem_acc;
+
+static inline dem_acc acc_start(int s) { return (dem_acc){-INFINITY, 0.0, -1, -1, s}; }
+
+static inline void acc_store(dem_ctx *c, const dem_acc *a)
 {
-    c->sel[s] += el;
-    if (rel > c->smax[s]) {
-        c->smax[s] = rel;
-        c->sarg_i[s] = i;
-        c->sarg_j[s] = j;
+    c->smax[a->s] = a->smax;
+    c->sel[a->s] = a->sel;
+    c->sarg_i[a->s] = a->si;
+    c->sarg_j[a->s] = a->sj;
+}
+
+DEM_INLINE void track(dem_acc *a, double rel, long i, long j, double el)
+{
+    a->sel += el;
+    if (rel > a->smax) {
+        a->smax = rel;
+        a->si = i;
+        a->sj = j;
     }
 }
 
 /* Pair contact i-j (j = i + separation dx, dy) if they overlap. */
-DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, int s, size_t i, size_t j,
+DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t i, size_t j,
                      double dx, double dy, double *fxi, double *fyi, double *tqi)
 {
     double ri = c->rad[i], rj = c->rad[j], rs = ri + rj;
@@ -95,11 +115,11 @@ DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, int s, size_t i, si
         *tqi -= Ft * ri;
     }
     double dm = 2.0 * (ri < rj ? ri : rj);
-    track(c, s, xi / dm, (long)i, (long)j, el);
+    track(a, xi / dm, (long)i, (long)j, el);
 }
 
 /* Contacts of grain i with segment k. */
-DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, int s, size_t i, int k,
+DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t i, int k,
                      double *fxi, double *fyi, double *tqi)
 {
     const gr_dem_seg *sg = &c->d->seg[k];
@@ -147,11 +167,11 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, int s, size_t i, in
     *fyi += Fy;
     if (TL != GR_TANG_NONE)
         *tqi -= Ft * r;
-    double *sf = c->sseg + ((size_t)s * (size_t)c->d->nseg + (size_t)k) * 3;
+    double *sf = c->sseg + (size_t)a->s * c->sstride + (size_t)k * 3;
     sf[0] -= Fx;
     sf[1] -= Fy;
     sf[2] += Fx * nx + Fy * ny;
-    track(c, s, xi / (2.0 * r), (long)i, -1 - k, el);
+    track(a, xi / (2.0 * r), (long)i, -1 - k, el);
 }
 
 DEM_INLINE void add_i(dem_ctx *c, size_t i, double fxi, double fyi, double tqi, const int TL)
@@ -168,6 +188,7 @@ DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
     const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j;
     const int32_t *restrict sgs = d->sg_start, *restrict sgj = d->sg_j;
     int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
+    dem_acc acc = acc_start(s);
     for (int32_t i = i0; i < i1; i++) {
         double fxi = 0, fyi = 0, tqi = 0;
         double xi = c->x[i], yi = c->y[i];
@@ -176,13 +197,14 @@ DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
             double dx = c->x[j] - xi, dy = c->y[j] - yi;
             if (c->Lx > 0) dx = gr_dem_image(dx, c->Lx);
             if (c->Ly > 0) dy = gr_dem_image(dy, c->Ly);
-            pair(c, NL, TL, s, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
+            pair(c, NL, TL, &acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
         }
         for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
             if (c->seg_on[sgj[k]])
-                wall(c, NL, TL, s, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
+                wall(c, NL, TL, &acc, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
         add_i(c, (size_t)i, fxi, fyi, tqi, TL);
     }
+    acc_store(c, &acc);
 }
 
 /* Forward neighbour cells of (cx, cy): east, and the three above. */
@@ -211,6 +233,7 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
 {
     gr_dem *d = c->d;
     const gr_dem_cells *g = &d->cells;
+    dem_acc acc = acc_start(s);
     for (int row = d->strips.row0[s]; row < d->strips.row0[s + 1]; row++) {
         for (int cx = 0; cx < g->nx; cx++) {
             int32_t cell = row * g->nx + cx;
@@ -226,7 +249,7 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                         continue;
                     double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
                     double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
-                    pair(c, NL, TL, s, i, j, dx, dy, &fxi, &fyi, &tqi);
+                    pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                 }
                 for (int q = 0; q < m; q++) {
                     for (int32_t b = g->start[nbc[q]]; b < g->start[nbc[q] + 1]; b++) {
@@ -235,22 +258,24 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                             continue;
                         double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
                         double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
-                        pair(c, NL, TL, s, i, j, dx, dy, &fxi, &fyi, &tqi);
+                        pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                     }
                 }
                 if (!fi)
                     for (int32_t k = g->cell_seg_start[cell]; k < g->cell_seg_start[cell + 1]; k++)
                         if (c->seg_on[g->cell_seg[k]])
-                            wall(c, NL, TL, s, i, g->cell_seg[k], &fxi, &fyi, &tqi);
+                            wall(c, NL, TL, &acc, i, g->cell_seg[k], &fxi, &fyi, &tqi);
                 add_i(c, i, fxi, fyi, tqi, TL);
             }
         }
     }
+    acc_store(c, &acc);
 }
 
 DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
 {
     gr_dem *d = c->d;
+    dem_acc acc = acc_start(0);
     for (size_t i = 0; i < d->n; i++) {
         double fxi = 0, fyi = 0, tqi = 0;
         int fi = (c->flags[i] & GR_PF_FIXED) != 0;
@@ -259,14 +284,15 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
                 continue;
             double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
             double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
-            pair(c, NL, TL, 0, i, j, dx, dy, &fxi, &fyi, &tqi);
+            pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
         }
         if (!fi)
             for (int k = 0; k < d->nseg; k++)
                 if (c->seg_on[k])
-                    wall(c, NL, TL, 0, i, k, &fxi, &fyi, &tqi);
+                    wall(c, NL, TL, &acc, i, k, &fxi, &fyi, &tqi);
         add_i(c, i, fxi, fyi, tqi, TL);
     }
+    acc_store(c, &acc);
 }
 
 DEM_INLINE void run_loops(dem_ctx *c, const int NL, const int TL, int mode)
@@ -328,10 +354,13 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
     }
     int ns = mode == GR_DEM_NB_BRUTE ? 1 : d->strips.n;
     int nseg = d->nseg;
-    size_t nsf = (size_t)ns * (size_t)(nseg > 0 ? nseg : 1) * 3;
+    size_t sstride = ((size_t)(nseg > 0 ? nseg : 1) * 3 + 7) & ~(size_t)7;
+    size_t nsf = (size_t)ns * sstride;
     double *smax = malloc((size_t)ns * sizeof *smax), *sel = calloc((size_t)ns, sizeof *sel);
     long *si = malloc((size_t)ns * sizeof *si), *sj = malloc((size_t)ns * sizeof *sj);
-    double *sseg = calloc(nsf, sizeof *sseg);
+    double *sseg = aligned_alloc(64, nsf * sizeof *sseg);
+    if (sseg)
+        memset(sseg, 0, nsf * sizeof *sseg);
     double *soff = calloc((size_t)nseg + 1, sizeof *soff), *svy = calloc((size_t)nseg + 1, sizeof *svy);
     unsigned char *son = calloc((size_t)nseg + 1, 1);
     if (!smax || !sel || !si || !sj || !sseg || !soff || !svy || !son) {
@@ -366,7 +395,7 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
         .seg_off = soff, .seg_vy = svy, .seg_on = son,
-        .smax = smax, .sel = sel, .sarg_i = si, .sarg_j = sj, .sseg = sseg,
+        .smax = smax, .sel = sel, .sarg_i = si, .sarg_j = sj, .sseg = sseg, .sstride = sstride,
     };
     dispatch(&c, mode);
     if (d->ext_fx) {
@@ -389,7 +418,7 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         for (int k = 0; k < nseg; k++) {
             double a = 0, b = 0, cfn = 0;
             for (int s = 0; s < ns; s++) {
-                const double *sf = sseg + ((size_t)s * (size_t)nseg + (size_t)k) * 3;
+                const double *sf = sseg + (size_t)s * sstride + (size_t)k * 3;
                 a += sf[0];
                 b += sf[1];
                 cfn += sf[2];
