@@ -170,9 +170,8 @@ static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_e
         for (int v = 0; v < 2; v++) {
             d->par.threads = v ? threads : 1;
             double t0 = bench_dem_now();
-            for (long s = 0; s < per; s++)
-                if (gr_dem_step(d, err))
-                    return err->code;
+            if (gr_dem_advance(d, INFINITY, (uint64_t)per, err))
+                return err->code;
             sec[v] += bench_dem_now() - t0;
         }
     }
@@ -208,9 +207,9 @@ static int bed(long n, long steps, long settle, long threads, int scaling, doubl
         rc = err->code;
         goto done;
     }
-    /* settle (untimed), then time the steps */
-    for (long k = 0; k < settle && !rc; k++)
-        rc = gr_dem_step(d, err);
+    /* settle (untimed), then time the steps, as a run takes them */
+    if (settle > 0)
+        rc = gr_dem_advance(d, INFINITY, (uint64_t)settle, err);
     if (rc)
         goto done;
     if (scaling) {
@@ -221,8 +220,7 @@ static int bed(long n, long steps, long settle, long threads, int scaling, doubl
     }
     uint64_t b0 = d->builds;
     double t0 = bench_dem_now(), c0 = bench_dem_cpu();
-    for (long k = 0; k < steps && !rc; k++)
-        rc = gr_dem_step(d, err);
+    rc = gr_dem_advance(d, INFINITY, (uint64_t)steps, err);
     double t1 = bench_dem_now(), c1 = bench_dem_cpu();
     if (rc)
         goto done;

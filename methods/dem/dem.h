@@ -143,6 +143,7 @@ typedef struct gr_dem {
     int f_zeroed;            /* the predictor already zeroed the new forces */
     double *blk;             /* per-block partial results */
     size_t blk_cap;
+    struct gr_dem_eval *ev;  /* force evaluation in progress (dem_force.c) */
 } gr_dem;
 
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
@@ -196,6 +197,14 @@ static inline int gr_dem_colours(const gr_dem *d) { return d->cells.py ? 3 : 2; 
  * spring's time step (0: do not stretch). Fills seg_force. */
 int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
                    double *seg_out, gr_err *err);
+/* The same in three parts, for a step that runs in one parallel region:
+ * begin (one thread), every colour in turn (all threads of the region, or
+ * one thread outside any), end (one thread: sums, overlap check). */
+int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err);
+int gr_dem_eval_ncolours(const gr_dem *d);
+void gr_dem_eval_colour(gr_dem *d, int col);
+int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);
+void gr_dem_eval_free(struct gr_dem_eval *ev);
 int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
 /* Drop the grains with gone[i] != 0 (recorded in d->gone), keeping order. */
 int gr_dem_prepare(gr_dem *d, gr_err *err);

@@ -36,6 +36,7 @@ typedef struct {
     long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
     double *sseg;       /* per strip, per segment: fx, fy, fn */
     size_t sstride;     /* doubles per strip in sseg: whole cache lines */
+    int ncol;           /* colours of strips */
     int hist_full;      /* set when a grain ran out of history slots */
     long full_i;
 } dem_ctx;
@@ -295,42 +296,34 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
     acc_store(c, &acc);
 }
 
-DEM_INLINE void run_loops(dem_ctx *c, const int NL, const int TL, int mode)
+/* One colour's strips, shared among the threads of the enclosing parallel
+ * region (an orphaned worksharing loop: run by one thread outside any
+ * region, in the same order). */
+DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, int col)
 {
-    gr_dem *d = c->d;
-    if (mode == GR_DEM_NB_BRUTE) {
-        all_brute(c, NL, TL);
-        return;
-    }
-    int ns = d->strips.n, ncol = ns > 1 ? gr_dem_colours(d) : 1;
-    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
-    if (nth > 1 && ns > 1) {
-#pragma omp parallel num_threads(nth)
-        for (int col = 0; col < ncol; col++) {
+    int ns = c->d->strips.n, ncol = c->ncol;
 #pragma omp for schedule(dynamic, 1)
-            for (int s = col; s < ns; s += ncol) {
-                if (mode == GR_DEM_NB_VERLET)
-                    strip_verlet(c, NL, TL, s);
-                else
-                    strip_cells(c, NL, TL, s);
-            }
-        }
-    } else {
-        /* the same colours in the same order, without the runtime's cost */
-        for (int col = 0; col < ncol; col++) {
-            for (int s = col; s < ns; s += ncol) {
-                if (mode == GR_DEM_NB_VERLET)
-                    strip_verlet(c, NL, TL, s);
-                else
-                    strip_cells(c, NL, TL, s);
-            }
-        }
+    for (int s = col; s < ns; s += ncol) {
+        if (mode == GR_DEM_NB_VERLET)
+            strip_verlet(c, NL, TL, s);
+        else
+            strip_cells(c, NL, TL, s);
     }
 }
 
-static void dispatch(dem_ctx *c, int mode)
+DEM_INLINE void run_colour(dem_ctx *c, const int NL, const int TL, int mode, int col)
 {
-#define CASE_T(NL, TL) case TL: run_loops(c, NL, TL, mode); break;
+    if (mode == GR_DEM_NB_BRUTE) {
+#pragma omp single
+        all_brute(c, NL, TL);
+        return;
+    }
+    colour_loop(c, NL, TL, mode, col);
+}
+
+static void dispatch(dem_ctx *c, int mode, int col)
+{
+#define CASE_T(NL, TL) case TL: run_colour(c, NL, TL, mode, col); break;
 #define CASES(NL)                                                                  \
     switch (c->d->tang) {                                                          \
     CASE_T(NL, GR_TANG_NONE) CASE_T(NL, GR_TANG_COULOMB) CASE_T(NL, GR_TANG_VISCOUS) \
@@ -345,8 +338,62 @@ static void dispatch(dem_ctx *c, int mode)
 #undef CASE_T
 }
 
-int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
-                   double *seg_out, gr_err *err)
+/* The evaluation in progress: its context and per-strip scratch, kept
+ * across steps so that a step allocates nothing. */
+struct gr_dem_eval {
+    dem_ctx c;
+    int mode, ns, nseg;
+    double t_eval;
+    uint64_t E;
+    size_t cap_ns, cap_seg, cap_sseg;
+    double *smax, *sel, *sseg, *soff, *svy;
+    long *si, *sj;
+    unsigned char *son;
+};
+
+void gr_dem_eval_free(struct gr_dem_eval *ev)
+{
+    if (!ev)
+        return;
+    free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
+    free(ev->si), free(ev->sj), free(ev->son);
+    free(ev);
+}
+
+static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, gr_err *err)
+{
+    struct gr_dem_eval *ev = d->ev;
+    if (!ev && !(ev = d->ev = calloc(1, sizeof *ev)))
+        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    if ((size_t)ns > ev->cap_ns) {
+        free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj);
+        ev->smax = malloc((size_t)ns * sizeof *ev->smax);
+        ev->sel = malloc((size_t)ns * sizeof *ev->sel);
+        ev->si = malloc((size_t)ns * sizeof *ev->si);
+        ev->sj = malloc((size_t)ns * sizeof *ev->sj);
+        ev->cap_ns = (size_t)ns;
+    }
+    if ((size_t)nseg + 1 > ev->cap_seg) {
+        free(ev->soff), free(ev->svy), free(ev->son);
+        ev->soff = malloc(((size_t)nseg + 1) * sizeof *ev->soff);
+        ev->svy = malloc(((size_t)nseg + 1) * sizeof *ev->svy);
+        ev->son = malloc((size_t)nseg + 1);
+        ev->cap_seg = (size_t)nseg + 1;
+    }
+    if (nsf > ev->cap_sseg) {
+        free(ev->sseg);
+        ev->sseg = aligned_alloc(64, nsf * sizeof *ev->sseg);
+        ev->cap_sseg = nsf;
+    }
+    if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg) {
+        gr_dem_eval_free(ev);
+        d->ev = NULL;
+        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    }
+    return GR_OK;
+}
+
+int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
 {
     if (mode == GR_DEM_NB_CELLS) {
         if (gr_dem_bin(d, d->f[F_X][q], d->f[F_Y][q], err))
@@ -354,28 +401,24 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
     }
     int ns = mode == GR_DEM_NB_BRUTE ? 1 : d->strips.n;
     int nseg = d->nseg;
+    /* whole cache lines per strip: strips of a colour run at once */
     size_t sstride = ((size_t)(nseg > 0 ? nseg : 1) * 3 + 7) & ~(size_t)7;
     size_t nsf = (size_t)ns * sstride;
-    double *smax = malloc((size_t)ns * sizeof *smax), *sel = calloc((size_t)ns, sizeof *sel);
-    long *si = malloc((size_t)ns * sizeof *si), *sj = malloc((size_t)ns * sizeof *sj);
-    double *sseg = aligned_alloc(64, nsf * sizeof *sseg);
-    if (sseg)
-        memset(sseg, 0, nsf * sizeof *sseg);
-    double *soff = calloc((size_t)nseg + 1, sizeof *soff), *svy = calloc((size_t)nseg + 1, sizeof *svy);
-    unsigned char *son = calloc((size_t)nseg + 1, 1);
-    if (!smax || !sel || !si || !sj || !sseg || !soff || !svy || !son) {
-        free(sel), free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
-        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
-    }
+    if (eval_scratch(d, ns, nseg, nsf, err))
+        return err->code;
+    struct gr_dem_eval *ev = d->ev;
+    memset(ev->sseg, 0, nsf * sizeof *ev->sseg);
     for (int s = 0; s < ns; s++) {
-        smax[s] = -INFINITY;
-        si[s] = sj[s] = -1;
+        ev->smax[s] = -INFINITY;
+        ev->sel[s] = 0.0;
+        ev->si[s] = ev->sj[s] = -1;
     }
     for (int k = 0; k < nseg; k++) {
-        son[k] = t_eval < d->seg[k].open_time;
+        ev->son[k] = t_eval < d->seg[k].open_time;
+        ev->soff[k] = ev->svy[k] = 0.0;
         if (d->seg[k].vibrating) {
-            soff[k] = gr_floor_offset(&d->sc.floor, t_eval);
-            svy[k] = gr_floor_velocity(&d->sc.floor, t_eval);
+            ev->soff[k] = gr_floor_offset(&d->sc.floor, t_eval);
+            ev->svy[k] = gr_floor_velocity(&d->sc.floor, t_eval);
         }
     }
     size_t n = d->n;
@@ -386,7 +429,12 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
             memset(d->f[F_TQ][q], 0, n * sizeof(double));
     }
     d->f_zeroed = 0;
-    dem_ctx c = {
+    ev->mode = mode;
+    ev->ns = ns;
+    ev->nseg = nseg;
+    ev->t_eval = t_eval;
+    ev->E = E;
+    ev->c = (dem_ctx){
         .d = d,
         .x = d->f[F_X][q], .y = d->f[F_Y][q],
         .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
@@ -394,31 +442,44 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         .tag = d->tag, .flags = d->flags,
         .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
-        .seg_off = soff, .seg_vy = svy, .seg_on = son,
-        .smax = smax, .sel = sel, .sarg_i = si, .sarg_j = sj, .sseg = sseg, .sstride = sstride,
+        .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
+        .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
+        .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
     };
-    dispatch(&c, mode);
+    return GR_OK;
+}
+
+int gr_dem_eval_ncolours(const gr_dem *d) { return d->ev ? d->ev->c.ncol : 1; }
+
+void gr_dem_eval_colour(gr_dem *d, int col) { dispatch(&d->ev->c, d->ev->mode, col); }
+
+int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
+{
+    struct gr_dem_eval *ev = d->ev;
+    dem_ctx *c = &ev->c;
+    int ns = ev->ns, nseg = ev->nseg;
+    size_t n = d->n;
     if (d->ext_fx) {
         for (size_t i = 0; i < n; i++) {
-            c.fx[i] += d->ext_fx[i];
-            c.fy[i] += d->ext_fy[i];
+            c->fx[i] += d->ext_fx[i];
+            c->fy[i] += d->ext_fy[i];
         }
     }
     double best = 0.0, eel = 0.0;
     long bi = -1, bj = -1;
     for (int s = 0; s < ns; s++) {
-        eel += sel[s];
-        if (smax[s] > best) {
-            best = smax[s];
-            bi = si[s];
-            bj = sj[s];
+        eel += ev->sel[s];
+        if (ev->smax[s] > best) {
+            best = ev->smax[s];
+            bi = ev->si[s];
+            bj = ev->sj[s];
         }
     }
     if (seg_out) {
         for (int k = 0; k < nseg; k++) {
             double a = 0, b = 0, cfn = 0;
             for (int s = 0; s < ns; s++) {
-                const double *sf = sseg + (size_t)s * sstride + (size_t)k * 3;
+                const double *sf = ev->sseg + (size_t)s * c->sstride + (size_t)k * 3;
                 a += sf[0];
                 b += sf[1];
                 cfn += sf[2];
@@ -428,13 +489,14 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
             seg_out[3 * k + 2] = cfn;
         }
     }
-    free(sel), free(smax), free(si), free(sj), free(sseg), free(soff), free(svy), free(son);
     d->max_ovl = best;
     d->eel_eval = eel;
+    double t_eval = ev->t_eval;
+    uint64_t E = ev->E;
     int rc = GR_OK;
-    if (c.hist_full) {
+    if (c->hist_full) {
         rc = gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",
-                     t_eval, (long long)d->tag_id[d->tag[c.full_i]], d->hist.cap);
+                     t_eval, (long long)d->tag_id[d->tag[c->full_i]], d->hist.cap);
     } else if (best > d->par.max_overlap) {
         char other[96];
         if (bj >= 0)
@@ -451,4 +513,21 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
                          t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
     }
     return rc;
+}
+
+int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
+                   double *seg_out, gr_err *err)
+{
+    if (gr_dem_eval_begin(d, q, t_eval, E, integ, mode, err))
+        return err->code;
+    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1), ncol = gr_dem_eval_ncolours(d);
+    if (nth > 1 && d->ev->ns > 1) {
+#pragma omp parallel num_threads(nth)
+        for (int col = 0; col < ncol; col++)
+            gr_dem_eval_colour(d, col);
+    } else {
+        for (int col = 0; col < ncol; col++)
+            gr_dem_eval_colour(d, col);
+    }
+    return gr_dem_eval_end(d, seg_out, err);
 }

@@ -74,6 +74,7 @@ void gr_dem_free(gr_dem *d)
     if (!d)
         return;
     gr_dem_cv_free(d);
+    gr_dem_eval_free(d->ev);
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 2; p++)
             free(d->f[f][p]);
