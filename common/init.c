@@ -255,8 +255,11 @@ static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
     }
     if (s->hopper) {
         double c = s->orifice_center, h = 0.5 * s->hopper_outlet + r;
-        if (grain_line(p, s->x0 + r, s->hopper_top, c - h, s->hopper_bottom, d, m, GR_PF_FIXED, err) ||
-            grain_line(p, c + h, s->hopper_bottom, s->x0 + s->width - r, s->hopper_top, d, m, GR_PF_FIXED, err))
+        /* the top ends sit over the container's walls: ending them further
+         * in left a notch between the end grain and the domain's side where
+         * falling grains came to rest for good */
+        if (grain_line(p, x0, s->hopper_top, c - h, s->hopper_bottom, d, m, GR_PF_FIXED, err) ||
+            grain_line(p, c + h, s->hopper_bottom, x1, s->hopper_top, d, m, GR_PF_FIXED, err))
             return err->code;
     }
     return GR_OK;
