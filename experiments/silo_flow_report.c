@@ -354,10 +354,21 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
         double pmax = 0, pmin = INFINITY;
         for (size_t o = 0; o < n; o++)
             pmax = fmax(pmax, P[o]), pmin = fmin(pmin, P[o]);
-        double pd0[3] = {pmax, fmax(0.01, 1 - pmin / pmax), 0.5};
-        ok = gr_fit_density_law(D, P, Pe, n, pd0, &f, &e) == GR_OK;
-        if (!ok) /* the block errors can be far too small: unweighted */
-            ok = gr_fit_density_law(D, P, NULL, n, pd0, &f, &e) == GR_OK;
+        /* the decay length is the poorly pinned parameter: start from
+         * several and keep the best converged fit (weighted; unweighted
+         * only if no weighted one converges: the block errors can be far
+         * too small) */
+        static const double b_starts[5] = {0.1, 0.3, 0.5, 1.0, 2.0};
+        ok = 0;
+        for (int w = 0; w < 2 && !ok; w++) {
+            for (int k = 0; k < 5; k++) {
+                double pd0[3] = {pmax, fmax(0.01, 1 - pmin / pmax), b_starts[k]};
+                gr_fit fk;
+                if (gr_fit_density_law(D, P, w ? NULL : Pe, n, pd0, &fk, &e) == GR_OK &&
+                    (!ok || fk.chi2 < f.chi2))
+                    f = fk, ok = 1;
+            }
+        }
         if (!ok)
             snprintf(fitmsg, sizeof fitmsg, "  density-law fit failed: %.300s\n", e.msg);
         fit_row(&f, ok, fits + FIT_DENS * 9);
