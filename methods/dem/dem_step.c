@@ -107,26 +107,14 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
     d->blk[2 * b + 1] = m2;
 }
 
-/* Returns the sum of the two largest displacements since the list build
- * when track != 0 (section 2.4.1), else 0. */
-static double predict_verlet(gr_dem *d, int p, int q, int track)
+/* Sum of the two largest displacements from the per-block maxima that
+ * predict_block left (the same whatever the thread count: a maximum). */
+static double moved_from_blocks(const gr_dem *d)
 {
     size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double *blk = block_scratch(d, nb);
-    int nth = nthreads(d);
-    if (nth > 1 && nb > 1) {
-#pragma omp parallel for schedule(static) num_threads(nth)
-        for (size_t b = 0; b < nb; b++)
-            predict_block(d, p, q, track, b);
-    } else {
-        for (size_t b = 0; b < nb; b++)
-            predict_block(d, p, q, track, b);
-    }
-    if (!track)
-        return 0.0;
     double m1 = 0, m2 = 0;
     for (size_t k = 0; k < 2 * nb; k++) {
-        double s2 = blk[k];
+        double s2 = d->blk[k];
         if (s2 > m2) {
             if (s2 > m1) {
                 m2 = m1;
@@ -137,6 +125,23 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
         }
     }
     return sqrt(m1) + sqrt(m2);
+}
+
+/* Returns the sum of the two largest displacements since the list build
+ * when track != 0 (section 2.4.1), else 0. */
+static double predict_verlet(gr_dem *d, int p, int q, int track)
+{
+    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    int nth = nthreads(d);
+    if (nth > 1 && nb > 1) {
+#pragma omp parallel for schedule(static) num_threads(nth)
+        for (size_t b = 0; b < nb; b++)
+            predict_block(d, p, q, track, b);
+    } else {
+        for (size_t b = 0; b < nb; b++)
+            predict_block(d, p, q, track, b);
+    }
+    return track ? moved_from_blocks(d) : 0.0;
 }
 
 /* Second kick of block b: v(t+dt) = u + (dt/2) (a(t+dt) - a(t)), where u
@@ -357,26 +362,6 @@ static int report_nonfinite(gr_dem *d, int q, gr_err *err)
                            d->t + d->par.dt, (long long)d->tag_id[d->tag[i]], d->max_ovl);
     }
     return gr_fail(err, GR_ERUN, "unstable at t = %.9g: non-finite kinetic energy", d->t + d->par.dt);
-}
-
-/* Sum of the two largest displacements from the per-block maxima that
- * predict_block left (the same whatever the thread count: a maximum). */
-static double moved_from_blocks(const gr_dem *d)
-{
-    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double m1 = 0, m2 = 0;
-    for (size_t k = 0; k < 2 * nb; k++) {
-        double s2 = d->blk[k];
-        if (s2 > m2) {
-            if (s2 > m1) {
-                m2 = m1;
-                m1 = s2;
-            } else {
-                m2 = s2;
-            }
-        }
-    }
-    return sqrt(m1) + sqrt(m2);
 }
 
 /* Rebuild the list or re-sort the cells when the step's rule says so. */
