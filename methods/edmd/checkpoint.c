@@ -1,4 +1,4 @@
-/* Checkpoints: the full state, event calendar included, so that a loaded
+/* Checkpoints: the full state, event lists and leaves included, so that a loaded
  * run pops the very same events in the same order as the uninterrupted one
  * (re-predicting on load would round some floor roots differently). */
 #include <stdlib.h>
@@ -51,7 +51,6 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_save(s->rng, ck, "edmd.rng", err))
         return err->code;
     /* a re-sort renumbers the grains: save the numbering */
@@ -96,7 +95,6 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.tree", s->node, (size_t)s->P * sizeof *s->node, err) ||
         gr_rng_load(s->rng, ck, "edmd.rng", err))
         return err->code;
     if (gr_ckpt_get_i64(ck, "edmd.id", s->id, n, err) ||
@@ -109,5 +107,11 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
     if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;
     unpack(s, sc);
+    /* The queue is a function of the leaves (ties go to the lower index in
+     * both the tree and the calendar): rebuilt, not stored, so either queue
+     * resumes a checkpoint written with the other. */
+    if (s->use_cal)
+        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
+    edmd_tree_build(s);
     return GR_OK;
 }

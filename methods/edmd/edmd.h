@@ -23,6 +23,7 @@ typedef struct {
     int fields;                  /* accumulate hydrodynamic fields on the cells */
     double sort_every;           /* collisions per grain between spatial re-sorts; 0 never, < 0 auto */
     int tree_arity;              /* 2: the slides' complete binary tree; 4: every other level elided */
+    int calendar;                /* event queue: 1 Paul's calendar, 0 the tree (same events) */
 } gr_edmd_params;
 
 void gr_edmd_params_default(gr_edmd_params *p);

@@ -13,6 +13,19 @@
  * caches: prefetching pays from there on. */
 #define EDMD_PREFETCH_P 32768
 
+/* A prefetch the compiler keeps: GCC drops __builtin_prefetch from loops
+ * it can prove finite and otherwise free of side effects (seen at -O3 in
+ * the look-ahead, whose every cell-head prefetch vanished). */
+static inline void edmd_pf(const void *a)
+{
+#if defined(__x86_64__) || defined(__i386__)
+    __asm__ volatile("prefetcht0 %0" : : "m"(*(const char *)a));
+#else
+    __builtin_prefetch(a);
+    __asm__ volatile("" : : "r"(a));
+#endif
+}
+
 /* Event kinds; `partner` holds the other particle, the crossing direction
  * or the wall id. */
 enum { EV_PAIR = 0, EV_CROSS = 1, EV_WALL = 2 };
@@ -48,6 +61,29 @@ typedef struct {
     double t;
     int32_t i, pad;
 } edmd_node;
+
+/* Calendar queue (calendar.c): an entry is a grain and the time of its
+ * earliest event when queued; a ring bucket is one 64-byte line. */
+typedef struct {
+    double t;
+    int32_t i, pad;
+} edmd_qe;
+#define EDMD_SLOT_N 4
+typedef struct {
+    double t[EDMD_SLOT_N];
+    int32_t i[EDMD_SLOT_N];
+    int32_t n, more; /* entries here; 1 + the next chunk, 0 = none */
+    int32_t pad[2];
+} edmd_slot;
+typedef struct {
+    double t;
+    int64_t b;
+    int32_t i;
+} edmd_pend;
+#define EDMD_PEND 16
+/* Live entries per bucket near the present, and grains per ring bucket. */
+#define EDMD_CAL_FILL 2.0
+#define EDMD_CAL_SLOTDIV 1
 
 /* Per-cell field accumulators: time integrals of mass-weighted moments and
  * sums of collisional transfers over the averaging window. */
@@ -105,6 +141,23 @@ struct gr_edmd {
     edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
     int32_t P;               /* leaves (power of K >= n) */
     int tshift;              /* log2 of the tree's branching K (1: binary) */
+    int use_cal;             /* the calendar queue instead of the tree */
+    edmd_slot *cal;          /* ring of cal_nb buckets */
+    size_t cal_nb;
+    double cal_inv_w;        /* 1 / bucket width */
+    int64_t cal_b;           /* last bucket loaded into the front */
+    size_t cal_count;        /* entries in the ring */
+    size_t cal_loaded, cal_skipped, cal_steps; /* entries loaded and superseded, buckets, since the last check */
+    int cal_retune;          /* rebuild with width cal_w_next (0: estimate) at the next pop */
+    double cal_w_next;
+    edmd_slot *chunk;        /* spill lines of full buckets */
+    int32_t ch_n, ch_cap, ch_free;
+    edmd_qe *fr;             /* front: loaded entries, sorted, fr[fr_head] first */
+    int32_t fr_head, fr_n, fr_cap;
+    edmd_pend pd[EDMD_PEND]; /* entries on their way to the ring */
+    int pd_n;
+    edmd_qe *ov;             /* more than a year ahead */
+    size_t ov_n, ov_cap;
 
     double t;                /* current time */
     double t_prev_coll;
@@ -194,6 +247,12 @@ void edmd_tree_build(gr_edmd *s);
 void edmd_tree_prefetch(const gr_edmd *s, int32_t i);
 static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1].i; }
 
+/* calendar.c */
+int edmd_cal_build(gr_edmd *s);
+int edmd_cal_push(gr_edmd *s, int32_t i);
+int32_t edmd_cal_top(gr_edmd *s);
+void edmd_cal_free(gr_edmd *s);
+
 /* predict.c */
 double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
 double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon);
@@ -202,6 +261,17 @@ int edmd_cell_of(const gr_edmd *s, double x, double y);
 int edmd_predict_all(gr_edmd *s, int32_t i);
 void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
+/* Front positions (0: the next event) of the look-ahead's five stages:
+ * grain, leaf and slab; cell heads and partner; first grains and the
+ * partner's heads; second grains and the partner's first; the partner's
+ * second. The front is kept EDMD_CAL_AHEAD deep. */
+#define EDMD_LA_1 9
+#define EDMD_LA_2 7
+#define EDMD_LA_3 5
+#define EDMD_LA_4 3
+#define EDMD_LA_5 2
+#define EDMD_CAL_AHEAD 12
+void edmd_lookahead(const gr_edmd *s);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
 int edmd_segments_setup(gr_edmd *s, const gr_scene *sc, gr_err *err);
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);

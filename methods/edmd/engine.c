@@ -37,6 +37,8 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
     for (size_t i = 0; i < s->n; i++)
         if (!s->gone[i] && edmd_predict_all(s, (int32_t)i))
             return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
+    if (s->use_cal)
+        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
     edmd_tree_build(s);
     return GR_OK;
 }
@@ -102,6 +104,15 @@ static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *er
     return GR_OK;
 }
 
+/* Grain i's earliest event may have changed: tell the queue. */
+static inline int q_update(gr_edmd *s, int32_t i)
+{
+    if (s->use_cal)
+        return edmd_cal_push(s, i);
+    edmd_tree_update(s, i);
+    return GR_OK;
+}
+
 #define OOM(s, err) gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists (%d per grain)", (s)->ecap)
 
 int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
@@ -112,14 +123,28 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             return GR_OK;
         if (s->sort_period && s->steps - s->last_sort >= s->sort_period && edmd_sort(s, err))
             return err->code;
-        int32_t i = s->node[1].i;
-        double t = s->node[1].t;
+        int32_t i;
+        double t;
+        if (s->use_cal) {
+            i = edmd_cal_top(s);
+            if (i == -2)
+                return gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar");
+            t = i >= 0 ? s->lf[i].t : EDMD_INF;
+        } else {
+            i = s->node[1].i;
+            t = s->node[1].t;
+        }
         if (!(t <= t_end) || t == EDMD_INF)
             break;
+        if (s->use_cal) {
+            s->fr_head++; /* consumed: the grain's next entry is queued below */
+            if (s->P >= EDMD_PREFETCH_P)
+                edmd_lookahead(s);
+        }
         /* the grain, its leaf and its slab are all needed: fetch them at once */
         __builtin_prefetch(&s->p[i], 1);
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
-        if (s->P >= EDMD_PREFETCH_P)
+        if (s->P >= EDMD_PREFETCH_P && !s->use_cal)
             edmd_tree_prefetch(s, i);
         edmd_ev ev = s->lf[i];
         if (ev.partner >= 0) {
@@ -133,13 +158,15 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             if (s->p[j].ncol != ev.pncol) {
                 s->cnt.stale++;
                 edmd_list_remove(s, i, e);
-                edmd_tree_update(s, i);
+                if (q_update(s, i))
+                    return OOM(s, err);
                 continue;
             }
             if (check_collapse(s, i, j, t, err))
                 return err->code;
             if (s->P >= EDMD_PREFETCH_P) {
-                edmd_tree_prefetch(s, j);
+                if (!s->use_cal)
+                    edmd_tree_prefetch(s, j);
                 edmd_prefetch_block(s, i);
                 edmd_prefetch_block(s, j);
             }
@@ -149,8 +176,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             edmd_list_clear(s, j);
             if (edmd_predict_all(s, i) || edmd_predict_all(s, j))
                 return OOM(s, err);
-            edmd_tree_update(s, i);
-            edmd_tree_update(s, j);
+            if (q_update(s, i) || q_update(s, j))
+                return OOM(s, err);
             done++;
             s->steps++;
         } else if (kind == EV_WALL) {
@@ -158,7 +185,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             if (w >= W_SEG && t >= s->seg[w - W_SEG].open_time) { /* the gate has opened */
                 s->cnt.stale++;
                 edmd_list_remove(s, i, e);
-                edmd_tree_update(s, i);
+                if (q_update(s, i))
+                    return OOM(s, err);
                 continue;
             }
             if (w != W_EXIT && check_collapse(s, i, -1, t, err))
@@ -170,14 +198,16 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
                 edmd_list_clear(s, i);
                 if (!s->gone[i] && edmd_predict_all(s, i))
                     return OOM(s, err);
-                edmd_tree_update(s, i);
+                if (q_update(s, i))
+                    return OOM(s, err);
                 continue;
             }
             edmd_collide_wall(s, i, w, t);
             edmd_list_clear(s, i);
             if (edmd_predict_all(s, i))
                 return OOM(s, err);
-            edmd_tree_update(s, i);
+            if (q_update(s, i))
+                return OOM(s, err);
             done++;
             s->steps++;
         } else {
@@ -186,7 +216,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             do_cross(s, i, edmd_ev_sub(&ev));
             if (edmd_predict_cross(s, i, edmd_ev_sub(&ev)))
                 return OOM(s, err);
-            edmd_tree_update(s, i);
+            if (q_update(s, i))
+                return OOM(s, err);
             s->cnt.crossing++;
         }
     }

@@ -465,3 +465,97 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
             return GR_ERUN;
     return GR_OK;
 }
+
+/* Look-ahead (calendar queue only): the front holds the next events in
+ * order, so the lines each will read are requested several events before
+ * it runs, in stages along the chain of dependent loads: first the grain,
+ * its leaf and slab; when those have arrived, its partner and the cell
+ * heads around it; then the first grains of those cells. Read-only and
+ * only hints: a superseded entry costs a few useless requests. */
+static inline void pf_heads(const gr_edmd *s, int c)
+{
+    int nc = s->nx * s->ny;
+    for (int dy = -1; dy <= 1; dy++) {
+        int r = c + dy * s->nx;
+        int a = r - 1, b = r + 1;
+        a = a < 0 ? 0 : a >= nc ? nc - 1 : a;
+        b = b < 0 ? 0 : b >= nc ? nc - 1 : b;
+        edmd_pf(&s->chead[a]);
+        edmd_pf(&s->chead[b]);
+    }
+}
+
+/* depth 1: the cells' first grains; depth 2: their successors */
+static inline void pf_grains(const gr_edmd *s, int c, int depth)
+{
+    int nc = s->nx * s->ny;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int cc = c + dy * s->nx + dx;
+            cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
+            int32_t j = s->chead[cc];
+            if (j >= 0 && depth == 2)
+                j = s->p[j].cnext;
+            if (j >= 0)
+                edmd_pf(&s->p[j]);
+        }
+}
+
+/* The cell around which the event at front position k will look for
+ * partners (for a crossing, the cell it enters), and its partner (-1 if
+ * none); -1, -1 when the entry is superseded. */
+static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner)
+{
+    const edmd_qe *f = &s->fr[s->fr_head + k];
+    const edmd_ev *e = &s->lf[f->i];
+    *partner = -1;
+    if (e->t != f->t)
+        return -1;
+    int c = s->p[f->i].cell;
+    if (e->partner >= 0) {
+        *partner = e->partner;
+        return c;
+    }
+    if (edmd_ev_kind(e) == EV_CROSS) {
+        int nc = s->nx * s->ny;
+        switch (edmd_ev_sub(e)) {
+        case DIR_RIGHT: c += 1; break;
+        case DIR_LEFT: c -= 1; break;
+        case DIR_UP: c += s->nx; break;
+        default: c -= s->nx; break;
+        }
+        c = c < 0 ? c + nc : c >= nc ? c - nc : c;
+    }
+    return c;
+}
+
+void edmd_lookahead(const gr_edmd *s)
+{
+    int32_t ahead = s->fr_n - s->fr_head, j;
+    int c;
+    if (ahead > EDMD_LA_1) {
+        int32_t i = s->fr[s->fr_head + EDMD_LA_1].i;
+        edmd_pf(&s->p[i]);
+        edmd_pf(&s->lf[i]);
+        edmd_pf(s->ev + (size_t)i * (size_t)s->ecap);
+    }
+    if (ahead > EDMD_LA_2 && (c = la_cell(s, EDMD_LA_2, &j)) >= 0) {
+        pf_heads(s, c);
+        if (j >= 0) {
+            edmd_pf(&s->p[j]);
+            edmd_pf(s->ev + (size_t)j * (size_t)s->ecap);
+        }
+    }
+    if (ahead > EDMD_LA_3 && (c = la_cell(s, EDMD_LA_3, &j)) >= 0) {
+        pf_grains(s, c, 1);
+        if (j >= 0)
+            pf_heads(s, s->p[j].cell);
+    }
+    if (ahead > EDMD_LA_4 && (c = la_cell(s, EDMD_LA_4, &j)) >= 0) {
+        pf_grains(s, c, 2);
+        if (j >= 0)
+            pf_grains(s, s->p[j].cell, 1);
+    }
+    if (ahead > EDMD_LA_5 && la_cell(s, EDMD_LA_5, &j) >= 0 && j >= 0)
+        pf_grains(s, s->p[j].cell, 2);
+}

@@ -10,6 +10,7 @@
 static const char *const algo_names[] = {"tree", "naive", NULL};
 static const char *const collapse_names[] = {"none", "tc", "threshold", NULL};
 static const char *const yesno[] = {"no", "yes", NULL};
+static const char *const queue_names[] = {"tree", "calendar", NULL};
 
 void gr_edmd_params_default(gr_edmd_params *p)
 {
@@ -21,6 +22,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->fields = 0;
     p->sort_every = -1.0;
     p->tree_arity = 2;
+    p->calendar = 1;
 }
 
 int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
@@ -34,6 +36,8 @@ int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
         return err->code;
     p->collapse = (gr_edmd_collapse)v;
     if (gr_scene_get_choice(sc, "edmd", "fields", yesno, 0, &p->fields, err))
+        return err->code;
+    if (gr_scene_get_choice(sc, "edmd", "queue", queue_names, p->calendar, &p->calendar, err))
         return err->code;
     long arity = 2;
     if (gr_scene_get_long(sc, "edmd", "tree_arity", 2, &arity, err))
@@ -77,6 +81,7 @@ void gr_edmd_free(gr_edmd *s)
     free(s->ev);
     free(s->lf);
     free(s->node);
+    edmd_cal_free(s);
     free(s->cacc);
     free(s->species);
     free(s->seg);
@@ -302,7 +307,7 @@ static int setup_cells(gr_edmd *s, gr_err *err)
     s->cw = s->W / s->nx;
     s->ch = Ly / s->ny;
     size_t nc = (size_t)s->nx * (size_t)s->ny;
-    s->chead = malloc(nc * sizeof *s->chead);
+    s->chead = edmd_big_alloc(nc * sizeof *s->chead); /* huge pages: prefetches that miss the TLB are dropped */
     if (!s->chead)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu cells", nc);
     for (size_t c = 0; c < nc; c++)
@@ -360,6 +365,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
+    s->use_cal = s->prm.calendar && s->prm.algorithm == GR_EDMD_TREE;
     if (!rc)
         rc = edmd_events_init(s, err);
     s->t = 0.0;
@@ -428,7 +434,7 @@ int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
 /* ---- the method table ---- */
 
 static const char *const param_keys[] = {"algorithm",  "cell",       "collapse",   "tc", "v_threshold",
-                                         "fields",     "sort_every", "tree_arity", NULL};
+                                         "fields",     "sort_every", "tree_arity", "queue", NULL};
 
 static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
 {

@@ -48,12 +48,14 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
     /* groups of K siblings start on 64-byte lines */
     size_t lb = ((size_t)P * sizeof *s->lf + 63) & ~(size_t)63;
     s->lf = edmd_big_alloc(lb);
-    s->node = edmd_big_alloc(lb);
-    if (s->node)
-        memset(s->node, 0, lb);
+    if (!s->use_cal) {
+        s->node = edmd_big_alloc(lb);
+        if (s->node)
+            memset(s->node, 0, lb);
+    }
     s->ecap = 8;
     s->ev = edmd_ev_alloc(s->n * (size_t)s->ecap);
-    if (!s->lf || !s->node || !s->ev)
+    if (!s->lf || (!s->use_cal && !s->node) || !s->ev)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event calendar of %zu grains", s->n);
     for (int32_t i = 0; i < P; i++)
         s->lf[i] = (edmd_ev){EDMD_INF, 0, 0};
@@ -61,6 +63,8 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
         s->p[i].nev = 0;
         s->p[i].emin = -1;
     }
+    if (s->use_cal)
+        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
     edmd_tree_build(s);
     return GR_OK;
 }

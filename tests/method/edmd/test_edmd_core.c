@@ -27,13 +27,15 @@ static void check_contact(void *user, int kind, long i, long j, double t)
         c->worst_contact = e;
 }
 
+/* arity 0: the calendar queue instead of the tree */
 static gr_edmd *make_arity(const gr_scene *sc, const gr_particles *p, gr_edmd_algorithm alg, int arity)
 {
     gr_err e = {0};
     gr_edmd_params prm;
     gr_edmd_params_default(&prm);
     prm.algorithm = alg;
-    prm.tree_arity = arity;
+    prm.tree_arity = arity ? arity : 2;
+    prm.calendar = arity == 0;
     gr_edmd *s = NULL;
     int rc = gr_edmd_create(sc, p, &prm, &s, &e);
     if (rc)
@@ -148,14 +150,14 @@ static sequence run_sequence(gr_edmd_algorithm alg, long events, double alpha, i
 }
 
 /* 100 disks, 1e4 collisions (walls included): the tree (binary, and with
- * every other level elided) and the naive algorithm execute the same events
- * at the same times. */
+ * every other level elided), the calendar queue and the naive algorithm
+ * execute the same events at the same times. */
 static void same_sequence_as_naive(void **st)
 {
     (void)st;
-    double alphas[3] = {1.0, 0.95, 1.0};
-    int arity[3] = {2, 2, 4};
-    for (int a = 0; a < 3; a++) {
+    double alphas[5] = {1.0, 0.95, 1.0, 1.0, 0.95};
+    int arity[5] = {2, 2, 4, 0, 0};
+    for (int a = 0; a < 5; a++) {
         long N = 10000;
         sequence A = run_sequence(GR_EDMD_TREE, N, alphas[a], arity[a]),
                  B = run_sequence(GR_EDMD_NAIVE, N, alphas[a], 2);
@@ -171,7 +173,7 @@ static void same_sequence_as_naive(void **st)
             double dt = fabs(A.t[k] - B.t[k]);
             worst_dt = dt > worst_dt ? dt : worst_dt;
         }
-        printf("# alpha = %g, tree arity %d: %ld events, first difference at %ld, max |dt| = %.3e\n", alphas[a],
+        printf("# alpha = %g, tree arity %d (0: calendar): %ld events, first difference at %ld, max |dt| = %.3e\n", alphas[a],
                arity[a], N, first_diff, worst_dt);
         assert_int_equal(first_diff, -1);
         assert_true(worst_dt <= 1e-12 * A.t[N - 1]);
@@ -216,6 +218,58 @@ static void resort_keeps_sequence(void **st)
     assert_int_equal(diff, -1);
     for (int k = 0; k < 2; k++)
         free(q[k].i), free(q[k].j), free(q[k].t);
+}
+
+/* The calendar queue against the tree on larger systems, where buckets,
+ * spill lines, the overflow and re-sorting all come into play: the same
+ * events (grains and times to the bit). Cases: an elastic periodic gas
+ * re-sorted every collision per grain; a cooling gas (alpha 0.8, so the
+ * event rate falls a hundredfold and the buckets become sparse); grains
+ * under gravity in a walled box (long free flights in the overflow). */
+static void calendar_same_as_tree(void **st)
+{
+    (void)st;
+    struct {
+        long n, events;
+        double eta, alpha, g;
+        int periodic;
+        double sort_every;
+    } cs[3] = {{3000, 60000, 0.5, 1.0, 0.0, 1, 1.0}, {2000, 60000, 0.2, 0.8, 0.0, 1, 0.0},
+               {1000, 40000, 0.2, 0.97, 1.0, 0, 0.0}};
+    for (int c = 0; c < 3; c++) {
+        double L = sqrt(cs[c].n * M_PI / 4 / cs[c].eta);
+        gr_scene sc = edmd_box(L, L, cs[c].periodic, cs[c].alpha);
+        sc.gravity = cs[c].g;
+        sequence q[2];
+        for (int k = 0; k < 2; k++) {
+            gr_particles *p = edmd_lattice(cs[c].n, 0, 0, L, L, 1.0, 1, 21 + c);
+            gr_edmd_params prm;
+            gr_edmd_params_default(&prm);
+            prm.sort_every = cs[c].sort_every;
+            prm.calendar = k;
+            gr_err e = {0};
+            gr_edmd *s = NULL;
+            assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_OK);
+            long N = cs[c].events;
+            q[k] = (sequence){0, N, malloc(N * sizeof(long)), malloc(N * sizeof(long)), malloc(N * sizeof(double))};
+            gr_edmd_set_event_hook(s, record, &q[k]);
+            assert_int_equal(gr_edmd_advance(s, INFINITY, (uint64_t)N, &e), GR_OK);
+            gr_edmd_free(s);
+            gr_particles_free(p);
+        }
+        assert_int_equal(q[0].n, cs[c].events);
+        assert_int_equal(q[1].n, cs[c].events);
+        long diff = -1;
+        for (long k = 0; k < cs[c].events && diff < 0; k++)
+            if (q[0].i[k] != q[1].i[k] || q[0].j[k] != q[1].j[k] || q[0].t[k] != q[1].t[k])
+                diff = k;
+        printf("# calendar vs tree, N = %ld, eta %g, alpha %g, g %g: %ld events to t = %.6g, first difference at "
+               "%ld\n",
+               cs[c].n, cs[c].eta, cs[c].alpha, cs[c].g, cs[c].events, q[0].t[cs[c].events - 1], diff);
+        assert_int_equal(diff, -1);
+        for (int k = 0; k < 2; k++)
+            free(q[k].i), free(q[k].j), free(q[k].t);
+    }
 }
 
 /* Inelastic disks: the kinetic energy lost equals the sum of the losses
@@ -327,6 +381,7 @@ int main(void)
         cmocka_unit_test(periodic_momentum),
         cmocka_unit_test(same_sequence_as_naive),
         cmocka_unit_test(resort_keeps_sequence),
+        cmocka_unit_test(calendar_same_as_tree),
         cmocka_unit_test(inelastic_bookkeeping),
         cmocka_unit_test(mixtures),
         cmocka_unit_test(refuses_bad_starts),
