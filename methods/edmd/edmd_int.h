@@ -130,6 +130,7 @@ struct gr_edmd {
     double cw, ch;
     int32_t *chead;
     uint8_t *wmask;          /* per cell: walls a grain in it can touch */
+    int any_wall;            /* some cell has a wall in reach */
     int32_t *corder;         /* cells in Morton order, for spatial sorting */
     uint64_t sort_period;    /* collisions between re-sorts, 0 = never */
     uint64_t last_sort;      /* collision count at the last sort */

@@ -164,9 +164,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             }
             if (check_collapse(s, i, j, t, err))
                 return err->code;
-            if (s->P >= EDMD_PREFETCH_P) {
-                if (!s->use_cal)
-                    edmd_tree_prefetch(s, j);
+            if (s->P >= EDMD_PREFETCH_P && !s->use_cal) { /* the calendar's look-ahead did it */
+                edmd_tree_prefetch(s, j);
                 edmd_prefetch_block(s, i);
                 edmd_prefetch_block(s, j);
             }

@@ -332,7 +332,7 @@ static int push_cross_and_walls(gr_edmd *s, int32_t i)
     double tc = edmd_cross_time(s, i, &dir);
     if (dir >= 0 && tc < EDMD_INF && edmd_ev_push(s, i, tc > now ? tc : now, EV_CROSS, dir, 0))
         return GR_ERUN;
-    unsigned mask = s->wmask[s->p[i].cell];
+    unsigned mask = s->any_wall ? s->wmask[s->p[i].cell] : 0u; /* a random line when N is large */
     for (int w = 0; mask; w++, mask >>= 1) {
         if (!(mask & 1u))
             continue;
@@ -456,7 +456,7 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
             continue;
         seen[ns++] = cc;
     }
-    if (s->P >= EDMD_PREFETCH_P)
+    if (s->P >= EDMD_PREFETCH_P && !s->use_cal)
         walk_side_by_side(s, seen, ns); /* overlaps the crossing and wall times */
     if (push_cross_and_walls(s, i))
         return GR_ERUN;

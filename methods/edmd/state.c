@@ -329,6 +329,8 @@ static int setup_cells(gr_edmd *s, gr_err *err)
         for (int w = 0; w <= W_EXIT; w++)
             if (edmd_wall_relevant(s, (int)c, w))
                 s->wmask[c] |= (uint8_t)(1u << w);
+    for (size_t c = 0; c < nc; c++)
+        s->any_wall |= s->wmask[c] != 0;
     if (s->prm.algorithm == GR_EDMD_TREE) {
         double every = s->prm.sort_every < 0 ? (s->n >= 16384 ? 20.0 : 0.0) : s->prm.sort_every;
         s->sort_period = (uint64_t)(every * (double)s->n);
