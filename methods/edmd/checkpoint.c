@@ -47,7 +47,6 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_f64(ck, "edmd.omega", s->w, n, err) ||
         gr_ckpt_put_f64(ck, "edmd.tlast", s->tlast, n, err) ||
         gr_ckpt_put_f64(ck, "edmd.tacc", s->tacc, n, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
@@ -91,7 +90,6 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_f64(ck, "edmd.omega", s->w, n, err) ||
         gr_ckpt_get_f64(ck, "edmd.tlast", s->tlast, n, err) ||
         gr_ckpt_get_f64(ck, "edmd.tacc", s->tacc, n, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.cprev", s->cprev, n * sizeof *s->cprev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||

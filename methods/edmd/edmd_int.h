@@ -98,7 +98,6 @@ struct gr_edmd {
     size_t n;
     edmd_p *p;
     double *w, *m, *inertia, *tlast, *tacc;
-    int32_t *cprev;
     int64_t *id;
     int32_t *species;
     size_t *order;           /* internal indices in id order */

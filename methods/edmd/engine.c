@@ -7,16 +7,16 @@
 
 #include "edmd_int.h"
 
+/* Cell lists are singly linked: a grain's predecessor is found from the
+ * head (a cell holds about one grain, and its head and grains are in cache
+ * by then), where a back link would cost a random line per change. */
 void edmd_cell_remove(gr_edmd *s, int32_t i)
 {
     edmd_p *p = &s->p[i];
-    int32_t pr = s->cprev[i], nx = p->cnext;
-    if (pr >= 0)
-        s->p[pr].cnext = nx;
-    else
-        s->chead[p->cell] = nx;
-    if (nx >= 0)
-        s->cprev[nx] = pr;
+    int32_t *link = &s->chead[p->cell];
+    while (*link != i)
+        link = &s->p[*link].cnext;
+    *link = p->cnext;
 }
 
 void edmd_cell_insert(gr_edmd *s, int32_t i, int c)
@@ -24,9 +24,6 @@ void edmd_cell_insert(gr_edmd *s, int32_t i, int c)
     edmd_p *p = &s->p[i];
     p->cell = c;
     p->cnext = s->chead[c];
-    s->cprev[i] = -1;
-    if (p->cnext >= 0)
-        s->cprev[p->cnext] = i;
     s->chead[c] = i;
 }
 

@@ -101,9 +101,6 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         if (s->gone[j])
             continue;
         p->cnext = s->chead[p->cell];
-        s->cprev[j] = -1;
-        if (p->cnext >= 0)
-            s->cprev[p->cnext] = (int32_t)j;
         s->chead[p->cell] = (int32_t)j;
         p->nev = 0;
     }

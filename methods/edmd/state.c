@@ -72,7 +72,6 @@ void gr_edmd_free(gr_edmd *s)
     free(s->inertia);
     free(s->tlast);
     free(s->tacc);
-    free(s->cprev);
     free(s->id);
     free(s->order);
     free(s->chead);
@@ -192,12 +191,11 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
     s->inertia = calloc(n, sizeof *s->inertia);
     s->tlast = calloc(n, sizeof *s->tlast);
     s->tacc = calloc(n, sizeof *s->tacc);
-    s->cprev = calloc(n, sizeof *s->cprev);
     s->id = calloc(n, sizeof *s->id);
     s->order = calloc(n, sizeof *s->order);
     s->species = calloc(n, sizeof *s->species);
     s->gone = calloc(n, 1);
-    if (!s->gone || !s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->cprev || !s->id || !s->order ||
+    if (!s->gone || !s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->id || !s->order ||
         !s->species)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
     size_t k = 0;
@@ -317,9 +315,6 @@ static int setup_cells(gr_edmd *s, gr_err *err)
         int c = edmd_cell_of(s, p->x, p->y);
         p->cell = c;
         p->cnext = s->chead[c];
-        s->cprev[i] = -1;
-        if (p->cnext >= 0)
-            s->cprev[p->cnext] = (int32_t)i;
         s->chead[c] = (int32_t)i;
     }
     s->wmask = calloc(nc, 1);
