@@ -231,6 +231,9 @@ static int load_next(gr_edmd *s)
     if (s->pd_n && pend_flush(s, 0, s->cal_b))
         return GR_ERUN;
     edmd_slot *q = &s->cal[s->cal_b & (int64_t)(s->cal_nb - 1)];
+    /* buckets are read in order, but slowly and between random lines: the
+     * hardware does not see the stream */
+    edmd_pf(&s->cal[(s->cal_b + 4) & (int64_t)(s->cal_nb - 1)]);
     if (!q->n)
         return GR_OK;
     int32_t cnt = q->n;

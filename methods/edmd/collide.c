@@ -62,7 +62,8 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double dist = sqrt(dx * dx + dy * dy);
     double nx = dx / dist, ny = dy / dist;
     double gn = (b->vx - a->vx) * nx + (b->vy - a->vy) * ny;
-    double mi = s->m[i], mj = s->m[j];
+    /* equal masses: no random read of the mass array */
+    double mi = s->m_one > 0.0 ? s->m_one : s->m[i], mj = s->m_one > 0.0 ? s->m_one : s->m[j];
     /* spins enter only for rough disks */
     double ri0 = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
     double rj0 = s->rough ? 0.5 * s->inertia[j] * s->w[j] * s->w[j] : 0.0;

@@ -66,7 +66,8 @@ typedef struct {
  * earliest event when queued; a ring bucket is one 64-byte line. */
 typedef struct {
     double t;
-    int32_t i, pad;
+    int32_t i;
+    int32_t pad; /* look-ahead stages done (front only) */
 } edmd_qe;
 #define EDMD_SLOT_N 4
 typedef struct {
@@ -98,6 +99,7 @@ struct gr_edmd {
     size_t n;
     edmd_p *p;
     double *w, *m, *inertia, *tlast, *tacc;
+    double m_one;            /* the common mass when all are equal, else 0 */
     int64_t *id;
     int32_t *species;
     size_t *order;           /* internal indices in id order */
@@ -271,7 +273,7 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
 #define EDMD_LA_4 3
 #define EDMD_LA_5 2
 #define EDMD_CAL_AHEAD 12
-void edmd_lookahead(const gr_edmd *s);
+void edmd_lookahead(gr_edmd *s);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
 int edmd_segments_setup(gr_edmd *s, const gr_scene *sc, gr_err *err);
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);

@@ -493,6 +493,48 @@ static inline void pf_grains(const gr_edmd *s, int c, int depth)
         for (int dx = -1; dx <= 1; dx++) {
             int cc = c + dy * s->nx + dx;
             cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
+            cc = cc < 0 ? 0 : cc >= nc ? nc - 1 : cc; /* boxes one or two cells high */
+            int32_t j = s->chead[cc];
+            if (j >= 0 && depth == 2)
+                j = s->p[j].cnext;
+            if (j >= 0)
+                edmd_pf(&s->p[j]);
+        }
+}
+
+/* The slab's first line (the second, if in use, once the grain is in). */
+static inline void pf_slab(const gr_edmd *s, int32_t i)
+{
+    edmd_pf(s->ev + (size_t)i * (size_t)s->ecap);
+}
+
+/* What a collision reads beside the grain's line: its mass, and its spin
+ * and collision clock when rough or guarded. */
+static inline void pf_grain_side(const gr_edmd *s, int32_t i)
+{
+    if (s->m_one == 0.0)
+        edmd_pf(&s->m[i]);
+    if (s->rough) {
+        edmd_pf(&s->w[i]);
+        edmd_pf(&s->inertia[i]);
+    }
+    if (s->prm.collapse != GR_EDMD_COLLAPSE_NONE)
+        edmd_pf(&s->tlast[i]);
+}
+
+/* pf_grains for the cells around c that are not around `but` (the
+ * partner's block overlaps the grain's, whose lines are requested). */
+static inline void pf_grains_but(const gr_edmd *s, int c, int depth, int but)
+{
+    int nc = s->nx * s->ny, bx = but % s->nx, by = but / s->nx;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int cc = c + dy * s->nx + dx;
+            cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
+            cc = cc < 0 ? 0 : cc >= nc ? nc - 1 : cc; /* boxes one or two cells high */
+            int ex = cc % s->nx - bx, ey = cc / s->nx - by;
+            if (ex >= -1 && ex <= 1 && ey >= -1 && ey <= 1)
+                continue;
             int32_t j = s->chead[cc];
             if (j >= 0 && depth == 2)
                 j = s->p[j].cnext;
@@ -529,33 +571,54 @@ static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner)
     return c;
 }
 
-void edmd_lookahead(const gr_edmd *s)
+/* Stage q of the look-ahead for the entry at front position k. */
+static void la_stage(const gr_edmd *s, int32_t k, int q)
 {
-    int32_t ahead = s->fr_n - s->fr_head, j;
+    int32_t j;
     int c;
-    if (ahead > EDMD_LA_1) {
-        int32_t i = s->fr[s->fr_head + EDMD_LA_1].i;
+    if (q == 1) {
+        int32_t i = s->fr[s->fr_head + k].i;
         edmd_pf(&s->p[i]);
         edmd_pf(&s->lf[i]);
-        edmd_pf(s->ev + (size_t)i * (size_t)s->ecap);
-    }
-    if (ahead > EDMD_LA_2 && (c = la_cell(s, EDMD_LA_2, &j)) >= 0) {
+        pf_slab(s, i);
+        pf_grain_side(s, i);
+    } else if ((c = la_cell(s, k, &j)) < 0) {
+        return;
+
+    } else if (q == 2) {
+        int32_t i = s->fr[s->fr_head + k].i;
+        if (s->p[i].nev > 4) /* a rescan reads them all */
+            edmd_pf(s->ev + (size_t)i * (size_t)s->ecap + 4);
         pf_heads(s, c);
         if (j >= 0) {
             edmd_pf(&s->p[j]);
-            edmd_pf(s->ev + (size_t)j * (size_t)s->ecap);
+            pf_slab(s, j);
+            pf_grain_side(s, j);
         }
-    }
-    if (ahead > EDMD_LA_3 && (c = la_cell(s, EDMD_LA_3, &j)) >= 0) {
+    } else if (q == 3) {
         pf_grains(s, c, 1);
         if (j >= 0)
             pf_heads(s, s->p[j].cell);
-    }
-    if (ahead > EDMD_LA_4 && (c = la_cell(s, EDMD_LA_4, &j)) >= 0) {
+    } else if (q == 4) {
         pf_grains(s, c, 2);
         if (j >= 0)
-            pf_grains(s, s->p[j].cell, 1);
+            pf_grains_but(s, s->p[j].cell, 1, c);
+    } else if (j >= 0) {
+        pf_grains_but(s, s->p[j].cell, 2, c);
     }
-    if (ahead > EDMD_LA_5 && la_cell(s, EDMD_LA_5, &j) >= 0 && j >= 0)
-        pf_grains(s, s->p[j].cell, 2);
+}
+
+/* Each entry goes through the stages in order as it nears the head; the
+ * stage reached is kept in the entry, since superseded entries dropped at
+ * the head and new ones inserted make entries skip positions. */
+void edmd_lookahead(gr_edmd *s)
+{
+    int32_t ahead = s->fr_n - s->fr_head;
+    int32_t k = ahead - 1 < EDMD_LA_1 ? ahead - 1 : EDMD_LA_1;
+    for (; k >= 0; k--) {
+        edmd_qe *f = &s->fr[s->fr_head + k];
+        int need = k <= EDMD_LA_5 ? 5 : k <= EDMD_LA_4 ? 4 : k <= EDMD_LA_3 ? 3 : k <= EDMD_LA_2 ? 2 : 1;
+        while (f->pad < need)
+            la_stage(s, k, ++f->pad);
+    }
 }

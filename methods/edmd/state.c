@@ -167,6 +167,14 @@ static int cmp_id(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+static void *big_zalloc(size_t bytes)
+{
+    void *m = edmd_big_alloc(bytes);
+    if (m)
+        memset(m, 0, bytes);
+    return m;
+}
+
 static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
 {
     size_t n = 0;
@@ -186,11 +194,12 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
     s->p = edmd_big_alloc(n * sizeof *s->p);
     if (s->p)
         memset(s->p, 0, n * sizeof *s->p);
-    s->w = calloc(n, sizeof *s->w);
-    s->m = calloc(n, sizeof *s->m);
-    s->inertia = calloc(n, sizeof *s->inertia);
-    s->tlast = calloc(n, sizeof *s->tlast);
-    s->tacc = calloc(n, sizeof *s->tacc);
+    /* read at random by the collisions: huge pages, as the grains */
+    s->w = big_zalloc(n * sizeof *s->w);
+    s->m = big_zalloc(n * sizeof *s->m);
+    s->inertia = big_zalloc(n * sizeof *s->inertia);
+    s->tlast = big_zalloc(n * sizeof *s->tlast);
+    s->tacc = big_zalloc(n * sizeof *s->tacc);
     s->id = calloc(n, sizeof *s->id);
     s->order = calloc(n, sizeof *s->order);
     s->species = calloc(n, sizeof *s->species);
@@ -227,6 +236,10 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
             s->rmax = p->r;
         k++;
     }
+    s->m_one = s->m[0];
+    for (size_t i = 1; i < n; i++)
+        if (s->m[i] != s->m_one)
+            s->m_one = 0.0;
     id_index *tmp = malloc(n * sizeof *tmp);
     if (!tmp)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
