@@ -44,18 +44,20 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: grano bench edmd [--n N1,N2,...] [--eta E1,E2,...] [--equil C] [--measure C] [--arity 2|4]\n"
-            "                        [--queue tree|calendar] [--cell C] [--quick]\n\n"
+            "                        [--queue tree|calendar] [--cell C] [--sort S] [--quick]\n\n"
             "Elastic disks (d = m = 1, V0 = 1) in a periodic square box at packing fraction eta, from a\n"
             "square lattice; C equilibration collisions per grain (default 20), then at least C\n"
             "measured collisions per grain (default 10, and at least 2e6 collisions in all).\n"
             "Defaults: --n 1000,10000,100000,1000000 --eta 0.3,0.6; --quick: --n 1000,10000.\n"
             "--arity: branching of the event tree ([edmd] tree_arity, default 2); --cell: minimum cell\n"
-            "side ([edmd] cell, default the diameter); --queue: the event queue ([edmd] queue).\n"
+            "side ([edmd] cell, default the diameter); --queue: the event queue ([edmd] queue);\n"
+            "--sort: collisions per grain between spatial re-sorts ([edmd] sort_every, default automatic).\n"
             "Prints per case: RESULT method=edmd n=N eta=E collisions_per_s=X\n");
 }
 
 /* The scene as a file would give it: the common reader and initialiser. */
-static gr_scene *bench_scene(long n, double eta, int arity, double cell, const char *queue, gr_err *err)
+static gr_scene *bench_scene(long n, double eta, int arity, double cell, const char *queue, double sort,
+                             gr_err *err)
 {
     double L = sqrt(n * M_PI / 4.0 / eta);
     long side = (long)ceil(sqrt((double)n));
@@ -68,8 +70,8 @@ static gr_scene *bench_scene(long n, double eta, int arity, double cell, const c
              "[material]\nrestitution = 1\n"
              "[species]\ndiameter = 1\ncount = %ld\n"
              "[init]\nkind = lattice\nspacing = %.17g\nvelocity = speed\nv0 = 1\n"
-             "[edmd]\ntree_arity = %d\ncell = %.17g\n%s%s\n",
-             L, L, n, spacing, arity, cell, queue ? "queue = " : "", queue ? queue : "");
+             "[edmd]\ntree_arity = %d\ncell = %.17g\nsort_every = %.17g\n%s%s\n",
+             L, L, n, spacing, arity, cell, sort, queue ? "queue = " : "", queue ? queue : "");
     const char *extra[] = {"edmd", NULL};
     return gr_scene_parse(text, "(bench edmd)", extra, err);
 }
@@ -82,6 +84,7 @@ int bench_edmd(int argc, char **argv)
     int arity = 2;
     double cell = 0;
     const char *queue = NULL;
+    double sort = -1.0;
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
             usage(stdout);
@@ -98,6 +101,8 @@ int bench_edmd(int argc, char **argv)
             measure = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--arity")) {
             arity = atoi(argv[++a]);
+        } else if (a + 1 < argc && !strcmp(argv[a], "--sort")) {
+            sort = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--queue")) {
             queue = argv[++a];
         } else if (a + 1 < argc && !strcmp(argv[a], "--cell")) {
@@ -124,7 +129,7 @@ int bench_edmd(int argc, char **argv)
         for (int in = 0; in < nn; in++) {
             long n = (long)ns[in];
             gr_err err = {0};
-            gr_scene *sc = bench_scene(n, etas[ie], arity, cell, queue, &err);
+            gr_scene *sc = bench_scene(n, etas[ie], arity, cell, queue, sort, &err);
             gr_particles *p = sc ? gr_particles_create((size_t)n, &err) : NULL;
             gr_edmd_params prm;
             gr_edmd *s = NULL;
