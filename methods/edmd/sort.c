@@ -2,9 +2,10 @@
  * cells, so that a grain's neighbours, their events and their tree leaves
  * sit close in memory. Large systems lose that order as grains diffuse, and
  * the cost per event then grows with N through cache misses; a re-sort every
- * few tens of collisions per grain keeps it flat. All event lists are
- * rebuilt afterwards (pair and static-wall times are functions of the
- * reference states only, so no valid event changes). */
+ * few tens of collisions per grain keeps it flat. The event lists move
+ * with the grains, so a sorted run executes the same events as an unsorted
+ * one (up to the order of exactly simultaneous events of different grains,
+ * which follows the numbering). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -97,20 +98,46 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         s->chead[c] = -1;
     for (size_t j = n; j-- > 0;) {
         edmd_p *p = &s->p[j];
-        p->nev = 0;
         if (s->gone[j])
             continue;
         p->cnext = s->chead[p->cell];
         s->chead[p->cell] = (int32_t)j;
-        p->nev = 0;
     }
-    for (int32_t i = 0; i < s->P; i++)
-        s->lf[i].t = EDMD_INF;
-    for (size_t j = 0; j < n; j++)
-        s->p[j].emin = -1;
+    /* The event lists and leaves move with their grains, partners renamed
+     * (predicting them again would cost a full schedule, a second or so at
+     * N = 1e6, and could round some times differently). */
+    size_t cap = (size_t)s->ecap;
+    edmd_ev *ev = edmd_ev_alloc(n * cap);
+    if (!ev) {
+        free(perm);
+        free(inv);
+        free(buf);
+        return gr_fail(err, GR_ERUN, "edmd: out of memory while sorting %zu grains", n);
+    }
+    for (size_t j = 0; j < n; j++) {
+        const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
+        edmd_ev *dst = ev + j * cap;
+        for (int32_t k = 0; k < s->p[j].nev; k++) {
+            dst[k] = src[k];
+            if (dst[k].partner >= 0)
+                dst[k].partner = inv[dst[k].partner];
+        }
+    }
+    free(s->ev);
+    s->ev = ev;
+    edmd_ev *lf = buf; /* n leaves fit in n grains' room */
+    for (size_t j = 0; j < n; j++) {
+        lf[j] = s->lf[perm[j]];
+        if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
+            lf[j].partner = inv[lf[j].partner];
+    }
+    memcpy(s->lf, lf, n * sizeof *lf);
     free(perm);
     free(inv);
     free(buf);
     s->last_sort = s->steps;
-    return edmd_schedule_all(s, err);
+    if (s->use_cal)
+        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
+    edmd_tree_build(s);
+    return GR_OK;
 }

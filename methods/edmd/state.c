@@ -381,7 +381,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     s->t = 0.0;
     s->t_prev_coll = -EDMD_INF;
     if (!rc && s->prm.algorithm == GR_EDMD_TREE)
-        rc = s->sort_period ? edmd_sort(s, err) : edmd_schedule_all(s, err);
+        rc = (s->sort_period && edmd_sort(s, err)) ? err->code : edmd_schedule_all(s, err);
     if (rc) {
         gr_edmd_free(s);
         return rc;
