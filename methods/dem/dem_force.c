@@ -302,7 +302,7 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
 DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, int col)
 {
     int ns = c->d->strips.n, ncol = c->ncol;
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(static)
     for (int s = col; s < ns; s += ncol) {
         if (mode == GR_DEM_NB_VERLET)
             strip_verlet(c, NL, TL, s);
