@@ -85,6 +85,7 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     size_t n = c->norif;
     char png[1200];
     double bt = (double)c->block * c->base.dt;
+    /* every figure below divides by or takes logs of the flow */
     for (size_t o = 0; o < n; o++)
         if (!(tab[o * NCOL + C_W] > 0))
             return gr_fail(err, GR_ERUN,
@@ -116,22 +117,9 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
             c->block, bt);
     fprintf(gp, "set xlabel 'D / d'\nset ylabel 'W / (grains {/Symbol t}^{-1})'\nset key top left\nset xrange [0:*]\nset yrange [0:*]\n");
     fprintf(gp, "plot $t using 1:2:3 with yerrorbars pt 7 lc rgb 'black' title 'grano', B(x) lw 2 lc rgb 'red' title sprintf('Beverloo 2D: C = %%.3f, k = %%.2f', C, k)\n");
-    size_t npos = 0;
-    for (size_t o = 0; o < n; o++)
-        npos += tab[o * NCOL + C_W] > 0;
-    if (npos == 0) {
-        /* log axes have nothing to show; say so instead of failing */
-        fprintf(gp, "set label 1 'no grain left in the measured blocks' at graph 0.5, 0.5 center\n"
-                    "set xrange [0:1]\nset yrange [0:1]\nplot 2 notitle\nunset label 1\n");
-    } else {
-        if (!(Wmax > 0))
-            for (size_t o = 0; o < n; o++)
-                if (tab[o * NCOL + C_W] > 0)
-                    Dmax = tab[o * NCOL + C_D], Wmax = tab[o * NCOL + C_W];
-        fprintf(gp, "set logscale xy\nset xrange [*:*]\nset yrange [*:*]\n");
-        fprintf(gp, "plot $t using 1:($2 > 0 ? $2 : 1/0):3 with yerrorbars pt 7 lc rgb 'black' title 'grano', %g*(x/%g)**1.5 lw 2 lc rgb 'red' title 'slope 1.5', %g*(x/%g)**2.5 lw 2 lc rgb 'blue' title 'slope 2.5'\n",
-                    Wmax, Dmax, Wmax, Dmax);
-    }
+    fprintf(gp, "set logscale xy\nset xrange [*:*]\nset yrange [*:*]\n");
+    fprintf(gp, "plot $t using 1:2:3 with yerrorbars pt 7 lc rgb 'black' title 'grano', %g*(x/%g)**1.5 lw 2 lc rgb 'red' title 'slope 1.5', %g*(x/%g)**2.5 lw 2 lc rgb 'blue' title 'slope 2.5'\n",
+            Wmax, Dmax, Wmax, Dmax);
     fprintf(gp, "unset multiplot\n");
     int rc = gr_plot_close(gp, png, err);
     /* fig 4.2 */

@@ -141,8 +141,7 @@ typedef struct gr_dem {
     void *cv;                /* CVODE reference integrator, or NULL */
     uint64_t since_sort;
     int f_zeroed;            /* the predictor already zeroed the new forces */
-    double *blk;             /* per-block partial results */
-    size_t blk_cap;
+    double *blk;             /* per-block partial results: two per block of the capacity */
     struct gr_dem_eval *ev;  /* force evaluation in progress (dem_force.c) */
 } gr_dem;
 

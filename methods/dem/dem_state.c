@@ -64,7 +64,6 @@ int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
     if (!blk)
         return gr_fail(err, GR_ERUN, "out of memory");
     d->blk = blk;
-    d->blk_cap = nb;
     d->cap = cap;
     return GR_OK;
 }

@@ -40,12 +40,7 @@ static inline double wrap(double x, double L)
  * block results are combined in block order, so sums do not depend on the
  * number of threads. */
 
-/* gr_dem_grow keeps room for two results per block of the capacity */
-static double *block_scratch(gr_dem *d, size_t nb)
-{
-    return nb * 2 <= d->blk_cap ? d->blk : NULL;
-}
-
+/* gr_dem_grow keeps d->blk at two results per block of the capacity */
 static int nthreads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
 
 /* Drift and first kick of block b; its two largest displacements since
@@ -176,11 +171,20 @@ static void correct_block(gr_dem *d, int p, int q, size_t b)
     d->blk[b] = ek;
 }
 
+/* Kinetic energy from the kick's per-block sums, in block order (the same
+ * bits whatever the thread count). */
+static double kinetic_from_blocks(const gr_dem *d, size_t nb)
+{
+    double ek = 0;
+    for (size_t b = 0; b < nb; b++)
+        ek += d->blk[b];
+    return ek;
+}
+
 /* Second kick; returns the kinetic energy of the new state. */
 static double correct_verlet(gr_dem *d, int p, int q)
 {
     size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double *blk = block_scratch(d, nb);
     int nth = nthreads(d);
     if (nth > 1 && nb > 1) {
 #pragma omp parallel for schedule(static) num_threads(nth)
@@ -190,10 +194,7 @@ static double correct_verlet(gr_dem *d, int p, int q)
         for (size_t b = 0; b < nb; b++)
             correct_block(d, p, q, b);
     }
-    double ek = 0;
-    for (size_t b = 0; b < nb; b++)
-        ek += blk[b];
-    return ek;
+    return kinetic_from_blocks(d, nb);
 }
 
 static double kinetic(gr_dem *d, int q)
@@ -523,10 +524,7 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
                 gr_dem_hist_undo_at(d, E);
                 rc = err->code, stop_c = 1;
             } else {
-                double ek = 0;
-                for (size_t b = 0; b < nb; b++)
-                    ek += d->blk[b];
-                if (commit(d, q, E, tn, ek, err))
+                if (commit(d, q, E, tn, kinetic_from_blocks(d, nb), err))
                     rc = err->code, stop_c = 1;
                 done++;
             }
