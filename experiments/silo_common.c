@@ -164,10 +164,10 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
     int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
     if (!rc)
         rc = gr_method_create(m, sc, p, &st, err);
-    /* Inside: below the hopper's outlet (3 d above the rim): the grains
+    /* Inside: below the hopper's outlet, less half a diameter: the grains
      * fill the container to its rim, and one resting on the pile just above
      * the rim is settled, not still falling. */
-    double ytop = c->base + c->height + (c->hopper ? 2.5 : 0.0);
+    double ytop = sc->silo.hopper ? sc->silo.hopper_bottom - 0.5 : c->base + c->height;
     double *ebuf = malloc(((size_t)c->n + 1) * sizeof *ebuf);
     if (!ebuf && !rc)
         rc = gr_fail(err, GR_ERUN, "out of memory");
