@@ -202,6 +202,23 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err);
 int gr_dem_eval_ncolours(const gr_dem *d);
 void gr_dem_eval_colour(gr_dem *d, int col);
+/* All colours: on the threads of the scene when called outside a parallel
+ * region with more than one. */
+void gr_dem_eval_run(gr_dem *d);
+/* With Verlet lists and grains in strip order, have the colours also give
+ * the second kick of velocity Verlet (gr_dem_kick, old buffer p) to each
+ * strip once its last push is in; returns 1 if so. Kinetic energy of the
+ * kicked state, summed strip by strip in order: gr_dem_eval_kinetic. */
+int gr_dem_eval_fuse_kick(gr_dem *d, int p);
+double gr_dem_eval_kinetic(const gr_dem *d);
+/* Inside a parallel region, after gr_dem_eval_fuse_kick: each thread
+ * drifts (gr_dem_drift) the strips it will kick, then all wait; the sum of
+ * the two largest displacements since the list build, from those strips
+ * (the same value as from blocks: a maximum). */
+void gr_dem_eval_drift(gr_dem *d, int p, int q, int track);
+double gr_dem_eval_moved(const gr_dem *d);
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1);
+void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
 int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);
 void gr_dem_eval_free(struct gr_dem_eval *ev);
 int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);

@@ -37,6 +37,12 @@ typedef struct {
     double *sseg;       /* per strip, per segment: fx, fy, fn */
     size_t sstride;     /* doubles per strip in sseg: whole cache lines */
     int ncol;           /* colours of strips */
+    double *stime;      /* per strip: smoothed wall time of its last timed runs */
+    double *kin;        /* per strip: kinetic energy after the fused kick */
+    const int *kicker;  /* per strip: the strip after whose push it is kicked */
+    int kick, kick_p;   /* fused kick on, and its old buffer */
+    const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
+    int nth;            /* threads the split is for */
     int hist_full;      /* set when a grain ran out of history slots */
     long full_i;
 } dem_ctx;
@@ -296,19 +302,54 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
     acc_store(c, &acc);
 }
 
+/* Strip s pushes the grains of s and s + 1 (and, periodic in y, strip 0
+ * those of the last strip, but colour 0 is never the last to push): after
+ * it, kick the strips whose last push it was, while their lines are in
+ * this core's cache. Their velocities are read only by the strips that
+ * push them, all done by then. */
+static inline void kick_after(dem_ctx *c, int s)
+{
+    gr_dem *d = c->d;
+    int ns = d->strips.n;
+    for (int r = s; r <= s + 1 && r < ns; r++)
+        if (c->kicker[r] == s)
+            c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, (size_t)d->strips.i0[r],
+                                    (size_t)d->strips.i0[r + 1]);
+}
+
 /* One colour's strips, shared among the threads of the enclosing parallel
- * region (an orphaned worksharing loop: run by one thread outside any
- * region, in the same order). */
+ * region (run by one thread outside any region, in the same order). Each
+ * thread takes the colour's strips in its run (split_strips): the contacts,
+ * not the grains, set a strip's cost, and in a bed under gravity the deep
+ * strips have the most (a split by strip count left one thread idle a
+ * third of the time). Which thread runs a strip changes no bit of the
+ * result. */
 DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, int col)
 {
     int ns = c->d->strips.n, ncol = c->ncol;
-#pragma omp for schedule(static)
-    for (int s = col; s < ns; s += ncol) {
+    int T = omp_get_num_threads(), t = omp_get_thread_num();
+    int m = (ns - col + ncol - 1) / ncol, k0 = 0, k1 = m;
+    if (T > 1 && T == c->nth)
+        k0 = c->split[col * (T + 1) + t], k1 = c->split[col * (T + 1) + t + 1];
+    else if (T > 1)
+        k0 = (int)((long)m * t / T), k1 = (int)((long)m * (t + 1) / T);
+    /* timing every 16th evaluation is enough to follow the load */
+    int timed = T > 1 && (c->E & 15) == 0;
+    for (int k = k0; k < k1; k++) {
+        int s = col + k * ncol;
+        double t0 = timed ? omp_get_wtime() : 0.0;
         if (mode == GR_DEM_NB_VERLET)
             strip_verlet(c, NL, TL, s);
         else
             strip_cells(c, NL, TL, s);
+        if (c->kick)
+            kick_after(c, s);
+        if (timed) {
+            double dt = omp_get_wtime() - t0;
+            c->stime[s] = c->stime[s] > 0 ? 0.75 * c->stime[s] + 0.25 * dt : dt;
+        }
     }
+#pragma omp barrier
 }
 
 DEM_INLINE void run_colour(dem_ctx *c, const int NL, const int TL, int mode, int col)
@@ -349,6 +390,11 @@ struct gr_dem_eval {
     double *smax, *sel, *sseg, *soff, *svy;
     long *si, *sj;
     unsigned char *son;
+    double *stime;   /* per strip cost, kept across evaluations */
+    double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
+    int *kicker, *powner; /* per strip: the strip that kicks it; the thread */
+    int *split;      /* ncol x (nth + 1) */
+    size_t cap_split;
 };
 
 void gr_dem_eval_free(struct gr_dem_eval *ev)
@@ -357,21 +403,37 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
         return;
     free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
     free(ev->si), free(ev->sj), free(ev->son);
+    free(ev->stime), free(ev->split), free(ev->kin), free(ev->kicker);
+    free(ev->smove), free(ev->powner);
     free(ev);
 }
 
-static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, gr_err *err)
+static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err *err)
 {
     struct gr_dem_eval *ev = d->ev;
     if (!ev && !(ev = d->ev = calloc(1, sizeof *ev)))
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
     if ((size_t)ns > ev->cap_ns) {
-        free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj);
+        free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
+        free(ev->kin), free(ev->kicker), free(ev->smove), free(ev->powner);
+        ev->kin = malloc((size_t)ns * sizeof *ev->kin);
+        ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
+        ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
+        ev->powner = malloc((size_t)ns * sizeof *ev->powner);
         ev->smax = malloc((size_t)ns * sizeof *ev->smax);
         ev->sel = malloc((size_t)ns * sizeof *ev->sel);
         ev->si = malloc((size_t)ns * sizeof *ev->si);
         ev->sj = malloc((size_t)ns * sizeof *ev->sj);
+        ev->stime = calloc((size_t)ns, sizeof *ev->stime);
         ev->cap_ns = (size_t)ns;
+    } else if (ns != ev->ns) {
+        memset(ev->stime, 0, (size_t)ns * sizeof *ev->stime);
+    }
+    size_t nsp = (size_t)3 * ((size_t)nth + 1); /* at most three colours */
+    if (nsp > ev->cap_split) {
+        free(ev->split);
+        ev->split = malloc(nsp * sizeof *ev->split);
+        ev->cap_split = nsp;
     }
     if ((size_t)nseg + 1 > ev->cap_seg) {
         free(ev->soff), free(ev->svy), free(ev->son);
@@ -385,12 +447,46 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, gr_err *err)
         ev->sseg = aligned_alloc(64, nsf * sizeof *ev->sseg);
         ev->cap_sseg = nsf;
     }
-    if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg) {
+    if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
+        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->powner) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
     }
     return GR_OK;
+}
+
+/* Cut each colour's strips into nth contiguous runs of about equal cost:
+ * the measured times once every strip of the colour has one, the grain
+ * counts before. Each colour ends at a barrier, so each is balanced on its
+ * own (one cut for all colours left a thread idle at every colour). */
+static void split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth)
+{
+    int ns = ev->ns, ncol = ev->c.ncol;
+    const int32_t *i0 = d->strips.i0;
+    for (int col = 0; col < ncol; col++) {
+        int *b = ev->split + col * (nth + 1);
+        int m = (ns - col + ncol - 1) / ncol, timed = 1;
+        double total = 0.0, acc = 0.0;
+        for (int k = 0; k < m; k++)
+            timed &= ev->stime[col + k * ncol] > 0;
+        for (int k = 0; k < m; k++) {
+            int s = col + k * ncol;
+            total += timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
+        }
+        int t = 1;
+        b[0] = 0;
+        for (int k = 0; k < m && t < nth; k++) {
+            int s = col + k * ncol;
+            double w = timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
+            /* cut before strip k when that lands nearer the target */
+            while (t < nth && acc + 0.5 * w >= total * t / nth)
+                b[t++] = k;
+            acc += w;
+        }
+        while (t <= nth)
+            b[t++] = m;
+    }
 }
 
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
@@ -404,7 +500,8 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     /* whole cache lines per strip: strips of a colour run at once */
     size_t sstride = ((size_t)(nseg > 0 ? nseg : 1) * 3 + 7) & ~(size_t)7;
     size_t nsf = (size_t)ns * sstride;
-    if (eval_scratch(d, ns, nseg, nsf, err))
+    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
+    if (eval_scratch(d, ns, nseg, nsf, nth, err))
         return err->code;
     struct gr_dem_eval *ev = d->ev;
     memset(ev->sseg, 0, nsf * sizeof *ev->sseg);
@@ -445,7 +542,9 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
         .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
+        .stime = ev->stime, .split = ev->split, .nth = nth,
     };
+    split_strips(d, ev, nth);
     return GR_OK;
 }
 
@@ -515,13 +614,10 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
     return rc;
 }
 
-int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
-                   double *seg_out, gr_err *err)
+void gr_dem_eval_run(gr_dem *d)
 {
-    if (gr_dem_eval_begin(d, q, t_eval, E, integ, mode, err))
-        return err->code;
     int nth = (int)(d->par.threads > 0 ? d->par.threads : 1), ncol = gr_dem_eval_ncolours(d);
-    if (nth > 1 && d->ev->ns > 1) {
+    if (nth > 1 && d->ev->ns > 1 && !omp_in_parallel()) {
 #pragma omp parallel num_threads(nth)
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);
@@ -529,5 +625,81 @@ int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, in
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);
     }
+}
+
+int gr_dem_eval_fuse_kick(gr_dem *d, int p)
+{
+    struct gr_dem_eval *ev = d->ev;
+    int ns = ev->ns, ncol = ev->c.ncol;
+    const int32_t *i0 = d->strips.i0;
+    ev->c.kick = 0;
+    /* external forces join at the end of the evaluation, after any kick */
+    if (ev->mode != GR_DEM_NB_VERLET || d->ext_fx || ns < 1 || i0[0] != 0 || (size_t)i0[ns] != d->n)
+        return 0;
+    /* a strip's pushes come from itself, the strip below, and (periodic in
+     * y) strip 0 for the last one: the last of these colours kicks it */
+    for (int r = 0; r < ns; r++) {
+        int k = r;
+        if (r >= 1 && (r - 1) % ncol > k % ncol)
+            k = r - 1;
+        ev->kicker[r] = k;
+    }
+    /* the thread that will kick a strip drifts it at the next step */
+    int nth = ev->c.nth;
+    for (int r = 0; r < ns; r++) {
+        int k = ev->kicker[r], col = k % ncol, j = k / ncol, t = 0;
+        if (nth > 1 && ns > 1)
+            while (t + 1 < nth && j >= ev->split[col * (nth + 1) + t + 1])
+                t++;
+        ev->powner[r] = t;
+        ev->kin[r] = 0.0;
+    }
+    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker;
+    ev->c.kick = 1, ev->c.kick_p = p;
+    return 1;
+}
+
+void gr_dem_eval_drift(gr_dem *d, int p, int q, int track)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    int t = omp_get_thread_num(), T = omp_get_num_threads(), ns = ev->ns;
+    for (int r = 0; r < ns; r++)
+        if (T == 1 || T != ev->c.nth ? r % T == t : ev->powner[r] == t)
+            gr_dem_drift(d, p, q, track, (size_t)d->strips.i0[r], (size_t)d->strips.i0[r + 1], ev->smove + 2 * r);
+#pragma omp barrier
+}
+
+double gr_dem_eval_moved(const gr_dem *d)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    double m1 = 0, m2 = 0;
+    for (int k = 0; k < 2 * ev->ns; k++) {
+        double s2 = ev->smove[k];
+        if (s2 > m2) {
+            if (s2 > m1) {
+                m2 = m1;
+                m1 = s2;
+            } else {
+                m2 = s2;
+            }
+        }
+    }
+    return sqrt(m1) + sqrt(m2);
+}
+
+double gr_dem_eval_kinetic(const gr_dem *d)
+{
+    double ek = 0.0;
+    for (int s = 0; s < d->ev->ns; s++)
+        ek += d->ev->kin[s];
+    return ek;
+}
+
+int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
+                   double *seg_out, gr_err *err)
+{
+    if (gr_dem_eval_begin(d, q, t_eval, E, integ, mode, err))
+        return err->code;
+    gr_dem_eval_run(d);
     return gr_dem_eval_end(d, seg_out, err);
 }

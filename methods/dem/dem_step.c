@@ -43,12 +43,12 @@ static inline double wrap(double x, double L)
 /* gr_dem_grow keeps d->blk at two results per block of the capacity */
 static int nthreads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
 
-/* Drift and first kick of block b; its two largest displacements since
- * the list build go to blk[2b], blk[2b+1] when track != 0. */
-static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
+/* Drift and first kick of grains [i0, i1); their two largest squared
+ * displacements since the list build go to top2[0], top2[1] when
+ * track != 0. */
+void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2])
 {
     double dt = d->par.dt, h = 0.5 * dt;
-    size_t n = d->n;
     const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
     const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
     const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
@@ -63,7 +63,6 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
     const double *restrict iI = d->iI;
     double Lx = d->Lx, Ly = d->Ly;
     int rot = d->rot;
-    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
     double m1 = 0, m2 = 0;
     for (size_t i = i0; i < i1; i++) {
         /* fixed grains (im = 0) feel no gravity */
@@ -98,8 +97,14 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
             }
         }
     }
-    d->blk[2 * b] = m1;
-    d->blk[2 * b + 1] = m2;
+    top2[0] = m1;
+    top2[1] = m2;
+}
+
+static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
+{
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < d->n ? i0 + DEM_BLOCK : d->n;
+    gr_dem_drift(d, p, q, track, i0, i1, d->blk + 2 * b);
 }
 
 /* Sum of the two largest displacements from the per-block maxima that
@@ -139,13 +144,12 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
     return track ? moved_from_blocks(d) : 0.0;
 }
 
-/* Second kick of block b: v(t+dt) = u + (dt/2) (a(t+dt) - a(t)), where u
- * is the predicted velocity (gravity cancels); its kinetic energy goes to
- * blk[b] (m v^2 / 2 as v^2 / (2 im): no mass array to stream). */
-static void correct_block(gr_dem *d, int p, int q, size_t b)
+/* Second kick of grains [i0, i1): v(t+dt) = u + (dt/2) (a(t+dt) - a(t)),
+ * where u is the predicted velocity (gravity cancels); returns their
+ * kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array to stream). */
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1)
 {
     double h = 0.5 * d->par.dt;
-    size_t n = d->n;
     double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
     const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
     const double *restrict fxo = d->f[F_FX][p], *restrict fyo = d->f[F_FY][p];
@@ -153,7 +157,6 @@ static void correct_block(gr_dem *d, int p, int q, size_t b)
     double *restrict w = d->f[F_W][q];
     const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p], *restrict iI = d->iI;
     int rot = d->rot;
-    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < n ? i0 + DEM_BLOCK : n;
     double ek = 0;
     for (size_t i = i0; i < i1; i++) {
         double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
@@ -168,7 +171,13 @@ static void correct_block(gr_dem *d, int p, int q, size_t b)
                 ek += 0.5 * ww * ww / iI[i];
         }
     }
-    d->blk[b] = ek;
+    return ek;
+}
+
+static void correct_block(gr_dem *d, int p, int q, size_t b)
+{
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < d->n ? i0 + DEM_BLOCK : d->n;
+    d->blk[b] = gr_dem_kick(d, p, q, i0, i1);
 }
 
 /* Kinetic energy from the kick's per-block sums, in block order (the same
@@ -451,12 +460,18 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     if (maybe_rebuild(d, p, q, mode, moved, err))
         return err->code;
     d->f_zeroed = d->par.integrator == GR_DEM_VERLET;
-    if (gr_dem_eval_at(d, q, tn, E, dt, mode, d->seg_force, err)) {
+    if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
+        return err->code;
+    int fused = d->par.integrator == GR_DEM_VERLET && gr_dem_eval_fuse_kick(d, p);
+    gr_dem_eval_run(d);
+    if (gr_dem_eval_end(d, d->seg_force, err)) {
         gr_dem_hist_undo_at(d, E);
         return err->code;
     }
     double ek;
-    if (d->par.integrator == GR_DEM_VERLET) {
+    if (fused) {
+        ek = gr_dem_eval_kinetic(d);
+    } else if (d->par.integrator == GR_DEM_VERLET) {
         ek = correct_verlet(d, p, q);
     } else {
         if (d->par.integrator == GR_DEM_GEAR)
@@ -466,71 +481,110 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     return commit(d, q, E, tn, ek, err);
 }
 
-/* Velocity Verlet on several threads, many steps in one parallel region:
- * five barriers a step (drift, two or three colours of strips, kick, the
- * serial end of the step) instead of three regions started and joined.
- * The work and every sum are split exactly as in gr_dem_step, so the runs
- * are the same bits. */
-static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
+/* What the threaded Verlet loop carries from one step to the next. */
+typedef struct {
+    int stop, p, q, track, begun, fused;
+    uint64_t done, E;
+    double tn;
+    size_t nb;
+} vt_step;
+
+/* The start of a step, run by one thread: stop test, gates, buffers, and
+ * (with Verlet lists) the force evaluation's set-up, which needs neither
+ * the new positions nor a barrier of its own unless the list is rebuilt. */
+static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err)
 {
     const double eps = 1e-6 * d->par.dt;
+    v->fused = 0;
+    v->stop = !(d->t < t_end - eps && (max_steps == 0 || v->done < max_steps));
+    if (v->stop)
+        return GR_OK;
+    if (!d->gates_open && d->t >= d->sc.silo.open_time && open_gates(d, err))
+        return v->stop = 1, err->code;
+    v->p = d->cur, v->q = 1 - v->p;
+    v->E = d->step + 1;
+    v->tn = d->t0 + (double)v->E * d->par.dt;
+    v->track = d->par.neighbour == GR_DEM_NB_VERLET && !d->need_build;
+    v->nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    v->begun = v->track;
+    if (v->begun) {
+        d->f_zeroed = 1; /* the drift zeroes the new forces */
+        if (gr_dem_eval_begin(d, v->q, v->tn, v->E, d->par.dt, d->par.neighbour, err))
+            return v->stop = 1, err->code;
+        v->fused = gr_dem_eval_fuse_kick(d, v->p);
+    }
+    return GR_OK;
+}
+
+/* Velocity Verlet on several threads, many steps in one parallel region.
+ * A step waits at: the drift (with Verlet lists each thread drifts the
+ * strips it kicked), each colour of strips (two or three; with
+ * Verlet lists a strip's grains are kicked as soon as their last push is
+ * in), the kick (linked cells only), and the serial end of the step, which
+ * also starts the next one;
+ * a list rebuild (rare, decided by every thread from the same block
+ * maxima) or linked cells add one after the drift. The work and every sum
+ * are split exactly as in gr_dem_step, so the runs are the same bits. */
+static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
+{
     const int mode = d->par.neighbour;
-    /* one stop flag per serial section: a thread may still read the last
-     * one while another already writes the first of the next step */
-    int rc = GR_OK, stop_a = 0, stop_b = 0, stop_c = 0, p = 0, q = 0, track = 0;
-    uint64_t done = 0, E = 0;
-    double tn = 0;
-    size_t nb = 0;
+    int rc = GR_OK, stop_b = 0;
+    vt_step v = {0};
 #pragma omp parallel num_threads(nthreads(d))
-    for (;;) {
+    {
 #pragma omp single
-        {
-            /* the start of a step: gates, the buffers, the evaluation */
-            stop_a = !(d->t < t_end - eps && (max_steps == 0 || done < max_steps));
-            if (!stop_a && !d->gates_open && d->t >= d->sc.silo.open_time && open_gates(d, err))
-                rc = err->code, stop_a = 1;
-            if (!stop_a) {
-                p = d->cur, q = 1 - p;
-                E = d->step + 1;
-                tn = d->t0 + (double)E * d->par.dt;
-                track = mode == GR_DEM_NB_VERLET && !d->need_build;
-                nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-            }
-        }
-        if (stop_a)
-            break;
-#pragma omp for schedule(static)
-        for (size_t b = 0; b < nb; b++)
-            predict_block(d, p, q, track, b);
-#pragma omp single
-        {
-            d->f_zeroed = 1;
-            if (maybe_rebuild(d, p, q, mode, track ? moved_from_blocks(d) : 0.0, err) ||
-                gr_dem_eval_begin(d, q, tn, E, d->par.dt, mode, err))
-                rc = err->code, stop_b = 1;
-        }
-        if (stop_b)
-            break;
-        int ncol = gr_dem_eval_ncolours(d);
-        for (int col = 0; col < ncol; col++)
-            gr_dem_eval_colour(d, col);
-        /* the kick writes only the new buffer: harmless if the step is refused */
-#pragma omp for schedule(static)
-        for (size_t b = 0; b < nb; b++)
-            correct_block(d, p, q, b);
-#pragma omp single
-        {
-            if (gr_dem_eval_end(d, d->seg_force, err)) {
-                gr_dem_hist_undo_at(d, E);
-                rc = err->code, stop_c = 1;
+        rc = vt_start(d, &v, t_end, max_steps, err);
+        while (!v.stop) {
+            const int p = v.p, q = v.q;
+            const size_t nb = v.nb;
+            if (v.fused) {
+                gr_dem_eval_drift(d, p, q, v.track);
             } else {
-                if (commit(d, q, E, tn, kinetic_from_blocks(d, nb), err))
-                    rc = err->code, stop_c = 1;
-                done++;
+#pragma omp for schedule(static)
+                for (size_t b = 0; b < nb; b++)
+                    predict_block(d, p, q, v.track, b);
+            }
+            /* every thread reads the same maxima: the same decision */
+            double moved = !v.track ? 0.0 : v.fused ? gr_dem_eval_moved(d) : moved_from_blocks(d);
+            if (!v.begun || moved > d->par.skin) {
+#pragma omp single
+                {
+                    d->f_zeroed = 1;
+                    if (maybe_rebuild(d, p, q, mode, moved, err) ||
+                        gr_dem_eval_begin(d, q, v.tn, v.E, d->par.dt, mode, err))
+                        rc = err->code, stop_b = 1;
+                    else
+                        v.fused = gr_dem_eval_fuse_kick(d, p);
+                }
+                if (stop_b)
+                    break;
+            }
+            /* read before the colours' barriers: past them, the end of the
+             * step may already be setting up the next */
+            const int fused = v.fused, ncol = gr_dem_eval_ncolours(d);
+            for (int col = 0; col < ncol; col++)
+                gr_dem_eval_colour(d, col);
+            /* the kick writes only the new buffer: harmless if the step is
+             * refused; with Verlet lists the colours did it */
+            if (!fused) {
+#pragma omp for schedule(static)
+                for (size_t b = 0; b < nb; b++)
+                    correct_block(d, p, q, b);
+            }
+#pragma omp single
+            {
+                double ek = fused ? gr_dem_eval_kinetic(d) : kinetic_from_blocks(d, nb);
+                if (gr_dem_eval_end(d, d->seg_force, err)) {
+                    gr_dem_hist_undo_at(d, v.E);
+                    rc = err->code, v.stop = 1;
+                } else if (commit(d, q, v.E, v.tn, ek, err)) {
+                    rc = err->code, v.stop = 1;
+                } else {
+                    v.done++;
+                    rc = vt_start(d, &v, t_end, max_steps, err);
+                }
             }
         }
-        if (stop_c)
-            break;
     }
     return rc;
 }
