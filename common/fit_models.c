@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <gsl/gsl_errno.h>
 #include <gsl/gsl_fit.h>
+#include <gsl/gsl_min.h>
 
 /* ------------------------------------------------------------------ models */
 
@@ -284,6 +286,123 @@ int gr_fit_density_law(const double *D, const double *rho, const double *sigma, 
         p0 = s;
     }
     return gr_fit_nlin(&m, D, rho, sigma, n, p0, NULL, out, err);
+}
+
+/* At fixed b the density law is linear: rho = A + C (-e^{-bD}), A = rho0,
+ * C = rho0 a. Weighted least squares by the 2 x 2 normal equations;
+ * returns chi2 (INFINITY if singular) and fills A, C and their covariance. */
+typedef struct {
+    const double *D, *r, *sigma;
+    size_t n;
+} dl_data;
+
+static double dl_profile(const dl_data *q, double b, double lin[2], double cov[3])
+{
+    double s11 = 0, s12 = 0, s22 = 0, t1 = 0, t2 = 0;
+    for (size_t i = 0; i < q->n; i++) {
+        double w = q->sigma ? 1.0 / (q->sigma[i] * q->sigma[i]) : 1.0, e = -exp(-b * q->D[i]);
+        s11 += w, s12 += w * e, s22 += w * e * e;
+        t1 += w * q->r[i], t2 += w * e * q->r[i];
+    }
+    double det = s11 * s22 - s12 * s12;
+    if (!(det > 1e-14 * s11 * s22))
+        return INFINITY;
+    lin[0] = (s22 * t1 - s12 * t2) / det;
+    lin[1] = (s11 * t2 - s12 * t1) / det;
+    cov[0] = s22 / det, cov[1] = -s12 / det, cov[2] = s11 / det;
+    double chi2 = 0;
+    for (size_t i = 0; i < q->n; i++) {
+        double w = q->sigma ? 1.0 / (q->sigma[i] * q->sigma[i]) : 1.0;
+        double d = q->r[i] - lin[0] + lin[1] * exp(-b * q->D[i]);
+        chi2 += w * d * d;
+    }
+    return chi2;
+}
+
+static double dl_chi2(double b, void *u)
+{
+    double lin[2], cov[3];
+    return dl_profile(u, b, lin, cov);
+}
+
+/* The result at b with b held fixed: (rho0, a) and their errors from the
+ * linear fit, b's error unknown. */
+static void dl_fixed(const dl_data *q, double b, gr_fit *out)
+{
+    double lin[2], cov[3];
+    double chi2 = dl_profile(q, b, lin, cov);
+    memset(out, 0, sizeof *out);
+    out->np = 3, out->n = q->n;
+    out->dof = (double)q->n - 2.0;
+    out->chi2 = chi2, out->chi2_dof = chi2 / out->dof;
+    out->weighted = q->sigma != NULL;
+    double A = lin[0], a = lin[1] / A, ga = -lin[1] / (A * A), gc = 1.0 / A;
+    double scale = q->sigma ? 1.0 : out->chi2_dof;
+    out->scaled = !q->sigma;
+    out->p[0] = A, out->p[1] = a, out->p[2] = b;
+    out->cov[0][0] = cov[0] * scale;
+    out->cov[1][1] = (ga * ga * cov[0] + 2 * ga * gc * cov[1] + gc * gc * cov[2]) * scale;
+    out->cov[0][1] = out->cov[1][0] = (ga * cov[0] + gc * cov[1]) * scale;
+    out->err[0] = sqrt(out->cov[0][0]), out->err[1] = sqrt(out->cov[1][1]), out->err[2] = NAN;
+    out->cov[2][2] = NAN;
+}
+
+int gr_fit_density_law_bounded(const double *D, const double *rho, const double *sigma, size_t n,
+                               double bmin, double bmax, gr_fit *out, int *at_bound, gr_err *err)
+{
+    gr_model m = gr_model_density_law();
+    int rc = gr_fit_check_data(m.name, m.np, D, rho, sigma, n, err);
+    if (rc)
+        return rc;
+    if (!(bmin > 0 && bmax > bmin && isfinite(bmax)))
+        return gr_fail(err, GR_EINPUT, "%s fit: decay-rate range [%g, %g] must satisfy 0 < bmin < bmax",
+                       m.name, bmin, bmax);
+    dl_data q = {D, rho, sigma, n};
+    /* chi2(b) may have several minima: scan on a log grid first */
+    enum { NG = 241 };
+    double bg[NG], cg[NG];
+    int k = 0;
+    for (int g = 0; g < NG; g++) {
+        bg[g] = bmin * pow(bmax / bmin, (double)g / (NG - 1));
+        cg[g] = dl_chi2(bg[g], &q);
+        if (cg[g] < cg[k])
+            k = g;
+    }
+    if (!isfinite(cg[k]))
+        return gr_fail(err, GR_ERUN, "%s fit: singular for every decay rate in [%g, %g]", m.name, bmin, bmax);
+    *at_bound = k == 0 || k == NG - 1;
+    double b = bg[k];
+    if (!*at_bound) {
+        gsl_function F = {dl_chi2, &q};
+        gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+        gsl_error_handler_t *old = gsl_set_error_handler_off();
+        if (s && gsl_min_fminimizer_set_with_values(s, &F, bg[k], cg[k], bg[k - 1], cg[k - 1], bg[k + 1],
+                                                    cg[k + 1]) == GSL_SUCCESS) {
+            for (int it = 0; it < 100; it++) {
+                if (gsl_min_fminimizer_iterate(s))
+                    break;
+                double lo = gsl_min_fminimizer_x_lower(s), hi = gsl_min_fminimizer_x_upper(s);
+                if (gsl_min_test_interval(lo, hi, 1e-12, 1e-10) == GSL_SUCCESS)
+                    break;
+            }
+            b = gsl_min_fminimizer_x_minimum(s);
+        }
+        gsl_set_error_handler(old);
+        gsl_min_fminimizer_free(s);
+    }
+    dl_fixed(&q, b, out);
+    if (*at_bound)
+        return GR_OK;
+    /* inside the range: the full fit from there gives the covariance of all three */
+    gr_fit full;
+    gr_err e2 = {0};
+    double p0[3] = {out->p[0], out->p[1], out->p[2]};
+    if (gr_fit_nlin(&m, D, rho, sigma, n, p0, NULL, &full, &e2) == GR_OK && full.p[2] >= bmin &&
+        full.p[2] <= bmax && full.chi2 <= out->chi2 * (1 + 1e-9) + 1e-300)
+        *out = full;
+    else
+        out->dof = (double)n - 3.0, out->chi2_dof = out->chi2 / out->dof;
+    return GR_OK;
 }
 
 int gr_fit_beverloo(const gr_beverloo_par *par, const double *D, const double *W,

@@ -239,6 +239,14 @@ int gr_fit_gauss(const double *x, const double *y, const double *sigma, size_t n
                  const double *p0, gr_fit *out, gr_err *err);
 int gr_fit_density_law(const double *D, const double *rho, const double *sigma, size_t n,
                        const double *p0, gr_fit *out, gr_err *err);
+/* The density law with its decay rate confined to [bmin, bmax]: at fixed b
+ * it is linear in rho0 and rho0 a, so chi2 is minimised over b alone (a
+ * log-grid scan, Brent, then gr_fit_nlin from there for the covariance of
+ * all three). It converges whatever the data. *at_bound = 1 says the best
+ * b is an end of the range: the data do not show a saturating exponential
+ * inside it; b is then that end, err[2] NaN and dof = n - 2. */
+int gr_fit_density_law_bounded(const double *D, const double *rho, const double *sigma, size_t n,
+                               double bmin, double bmax, gr_fit *out, int *at_bound, gr_err *err);
 int gr_fit_beverloo(const gr_beverloo_par *par, const double *D, const double *W,
                     const double *sigma, size_t n, const double *p0, gr_fit *out,
                     gr_err *err);

@@ -184,8 +184,8 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     fprintf(gp, "set xlabel 'D / d'\nset ylabel '{/Symbol f}'\nset key bottom right\n");
     fprintf(gp, "plot $t using 1:2:3 with yerrorbars pt 5 lc rgb 'black' title 'grano'");
     if (fd[8] > 0)
-        fprintf(gp, ", %g*(1-%g*exp(-%g*x)) lw 2 lc rgb 'red' title '{/Symbol r}_0(1 - a e^{-bD}): {/Symbol r}_0 = %.3f, a = %.2f, b = %.2f'",
-                fd[0], fd[2], fd[4], fd[0], fd[2], fd[4]);
+        fprintf(gp, ", %g*(1-%g*exp(-%g*x)) lw 2 lc rgb 'red' title '{/Symbol r}_0(1 - a e^{-bD}): {/Symbol r}_0 = %.3f, a = %.2f, b = %.2f%s'",
+                fd[0], fd[2], fd[4], fd[0], fd[2], fd[4], fd[8] == 2 ? " (b at a bound)" : "");
     fprintf(gp, "\n");
     if ((rc = gr_plot_close(gp, png, err)))
         return rc;
@@ -338,28 +338,26 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
         ok = fit_sigma(D, S, n, 0, INFINITY, &f), fit_row(&f, ok, fits + FIT_SIG_ALL * 9);
         ok = fit_sigma(D, S, n, 0, c->split, &f), fit_row(&f, ok, fits + FIT_SIG_SMALL * 9);
         ok = fit_sigma(D, S, n, c->split, INFINITY, &f), fit_row(&f, ok, fits + FIT_SIG_LARGE * 9);
-        /* start from the data: rho0 the largest packing, a the relative dip */
-        double pmax = 0, pmin = INFINITY;
+        /* eq. 4.7 with its decay rate confined to where the law means what
+         * the thesis says: the plateau rho0 is reached (to a tenth of the
+         * dip) within the largest orifice, b >= ln 10 / D_max, and the dip
+         * is still seen at the smallest, b <= ln 100 / D_min. Outside, rho0
+         * would be an extrapolation or a would be unpinned; the fit then
+         * stops at the bound and says so (weighted by the block errors) */
+        double dmin = INFINITY, dmax = 0;
         for (size_t o = 0; o < n; o++)
-            pmax = fmax(pmax, P[o]), pmin = fmin(pmin, P[o]);
-        /* the decay length is the poorly pinned parameter: start from
-         * several and keep the best converged fit (weighted; unweighted
-         * only if no weighted one converges: the block errors can be far
-         * too small) */
-        static const double b_starts[5] = {0.1, 0.3, 0.5, 1.0, 2.0};
-        ok = 0;
-        for (int w = 0; w < 2 && !ok; w++) {
-            for (int k = 0; k < 5; k++) {
-                double pd0[3] = {pmax, fmax(0.01, 1 - pmin / pmax), b_starts[k]};
-                gr_fit fk;
-                if (gr_fit_density_law(D, P, w ? NULL : Pe, n, pd0, &fk, &e) == GR_OK &&
-                    (!ok || fk.chi2 < f.chi2))
-                    f = fk, ok = 1;
-            }
-        }
+            dmin = fmin(dmin, D[o]), dmax = fmax(dmax, D[o]);
+        int edge = 0;
+        ok = gr_fit_density_law_bounded(D, P, Pe, n, log(10.0) / dmax, log(100.0) / dmin, &f, &edge, &e) == GR_OK;
         if (!ok)
             snprintf(fitmsg, sizeof fitmsg, "  density-law fit failed: %.300s\n", e.msg);
+        else if (edge)
+            snprintf(fitmsg, sizeof fitmsg,
+                     "  density law: the best decay rate is the %s bound b = %.3g of [ln 10 / D_max, ln 100 / D_min]: the packing does not follow a saturating exponential in D\n",
+                     f.p[2] > log(10.0) / dmax * 1.0001 ? "upper" : "lower", f.p[2]);
         fit_row(&f, ok, fits + FIT_DENS * 9);
+        if (ok && edge)
+            fits[FIT_DENS * 9 + 8] = 2;
         double a0 = ok && f.p[1] > 0 ? f.p[1] : 0.3, b0 = ok && f.p[2] > 0 ? f.p[2] : 0.3;
         double p0[3] = {Cb, a0, b0};
         ok = gr_fit_beverloo_mod(&bp, D, W, We, n, p0, &f, &e) == GR_OK;
@@ -388,7 +386,7 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
             pstat[g][3] = ndev[g] ? gr_kappa_zero(dev[g], ndev[g]) : NAN;
         }
     }
-    const char *fcols = "p0,p0_err,p1,p1_err,p2,p2_err,chi2_dof,n,converged";
+    const char *fcols = "p0,p0_err,p1,p1_err,p2,p2_err,chi2_dof,n,converged (2: density-law b at a bound of its range)";
     if (!rc) rc = put(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", tab, err);
     if (!rc) rc = put(h, "fits", NFITS, 9, fcols,
                       "rows: beverloo {C,k}; sigma_w A D^p all, D<=split, D>split {A,p}; density law {rho0,a,b}; modified law {C,a,b}", fits, err);
@@ -405,7 +403,7 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
     snprintf(path, sizeof path, "%s/flow.dat", c->dir);
     if (!rc) rc = write_dat(path, hdr, tab, n, NCOL, err);
     snprintf(path, sizeof path, "%s/fits.dat", c->dir);
-    if (!rc) rc = write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged", fits, NFITS, 9, err);
+    if (!rc) rc = write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged (2: density-law b at a bound of its range)", fits, NFITS, 9, err);
     snprintf(path, sizeof path, "%s/pdf_fluctuations.dat", c->dir);
     if (!rc) rc = write_dat(path, "u p_small err_small p_large err_large", pdf, NB, 5, err);
     snprintf(path, sizeof path, "%s/reduced_flow.dat", c->dir);

@@ -181,6 +181,50 @@ static void density_and_modified_law_recovered(void **state)
 
 /* A Gaussian fitted to the normalised histogram of N(0.3, 1.5) samples:
  * the amplitude is the normalisation 1/(sigma sqrt(2 pi)). */
+/* The bounded density-law fit: the law itself is recovered inside the
+ * range (exactly from exact data, within the errors from noisy data); a
+ * straight line, which has no plateau, ends at the lower bound with a
+ * flag instead of a failed iteration; an empty range is refused. */
+static void density_law_bounded(void **state)
+{
+    (void)state;
+    gr_err e = {0};
+    double D[14], y[14], s[14];
+    for (int i = 0; i < 14; i++) {
+        D[i] = 3.0 + i;
+        y[i] = 0.84 * (1.0 - 0.2 * exp(-0.5 * D[i]));
+    }
+    gr_fit f;
+    int edge = -1;
+    assert_int_equal(gr_fit_density_law_bounded(D, y, NULL, 14, 0.1, 2.0, &f, &edge, &e), GR_OK);
+    print_message("# exact law: rho0 %.9f a %.9f b %.9f, at bound %d\n", f.p[0], f.p[1], f.p[2], edge);
+    assert_int_equal(edge, 0);
+    assert_true(fabs(f.p[0] - 0.84) < 1e-7 && fabs(f.p[1] - 0.2) < 1e-6 && fabs(f.p[2] - 0.5) < 1e-6);
+
+    gr_rng *r = gr_rng_create(12, 0, &e);
+    for (int i = 0; i < 14; i++) {
+        s[i] = 0.002;
+        y[i] = 0.82 * (1.0 - 0.3 * exp(-0.35 * D[i])) + gr_rng_gaussian(r, s[i]);
+    }
+    gr_rng_free(r);
+    assert_int_equal(gr_fit_density_law_bounded(D, y, s, 14, log(10.0) / 16.0, log(100.0) / 3.0, &f, &edge, &e), GR_OK);
+    assert_int_equal(edge, 0);
+    assert_within(&f, 0, 0.82, 0.01);
+    assert_within(&f, 1, 0.3, 0.15);
+    assert_within(&f, 2, 0.35, 0.2);
+
+    for (int i = 0; i < 14; i++)
+        y[i] = 0.80 + 0.002 * D[i];
+    assert_int_equal(gr_fit_density_law_bounded(D, y, NULL, 14, 0.15, 1.5, &f, &edge, &e), GR_OK);
+    print_message("# straight line: rho0 %.4f a %.4f b %.4f, at bound %d\n", f.p[0], f.p[1], f.p[2], edge);
+    assert_int_equal(edge, 1);
+    assert_true(f.p[2] == 0.15 && isnan(f.err[2]) && f.dof == 12.0);
+    assert_true(f.p[0] > 0.826 && f.p[1] > 0);
+
+    assert_int_equal(gr_fit_density_law_bounded(D, y, NULL, 14, 1.0, 0.5, &f, &edge, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "decay-rate range"));
+}
+
 static void gaussian_fit_of_histogram(void **state)
 {
     (void)state;
@@ -396,6 +440,7 @@ int main(void)
         cmocka_unit_test(exponential_recovered),
         cmocka_unit_test(beverloo_recovered),
         cmocka_unit_test(density_and_modified_law_recovered),
+        cmocka_unit_test(density_law_bounded),
         cmocka_unit_test(gaussian_fit_of_histogram),
         cmocka_unit_test(tsallis_index_recovered),
         cmocka_unit_test(covariance_convention_matches_linear_fit),
