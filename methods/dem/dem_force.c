@@ -10,42 +10,13 @@
 
 #include "dem.h"
 #include "dem_contact.h"
+#include "dem_eval.h"
 #include "geom.h"
 
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
-typedef struct {
-    gr_dem *d;
-    double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
-    const double *restrict ux, *restrict uy, *restrict uw, *restrict rad;
-    const int32_t *restrict tag;
-    const uint32_t *restrict flags;
-    dem_law law;
-    uint64_t E;
-    double integ;
-    double Lx, Ly;
-    /* active segments at this evaluation: offset and velocity */
-    const double *seg_off;
-    double *seg_vy;
-    const unsigned char *seg_on;
-    /* per strip results */
-    double *smax;       /* largest relative overlap */
-    double *sel;        /* elastic energy */
-    long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
-    double *sseg;       /* per strip, per segment: fx, fy, fn */
-    size_t sstride;     /* doubles per strip in sseg: whole cache lines */
-    int ncol;           /* colours of strips */
-    double *stime;      /* per strip: smoothed wall time of its last timed runs */
-    double *kin;        /* per strip: kinetic energy after the fused kick */
-    const int *kicker;  /* per strip: the strip after whose push it is kicked */
-    int kick, kick_p;   /* fused kick on, and its old buffer */
-    const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
-    int nth;            /* threads the split is for */
-    int hist_full;      /* set when a grain ran out of history slots */
-    long full_i;
-} dem_ctx;
 
 /* Per-strip tallies live on the strip's stack while it runs: strips of one
  * colour run at once, and shared per-strip slots touched at every contact
@@ -379,23 +350,6 @@ static void dispatch(dem_ctx *c, int mode, int col)
 #undef CASE_T
 }
 
-/* The evaluation in progress: its context and per-strip scratch, kept
- * across steps so that a step allocates nothing. */
-struct gr_dem_eval {
-    dem_ctx c;
-    int mode, ns, nseg;
-    double t_eval;
-    uint64_t E;
-    size_t cap_ns, cap_seg, cap_sseg;
-    double *smax, *sel, *sseg, *soff, *svy;
-    long *si, *sj;
-    unsigned char *son;
-    double *stime;   /* per strip cost, kept across evaluations */
-    double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
-    int *kicker, *powner; /* per strip: the strip that kicks it; the thread */
-    int *split;      /* ncol x (nth + 1) */
-    size_t cap_split;
-};
 
 void gr_dem_eval_free(struct gr_dem_eval *ev)
 {
@@ -456,39 +410,6 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     return GR_OK;
 }
 
-/* Cut each colour's strips into nth contiguous runs of about equal cost:
- * the measured times once every strip of the colour has one, the grain
- * counts before. Each colour ends at a barrier, so each is balanced on its
- * own (one cut for all colours left a thread idle at every colour). */
-static void split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth)
-{
-    int ns = ev->ns, ncol = ev->c.ncol;
-    const int32_t *i0 = d->strips.i0;
-    for (int col = 0; col < ncol; col++) {
-        int *b = ev->split + col * (nth + 1);
-        int m = (ns - col + ncol - 1) / ncol, timed = 1;
-        double total = 0.0, acc = 0.0;
-        for (int k = 0; k < m; k++)
-            timed &= ev->stime[col + k * ncol] > 0;
-        for (int k = 0; k < m; k++) {
-            int s = col + k * ncol;
-            total += timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-        }
-        int t = 1;
-        b[0] = 0;
-        for (int k = 0; k < m && t < nth; k++) {
-            int s = col + k * ncol;
-            double w = timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-            /* cut before strip k when that lands nearer the target */
-            while (t < nth && acc + 0.5 * w >= total * t / nth)
-                b[t++] = k;
-            acc += w;
-        }
-        while (t <= nth)
-            b[t++] = m;
-    }
-}
-
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
 {
     if (mode == GR_DEM_NB_CELLS) {
@@ -544,7 +465,7 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
         .stime = ev->stime, .split = ev->split, .nth = nth,
     };
-    split_strips(d, ev, nth);
+    gr_dem_split_strips(d, ev, nth);
     return GR_OK;
 }
 
@@ -625,74 +546,6 @@ void gr_dem_eval_run(gr_dem *d)
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);
     }
-}
-
-int gr_dem_eval_fuse_kick(gr_dem *d, int p)
-{
-    struct gr_dem_eval *ev = d->ev;
-    int ns = ev->ns, ncol = ev->c.ncol;
-    const int32_t *i0 = d->strips.i0;
-    ev->c.kick = 0;
-    /* external forces join at the end of the evaluation, after any kick */
-    if (ev->mode != GR_DEM_NB_VERLET || d->ext_fx || ns < 1 || i0[0] != 0 || (size_t)i0[ns] != d->n)
-        return 0;
-    /* a strip's pushes come from itself, the strip below, and (periodic in
-     * y) strip 0 for the last one: the last of these colours kicks it */
-    for (int r = 0; r < ns; r++) {
-        int k = r;
-        if (r >= 1 && (r - 1) % ncol > k % ncol)
-            k = r - 1;
-        ev->kicker[r] = k;
-    }
-    /* the thread that will kick a strip drifts it at the next step */
-    int nth = ev->c.nth;
-    for (int r = 0; r < ns; r++) {
-        int k = ev->kicker[r], col = k % ncol, j = k / ncol, t = 0;
-        if (nth > 1 && ns > 1)
-            while (t + 1 < nth && j >= ev->split[col * (nth + 1) + t + 1])
-                t++;
-        ev->powner[r] = t;
-        ev->kin[r] = 0.0;
-    }
-    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker;
-    ev->c.kick = 1, ev->c.kick_p = p;
-    return 1;
-}
-
-void gr_dem_eval_drift(gr_dem *d, int p, int q, int track)
-{
-    const struct gr_dem_eval *ev = d->ev;
-    int t = omp_get_thread_num(), T = omp_get_num_threads(), ns = ev->ns;
-    for (int r = 0; r < ns; r++)
-        if (T == 1 || T != ev->c.nth ? r % T == t : ev->powner[r] == t)
-            gr_dem_drift(d, p, q, track, (size_t)d->strips.i0[r], (size_t)d->strips.i0[r + 1], ev->smove + 2 * r);
-#pragma omp barrier
-}
-
-double gr_dem_eval_moved(const gr_dem *d)
-{
-    const struct gr_dem_eval *ev = d->ev;
-    double m1 = 0, m2 = 0;
-    for (int k = 0; k < 2 * ev->ns; k++) {
-        double s2 = ev->smove[k];
-        if (s2 > m2) {
-            if (s2 > m1) {
-                m2 = m1;
-                m1 = s2;
-            } else {
-                m2 = s2;
-            }
-        }
-    }
-    return sqrt(m1) + sqrt(m2);
-}
-
-double gr_dem_eval_kinetic(const gr_dem *d)
-{
-    double ek = 0.0;
-    for (int s = 0; s < d->ev->ns; s++)
-        ek += d->ev->kin[s];
-    return ek;
 }
 
 int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,

@@ -1,0 +1,63 @@
+/* The force evaluation's private state, shared by dem_force.c (contacts,
+ * strips, colours) and dem_flow.c (how the threads share a step). */
+#ifndef GR_DEM_EVAL_H
+#define GR_DEM_EVAL_H
+
+#include <stdatomic.h>
+#include <stdint.h>
+
+#include "dem.h"
+#include "dem_contact.h"
+
+typedef struct {
+    gr_dem *d;
+    double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
+    const double *restrict ux, *restrict uy, *restrict uw, *restrict rad;
+    const int32_t *restrict tag;
+    const uint32_t *restrict flags;
+    dem_law law;
+    uint64_t E;
+    double integ;
+    double Lx, Ly;
+    /* active segments at this evaluation: offset and velocity */
+    const double *seg_off;
+    double *seg_vy;
+    const unsigned char *seg_on;
+    /* per strip results */
+    double *smax;       /* largest relative overlap */
+    double *sel;        /* elastic energy */
+    long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
+    double *sseg;       /* per strip, per segment: fx, fy, fn */
+    size_t sstride;     /* doubles per strip in sseg: whole cache lines */
+    int ncol;           /* colours of strips */
+    double *stime;      /* per strip: smoothed wall time of its last timed runs */
+    double *kin;        /* per strip: kinetic energy after the fused kick */
+    const int *kicker;  /* per strip: the strip after whose push it is kicked */
+    int kick, kick_p;   /* fused kick on, and its old buffer */
+    const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
+    int nth;            /* threads the split is for */
+    int hist_full;      /* set when a grain ran out of history slots */
+    long full_i;
+} dem_ctx;
+
+/* The evaluation in progress: its context and per-strip scratch, kept
+ * across steps so that a step allocates nothing. */
+struct gr_dem_eval {
+    dem_ctx c;
+    int mode, ns, nseg;
+    double t_eval;
+    uint64_t E;
+    size_t cap_ns, cap_seg, cap_sseg;
+    double *smax, *sel, *sseg, *soff, *svy;
+    long *si, *sj;
+    unsigned char *son;
+    double *stime;   /* per strip cost, kept across evaluations */
+    double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
+    int *kicker, *powner; /* per strip: the strip that kicks it; the thread */
+    int *split;      /* ncol x (nth + 1) */
+    size_t cap_split;
+};
+
+void gr_dem_split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth);
+
+#endif
