@@ -217,7 +217,22 @@ double gr_dem_eval_kinetic(const gr_dem *d);
  * (the same value as from blocks: a maximum). */
 void gr_dem_eval_drift(gr_dem *d, int p, int q, int track);
 double gr_dem_eval_moved(const gr_dem *d);
-double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1);
+/* The one-barrier step (two colours, kick fused, two or more threads):
+ * _begin (one thread, after the evaluation's begin and the fusing) says
+ * whether it applies and cuts the strips; then every thread of the region
+ * calls gr_dem_eval_flow (scratch: stride >= strips.n ints per thread), which drifts,
+ * pushes and kicks its run of strips, waiting only on its neighbours';
+ * the caller's barrier ends the step. */
+int gr_dem_eval_flow_begin(gr_dem *d);
+void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride);
+/* One strip's pushes (Verlet lists), and the kicks that fall after it. */
+void gr_dem_eval_strip(gr_dem *d, int s);
+/* Largest squared half-kick speed v + (dt/2) a of the next drift, from the
+ * fused kick: with the displacements so far it bounds the next step's. */
+double gr_dem_eval_vmax2(const gr_dem *d);
+/* Second kick of grains [i0, i1); returns their kinetic energy, and in
+ * *v2max (if not NULL) the largest squared speed of the next drift. */
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max);
 void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
 int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);
 void gr_dem_eval_free(struct gr_dem_eval *ev);

@@ -34,6 +34,7 @@ typedef struct {
     double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
     int kick, kick_p;   /* fused kick on, and its old buffer */
+    double *svmax;      /* per strip: see struct gr_dem_eval */
     const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
     int nth;            /* threads the split is for */
     int hist_full;      /* set when a grain ran out of history slots */
@@ -54,8 +55,14 @@ struct gr_dem_eval {
     double *stime;   /* per strip cost, kept across evaluations */
     double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
     int *kicker, *powner; /* per strip: the strip that kicks it; the thread */
-    int *split;      /* ncol x (nth + 1) */
+    int *split;      /* ncol x (nth + 1), then nth + 1 for the one-barrier step */
     size_t cap_split;
+    double *svmax;   /* per strip: largest speed^2 of the next drift's half kick */
+    double *tdrift;  /* per strip: drift time of this step (timed steps) */
+    /* one-barrier step: per strip, the epoch at which its drift and its
+     * colour's pushes were done */
+    _Atomic uint64_t *dflag, *cflag;
+    uint64_t epoch;
 };
 
 void gr_dem_split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth);

@@ -2,6 +2,7 @@
  * strips, the kick fused into the colours, the drift by the thread that
  * kicked, and the one-barrier step (gr_dem_eval_flow). */
 #include <math.h>
+#include <sched.h>
 #include <string.h>
 
 #include "dem.h"
@@ -71,7 +72,9 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
         ev->powner[r] = t;
         ev->kin[r] = 0.0;
     }
-    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker;
+    for (int r = 0; r < ns; r++)
+        ev->svmax[r] = 0.0;
+    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
     ev->c.kick = 1, ev->c.kick_p = p;
     return 1;
 }
@@ -112,3 +115,117 @@ double gr_dem_eval_kinetic(const gr_dem *d)
     return ek;
 }
 
+
+double gr_dem_eval_vmax2(const gr_dem *d)
+{
+    double m = 0.0;
+    for (int s = 0; s < d->ev->ns; s++)
+        m = fmax(m, d->ev->svmax[s]);
+    return m;
+}
+
+/* ---- the step with one barrier ----------------------------------------
+ * With two colours and the kick fused, a thread needs from the others only
+ * the strips next to its own: a strip is pushed once its own grains and the
+ * grains above it are drifted, and (colour 1) once its neighbours of colour
+ * 0, which push the same grains, are done. So instead of a barrier after
+ * the drift and after each colour, each strip carries two flags (the epoch
+ * of its drift and of its pushes) and a thread waits only on the flags of
+ * the strips beside its run. The order in which each grain receives its
+ * pushes is that of the colours, as with barriers: the same bits. */
+
+static inline void wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
+{
+    unsigned spins = 0;
+    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+        /* a neighbour that lost its core: give ours up rather than spin */
+        if (++spins > (1u << 16))
+            sched_yield(), spins = 0;
+    }
+}
+
+int gr_dem_eval_flow_begin(gr_dem *d)
+{
+    struct gr_dem_eval *ev = d->ev;
+    int nth = ev->c.nth, ns = ev->ns;
+    if (!ev->c.kick || ev->c.ncol != 2 || ns < 2 || nth < 2)
+        return 0;
+    ev->epoch++;
+    /* one cut for the whole step: a thread's run of strips is drifted,
+     * pushed and kicked by it, so the time to balance is their sum */
+    int *S = ev->split + 3 * (nth + 1), timed = 1;
+    const int32_t *i0 = d->strips.i0;
+    double total = 0.0, acc = 0.0;
+    for (int s = 0; s < ns; s++)
+        timed &= ev->stime[s] > 0;
+    for (int s = 0; s < ns; s++)
+        total += timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
+    int t = 1;
+    S[0] = 0;
+    for (int s = 0; s < ns && t < nth; s++) {
+        double w = timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
+        while (t < nth && acc + 0.5 * w >= total * t / nth)
+            S[t++] = s;
+        acc += w;
+    }
+    while (t <= nth)
+        S[t++] = ns;
+    return 1;
+}
+
+/* This thread's strips of colour col in [s0, s1), the two ends first (the
+ * neighbours' runs wait on them), then the rest upwards. */
+static int colour_order(int s0, int s1, int col, int *out)
+{
+    int first = s0 + ((col - s0) % 2 + 2) % 2, last = s1 - 1 - (((s1 - 1 - col) % 2 + 2) % 2), m = 0;
+    if (first >= s1)
+        return 0;
+    out[m++] = first;
+    if (last > first)
+        out[m++] = last;
+    for (int s = first + 2; s < last; s += 2)
+        out[m++] = s;
+    return m;
+}
+
+void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
+{
+    struct gr_dem_eval *ev = d->ev;
+    const int32_t *i0 = d->strips.i0;
+    int ns = ev->ns, t = omp_get_thread_num(), T = ev->c.nth;
+    scratch += (size_t)t * stride;
+    const int *S = ev->split + 3 * (T + 1);
+    int s0 = S[t], s1 = S[t + 1];
+    uint64_t ep = ev->epoch;
+    int timed = (ev->c.E & 15) == 0;
+    for (int s = s0; s < s1; s++) {
+        double t0 = timed ? omp_get_wtime() : 0.0;
+        gr_dem_drift(d, p, q, 1, (size_t)i0[s], (size_t)i0[s + 1], ev->smove + 2 * s);
+        if (timed)
+            ev->tdrift[s] = omp_get_wtime() - t0;
+        atomic_store_explicit(&ev->dflag[s], ep, memory_order_release);
+    }
+    for (int col = 0; col < 2; col++) {
+        int m = colour_order(s0, s1, col, scratch);
+        for (int k = 0; k < m; k++) {
+            int s = scratch[k];
+            if (s + 1 < ns)
+                wait_epoch(&ev->dflag[s + 1], ep);
+            if (col == 1) {
+                wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
+                if (s + 1 < ns)
+                    wait_epoch(&ev->cflag[s + 1], ep);
+            }
+            double t0 = timed ? omp_get_wtime() : 0.0;
+            gr_dem_eval_strip(d, s);
+            if (timed) {
+                double dt = omp_get_wtime() - t0 + ev->tdrift[s];
+                ev->stime[s] = ev->stime[s] > 0 ? 0.75 * ev->stime[s] + 0.25 * dt : dt;
+            }
+            atomic_store_explicit(&ev->cflag[s], ep, memory_order_release);
+        }
+    }
+}

@@ -285,7 +285,7 @@ static inline void kick_after(dem_ctx *c, int s)
     for (int r = s; r <= s + 1 && r < ns; r++)
         if (c->kicker[r] == s)
             c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, (size_t)d->strips.i0[r],
-                                    (size_t)d->strips.i0[r + 1]);
+                                    (size_t)d->strips.i0[r + 1], c->svmax + r);
 }
 
 /* One colour's strips, shared among the threads of the enclosing parallel
@@ -333,21 +333,45 @@ DEM_INLINE void run_colour(dem_ctx *c, const int NL, const int TL, int mode, int
     colour_loop(c, NL, TL, mode, col);
 }
 
+/* CALL(NL, TL) with the contact law's constants, so that each law gets its
+ * own compiled loop. */
+#define DEM_DISPATCH(c, CALL)                                                          \
+    do {                                                                               \
+        if ((c)->d->normal == GR_NORMAL_HERTZ) {                                       \
+            DEM_DISPATCH_T(c, CALL, GR_NORMAL_HERTZ)                                   \
+        } else {                                                                       \
+            DEM_DISPATCH_T(c, CALL, GR_NORMAL_LINEAR)                                  \
+        }                                                                              \
+    } while (0)
+#define DEM_DISPATCH_T(c, CALL, NL)                                                    \
+    switch ((c)->d->tang) {                                                            \
+    case GR_TANG_NONE: CALL(NL, GR_TANG_NONE); break;                                  \
+    case GR_TANG_COULOMB: CALL(NL, GR_TANG_COULOMB); break;                            \
+    case GR_TANG_VISCOUS: CALL(NL, GR_TANG_VISCOUS); break;                            \
+    case GR_TANG_REGULARISED: CALL(NL, GR_TANG_REGULARISED); break;                    \
+    case GR_TANG_SPRING: CALL(NL, GR_TANG_SPRING); break;                              \
+    }
+
 static void dispatch(dem_ctx *c, int mode, int col)
 {
-#define CASE_T(NL, TL) case TL: run_colour(c, NL, TL, mode, col); break;
-#define CASES(NL)                                                                  \
-    switch (c->d->tang) {                                                          \
-    CASE_T(NL, GR_TANG_NONE) CASE_T(NL, GR_TANG_COULOMB) CASE_T(NL, GR_TANG_VISCOUS) \
-    CASE_T(NL, GR_TANG_REGULARISED) CASE_T(NL, GR_TANG_SPRING)                     \
-    }
-    if (c->d->normal == GR_NORMAL_HERTZ) {
-        CASES(GR_NORMAL_HERTZ)
-    } else {
-        CASES(GR_NORMAL_LINEAR)
-    }
-#undef CASES
-#undef CASE_T
+#define RUN(NL, TL) run_colour(c, NL, TL, mode, col)
+    DEM_DISPATCH(c, RUN);
+#undef RUN
+}
+
+DEM_INLINE void one_strip(dem_ctx *c, const int NL, const int TL, int s)
+{
+    strip_verlet(c, NL, TL, s);
+    if (c->kick)
+        kick_after(c, s);
+}
+
+void gr_dem_eval_strip(gr_dem *d, int s)
+{
+    dem_ctx *c = &d->ev->c;
+#define ONE(NL, TL) one_strip(c, NL, TL, s)
+    DEM_DISPATCH(c, ONE);
+#undef ONE
 }
 
 
@@ -358,7 +382,8 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
     free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
     free(ev->si), free(ev->sj), free(ev->son);
     free(ev->stime), free(ev->split), free(ev->kin), free(ev->kicker);
-    free(ev->smove), free(ev->powner);
+    free(ev->smove), free(ev->powner), free(ev->svmax), free(ev->tdrift);
+    free((void *)ev->dflag), free((void *)ev->cflag);
     free(ev);
 }
 
@@ -370,6 +395,15 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     if ((size_t)ns > ev->cap_ns) {
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
         free(ev->kin), free(ev->kicker), free(ev->smove), free(ev->powner);
+        free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag);
+        ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
+        ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
+        ev->dflag = malloc((size_t)ns * sizeof *ev->dflag);
+        ev->cflag = malloc((size_t)ns * sizeof *ev->cflag);
+        for (int k = 0; ev->dflag && ev->cflag && k < ns; k++) {
+            atomic_init(&ev->dflag[k], ev->epoch);
+            atomic_init(&ev->cflag[k], ev->epoch);
+        }
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
         ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
         ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
@@ -383,7 +417,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     } else if (ns != ev->ns) {
         memset(ev->stime, 0, (size_t)ns * sizeof *ev->stime);
     }
-    size_t nsp = (size_t)3 * ((size_t)nth + 1); /* at most three colours */
+    size_t nsp = (size_t)4 * ((size_t)nth + 1); /* three colours, then the one cut */
     if (nsp > ev->cap_split) {
         free(ev->split);
         ev->split = malloc(nsp * sizeof *ev->split);
@@ -402,7 +436,8 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->cap_sseg = nsf;
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
-        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->powner) {
+        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->powner || !ev->svmax ||
+        !ev->tdrift || !ev->dflag || !ev->cflag) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");

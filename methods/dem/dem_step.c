@@ -147,7 +147,7 @@ static double predict_verlet(gr_dem *d, int p, int q, int track)
 /* Second kick of grains [i0, i1): v(t+dt) = u + (dt/2) (a(t+dt) - a(t)),
  * where u is the predicted velocity (gravity cancels); returns their
  * kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array to stream). */
-double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1)
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
 {
     double h = 0.5 * d->par.dt;
     double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
@@ -157,11 +157,16 @@ double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1)
     double *restrict w = d->f[F_W][q];
     const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p], *restrict iI = d->iI;
     int rot = d->rot;
-    double ek = 0;
+    double ek = 0, g = d->g, vm = 0;
     for (size_t i = i0; i < i1; i++) {
         double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
         vx[i] = a;
         vy[i] = c;
+        if (v2max) {
+            double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * (im[i] != 0));
+            double v2 = hx * hx + hy * hy;
+            vm = v2 > vm ? v2 : vm; /* not fmax: a libm call in this loop */
+        }
         if (im[i] != 0)
             ek += 0.5 * (a * a + c * c) / im[i];
         if (rot) {
@@ -171,13 +176,15 @@ double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1)
                 ek += 0.5 * ww * ww / iI[i];
         }
     }
+    if (v2max)
+        *v2max = vm;
     return ek;
 }
 
 static void correct_block(gr_dem *d, int p, int q, size_t b)
 {
     size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < d->n ? i0 + DEM_BLOCK : d->n;
-    d->blk[b] = gr_dem_kick(d, p, q, i0, i1);
+    d->blk[b] = gr_dem_kick(d, p, q, i0, i1, NULL);
 }
 
 /* Kinetic energy from the kick's per-block sums, in block order (the same
@@ -395,6 +402,33 @@ static int maybe_rebuild(gr_dem *d, int p, int q, int mode, double moved, gr_err
     return GR_OK;
 }
 
+/* Velocity Verlet with Verlet lists (and no external force) rebuilds its
+ * list at the start of a step, before the drift, when the step before found
+ * that this drift could take the two largest displacements past the skin
+ * (their sum so far plus twice the largest drift, v + (dt/2) a times dt,
+ * which that step's kick knows). Nothing in the step then waits for all
+ * grains midway, which the one-barrier threaded step needs; gr_dem_step
+ * keeps the same rule, so the bits do not depend on the thread count. */
+static int early(const gr_dem *d)
+{
+    return d->par.integrator == GR_DEM_VERLET && d->par.neighbour == GR_DEM_NB_VERLET && !d->ext_fx;
+}
+
+static int rebuild_now(gr_dem *d, gr_err *err)
+{
+    if (gr_dem_sort(d, err) || gr_dem_build_list(d, d->f[F_X][d->cur], d->f[F_Y][d->cur], err))
+        return err->code;
+    return GR_OK;
+}
+
+/* After a committed early-mode step: whether the next one starts with a
+ * rebuild (an unfused step knows no drift bound: it always does). */
+static void plan_rebuild(gr_dem *d, int fused, double moved)
+{
+    if (!fused || moved + 2.0 * d->par.dt * sqrt(gr_dem_eval_vmax2(d)) > d->par.skin)
+        d->need_build = 1;
+}
+
 /* After the new forces and velocities: the energy check, then the new
  * state becomes the current one and grains that left are handled. */
 static int commit(gr_dem *d, int q, uint64_t E, double tn, double ek, gr_err *err)
@@ -441,6 +475,25 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     double tn = d->t0 + (double)E * dt;
     int mode = d->par.neighbour;
     double moved = 0;
+    if (early(d)) {
+        if (d->need_build && rebuild_now(d, err))
+            return err->code;
+        moved = predict_verlet(d, p, q, 1);
+        d->f_zeroed = 1;
+        if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
+            return err->code;
+        int fused = gr_dem_eval_fuse_kick(d, p);
+        gr_dem_eval_run(d);
+        if (gr_dem_eval_end(d, d->seg_force, err)) {
+            gr_dem_hist_undo_at(d, E);
+            return err->code;
+        }
+        double ek = fused ? gr_dem_eval_kinetic(d) : correct_verlet(d, p, q);
+        if (commit(d, q, E, tn, ek, err))
+            return err->code;
+        plan_rebuild(d, fused, moved);
+        return GR_OK;
+    }
     switch (d->par.integrator) {
     case GR_DEM_GEAR: predict_gear(d, p, q); break;
     case GR_DEM_EULER: predict_euler(d, p, q); break;
@@ -483,7 +536,7 @@ int gr_dem_step(gr_dem *d, gr_err *err)
 
 /* What the threaded Verlet loop carries from one step to the next. */
 typedef struct {
-    int stop, p, q, track, begun, fused;
+    int stop, p, q, track, begun, fused, early, flow;
     uint64_t done, E;
     double tn;
     size_t nb;
@@ -495,7 +548,7 @@ typedef struct {
 static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err)
 {
     const double eps = 1e-6 * d->par.dt;
-    v->fused = 0;
+    v->fused = v->flow = 0;
     v->stop = !(d->t < t_end - eps && (max_steps == 0 || v->done < max_steps));
     if (v->stop)
         return GR_OK;
@@ -504,6 +557,9 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
     v->p = d->cur, v->q = 1 - v->p;
     v->E = d->step + 1;
     v->tn = d->t0 + (double)v->E * d->par.dt;
+    v->early = early(d);
+    if (v->early && d->need_build && rebuild_now(d, err))
+        return v->stop = 1, err->code;
     v->track = d->par.neighbour == GR_DEM_NB_VERLET && !d->need_build;
     v->nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
     v->begun = v->track;
@@ -512,6 +568,7 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
         if (gr_dem_eval_begin(d, v->q, v->tn, v->E, d->par.dt, d->par.neighbour, err))
             return v->stop = 1, err->code;
         v->fused = gr_dem_eval_fuse_kick(d, v->p);
+        v->flow = v->early && v->fused && gr_dem_eval_flow_begin(d);
     }
     return GR_OK;
 }
@@ -527,65 +584,77 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
  * are split exactly as in gr_dem_step, so the runs are the same bits. */
 static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
-    const int mode = d->par.neighbour;
+    const int mode = d->par.neighbour, nth = nthreads(d);
     int rc = GR_OK, stop_b = 0;
     vt_step v = {0};
-#pragma omp parallel num_threads(nthreads(d))
+    size_t per = (size_t)d->strips.n + 1;
+    int *order = malloc((size_t)nth * per * sizeof *order);
+    if (!order)
+        return gr_fail(err, GR_ERUN, "out of memory");
+#pragma omp parallel num_threads(nth)
     {
 #pragma omp single
         rc = vt_start(d, &v, t_end, max_steps, err);
         while (!v.stop) {
             const int p = v.p, q = v.q;
             const size_t nb = v.nb;
-            if (v.fused) {
-                gr_dem_eval_drift(d, p, q, v.track);
+            if (v.flow) {
+                gr_dem_eval_flow(d, p, q, order, per);
+#pragma omp barrier
             } else {
+                if (v.fused) {
+                    gr_dem_eval_drift(d, p, q, v.track);
+                } else {
 #pragma omp for schedule(static)
-                for (size_t b = 0; b < nb; b++)
-                    predict_block(d, p, q, v.track, b);
-            }
-            /* every thread reads the same maxima: the same decision */
-            double moved = !v.track ? 0.0 : v.fused ? gr_dem_eval_moved(d) : moved_from_blocks(d);
-            if (!v.begun || moved > d->par.skin) {
-#pragma omp single
-                {
-                    d->f_zeroed = 1;
-                    if (maybe_rebuild(d, p, q, mode, moved, err) ||
-                        gr_dem_eval_begin(d, q, v.tn, v.E, d->par.dt, mode, err))
-                        rc = err->code, stop_b = 1;
-                    else
-                        v.fused = gr_dem_eval_fuse_kick(d, p);
+                    for (size_t b = 0; b < nb; b++)
+                        predict_block(d, p, q, v.track, b);
                 }
-                if (stop_b)
-                    break;
-            }
-            /* read before the colours' barriers: past them, the end of the
-             * step may already be setting up the next */
-            const int fused = v.fused, ncol = gr_dem_eval_ncolours(d);
-            for (int col = 0; col < ncol; col++)
-                gr_dem_eval_colour(d, col);
-            /* the kick writes only the new buffer: harmless if the step is
-             * refused; with Verlet lists the colours did it */
-            if (!fused) {
+                /* every thread reads the same maxima: the same decision */
+                double moved = !v.track ? 0.0 : v.fused ? gr_dem_eval_moved(d) : moved_from_blocks(d);
+                if (!v.begun || (!v.early && moved > d->par.skin)) {
+#pragma omp single
+                    {
+                        d->f_zeroed = 1;
+                        if (maybe_rebuild(d, p, q, mode, moved, err) ||
+                            gr_dem_eval_begin(d, q, v.tn, v.E, d->par.dt, mode, err))
+                            rc = err->code, stop_b = 1;
+                        else
+                            v.fused = gr_dem_eval_fuse_kick(d, p);
+                    }
+                    if (stop_b)
+                        break;
+                }
+                /* read before the colours' barriers: past them, the end of
+                 * the step may already be setting up the next */
+                const int fused = v.fused, ncol = gr_dem_eval_ncolours(d);
+                for (int col = 0; col < ncol; col++)
+                    gr_dem_eval_colour(d, col);
+                /* the kick writes only the new buffer: harmless if the step
+                 * is refused; with Verlet lists the colours did it */
+                if (!fused) {
 #pragma omp for schedule(static)
-                for (size_t b = 0; b < nb; b++)
-                    correct_block(d, p, q, b);
+                    for (size_t b = 0; b < nb; b++)
+                        correct_block(d, p, q, b);
+                }
             }
 #pragma omp single
             {
-                double ek = fused ? gr_dem_eval_kinetic(d) : kinetic_from_blocks(d, nb);
+                double ek = v.fused ? gr_dem_eval_kinetic(d) : kinetic_from_blocks(d, nb);
                 if (gr_dem_eval_end(d, d->seg_force, err)) {
                     gr_dem_hist_undo_at(d, v.E);
                     rc = err->code, v.stop = 1;
                 } else if (commit(d, q, v.E, v.tn, ek, err)) {
                     rc = err->code, v.stop = 1;
                 } else {
+                    if (v.early)
+                        plan_rebuild(d, v.fused, v.fused ? gr_dem_eval_moved(d) : 0.0);
                     v.done++;
                     rc = vt_start(d, &v, t_end, max_steps, err);
                 }
             }
         }
     }
+    free(order);
     return rc;
 }
 
