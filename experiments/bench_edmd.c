@@ -44,7 +44,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: grano bench edmd [--n N1,N2,...] [--eta E1,E2,...] [--equil C] [--measure C] [--arity 2|4]\n"
-            "                        [--queue tree|calendar] [--cell C] [--sort S] [--quick]\n\n"
+            "                        [--queue tree|calendar] [--cell C] [--sort S] [--quick] [--ratio R]\n\n"
             "Elastic disks (d = m = 1, V0 = 1) in a periodic square box at packing fraction eta, from a\n"
             "square lattice; C equilibration collisions per grain (default 20), then at least C\n"
             "measured collisions per grain (default 10, and at least 2e6 collisions in all).\n"
@@ -52,7 +52,11 @@ static void usage(FILE *f)
             "--arity: branching of the event tree ([edmd] tree_arity, default 2); --cell: minimum cell\n"
             "side ([edmd] cell, default the diameter); --queue: the event queue ([edmd] queue);\n"
             "--sort: collisions per grain between spatial re-sorts ([edmd] sort_every, default automatic).\n"
-            "Prints per case: RESULT method=edmd n=N eta=E collisions_per_s=X\n");
+            "Prints per case: RESULT method=edmd n=N eta=E collisions_per_s=X\n"
+            "--ratio R: instead, per eta, equilibrate the first and the last N of --n (default 1e3 and\n"
+            "1e6) and time them in R alternating rounds of 2e6 collisions each, so that the host's\n"
+            "drifting speed hits both alike; prints per round and in all the rate of the large system\n"
+            "over that of the small one (the issue's criterion: at least 1/2), per CPU second.\n");
 }
 
 /* The scene as a file would give it: the common reader and initialiser. */
@@ -76,6 +80,88 @@ static gr_scene *bench_scene(long n, double eta, int arity, double cell, const c
     return gr_scene_parse(text, "(bench edmd)", extra, err);
 }
 
+/* An equilibrated bench system: equil collisions per grain from the lattice. */
+static gr_edmd *bench_system(long n, double eta, int arity, double cell, const char *queue, double sort, double equil,
+                             gr_err *err)
+{
+    gr_scene *sc = bench_scene(n, eta, arity, cell, queue, sort, err);
+    gr_particles *p = sc ? gr_particles_create((size_t)n, err) : NULL;
+    gr_edmd_params prm;
+    gr_edmd *s = NULL;
+    if (sc && p && !gr_init_particles(sc, p, err) && !gr_edmd_params_read(sc, &prm, err))
+        (void)gr_edmd_create(sc, p, &prm, &s, err);
+    gr_particles_free(p);
+    gr_scene_free(sc);
+    if (s && gr_edmd_advance(s, INFINITY, (uint64_t)(equil * n), err)) {
+        gr_edmd_free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+/* Collisions per CPU second of one round of `want` collisions. */
+static int bench_round(gr_edmd *s, double want, double *rate, gr_err *err)
+{
+    gr_edmd_counters c0, c1;
+    gr_edmd_get_counters(s, &c0);
+    double u0 = now_cpu();
+    int rc = gr_edmd_advance(s, INFINITY, (uint64_t)want, err);
+    double u1 = now_cpu();
+    gr_edmd_get_counters(s, &c1);
+    *rate = (double)(c1.pair - c0.pair) / (u1 - u0);
+    return rc;
+}
+
+static int cmp_dbl(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The two systems timed in turns: the ratio of their rates within each
+ * round is immune to the host's speed drifting over minutes. */
+static int bench_ratio(long n1, long n2, const double *etas, int ne, int rounds, int arity, double cell,
+                       const char *queue, double sort, double equil)
+{
+    enum { RMAX = 64 };
+    const double want = 2e6;
+    for (int ie = 0; ie < ne; ie++) {
+        gr_err err = {0};
+        gr_edmd *a = bench_system(n1, etas[ie], arity, cell, queue, sort, equil, &err);
+        gr_edmd *b = a ? bench_system(n2, etas[ie], arity, cell, queue, sort, equil, &err) : NULL;
+        if (!b) {
+            fprintf(stderr, "grano bench edmd: eta = %g: %s\n", etas[ie], err.msg);
+            gr_edmd_free(a);
+            return err.code ? err.code : 1;
+        }
+        double r[RMAX], sa = 0, sb = 0;
+        printf("# eta %g: round, N = %ld coll/cpu_s, N = %ld coll/cpu_s, ratio\n", etas[ie], n1, n2);
+        for (int k = 0; k < rounds; k++) {
+            double ra, rb;
+            if (bench_round(a, want, &ra, &err) || bench_round(b, want, &rb, &err)) {
+                fprintf(stderr, "grano bench edmd: %s\n", err.msg);
+                gr_edmd_free(a);
+                gr_edmd_free(b);
+                return err.code;
+            }
+            r[k] = rb / ra;
+            sa += 1.0 / ra;
+            sb += 1.0 / rb;
+            printf("  %3d %12.4g %12.4g %7.3f\n", k + 1, ra, rb, r[k]);
+            fflush(stdout);
+        }
+        gr_edmd_free(a);
+        gr_edmd_free(b);
+        qsort(r, (size_t)rounds, sizeof *r, cmp_dbl);
+        /* equal collisions per round: the overall rates are harmonic means */
+        printf("RATIO method=edmd eta=%g n_small=%ld n_large=%ld rounds=%d ratio=%.3f median=%.3f min=%.3f "
+               "max=%.3f\n",
+               etas[ie], n1, n2, rounds, sa / sb, r[rounds / 2], r[0], r[rounds - 1]);
+        fflush(stdout);
+    }
+    return 0;
+}
+
 int bench_edmd(int argc, char **argv)
 {
     double ns[16] = {1e3, 1e4, 1e5, 1e6}, etas[8] = {0.3, 0.6};
@@ -85,6 +171,7 @@ int bench_edmd(int argc, char **argv)
     double cell = 0;
     const char *queue = NULL;
     double sort = -1.0;
+    int rounds = 0;
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
             usage(stdout);
@@ -99,6 +186,12 @@ int bench_edmd(int argc, char **argv)
             equil = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--measure")) {
             measure = atof(argv[++a]);
+        } else if (a + 1 < argc && !strcmp(argv[a], "--ratio")) {
+            rounds = atoi(argv[++a]);
+            if (rounds < 1 || rounds > 64) {
+                fprintf(stderr, "grano bench edmd: --ratio takes 1 to 64 rounds\n");
+                return 2;
+            }
         } else if (a + 1 < argc && !strcmp(argv[a], "--arity")) {
             arity = atoi(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--sort")) {
@@ -123,6 +216,8 @@ int bench_edmd(int argc, char **argv)
             return 2;
         }
     printf("# elastic disks, periodic box, lattice start with speeds 1 in random directions\n");
+    if (rounds)
+        return bench_ratio((long)ns[0], (long)ns[nn - 1], etas, ne, rounds, arity, cell, queue, sort, equil);
     printf("# %9s %5s %12s %9s %14s %14s %14s\n", "N", "eta", "collisions", "wall_s", "coll/s", "coll/cpu_s",
            "events/s");
     for (int ie = 0; ie < ne; ie++) {
