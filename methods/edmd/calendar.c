@@ -151,7 +151,7 @@ static int pend_flush(gr_edmd *s, int all, int64_t b)
  * requested meanwhile: the line of a random bucket is rarely cached. */
 int edmd_cal_push(gr_edmd *s, int32_t i)
 {
-    double t = s->lf[i].t;
+    double t = edmd_slab(s, i)->t;
     if (t == EDMD_INF)
         return GR_OK;
     double x = bucket_x(s, t), bc = (double)s->cal_b;
@@ -181,7 +181,7 @@ static int migrate(gr_edmd *s)
     double lim = (double)s->cal_b + (double)s->cal_nb + 1.0;
     for (size_t k = 0; k < s->ov_n; k++) {
         edmd_qe e = s->ov[k];
-        if (s->lf[e.i].t != e.t)
+        if (edmd_slab(s, e.i)->t != e.t)
             continue;
         if (bucket_x(s, e.t) < lim) {
             if (place(s, e.t, e.i))
@@ -293,7 +293,7 @@ int32_t edmd_cal_top(gr_edmd *s)
             /* nothing within a year: jump to the earliest overflow entry */
             double xmin = EDMD_INF;
             for (size_t k = 0; k < s->ov_n; k++)
-                if (s->lf[s->ov[k].i].t == s->ov[k].t && bucket_x(s, s->ov[k].t) < xmin)
+                if (edmd_slab(s, s->ov[k].i)->t == s->ov[k].t && bucket_x(s, s->ov[k].t) < xmin)
                     xmin = bucket_x(s, s->ov[k].t);
             if (xmin == EDMD_INF) {
                 s->ov_n = 0;
@@ -305,7 +305,7 @@ int32_t edmd_cal_top(gr_edmd *s)
             continue;
         }
         const edmd_qe *e = &s->fr[s->fr_head];
-        if (s->lf[e->i].t == e->t)
+        if (edmd_slab(s, e->i)->t == e->t)
             return e->i;
         s->fr_head++; /* superseded */
         s->cal_skipped++;
@@ -330,13 +330,13 @@ int edmd_cal_build(gr_edmd *s)
 {
     size_t nv = 0;
     for (size_t i = 0; i < s->n; i++)
-        nv += s->lf[i].t != EDMD_INF;
+        nv += edmd_slab(s, (int32_t)i)->t != EDMD_INF;
     enum { NS = 1024 };
     double d[NS];
     size_t ns = 0, stride = nv > NS ? (s->n + NS - 1) / NS : 1;
     for (size_t i = 0; i < s->n && ns < NS; i += stride)
-        if (s->lf[i].t != EDMD_INF)
-            d[ns++] = s->lf[i].t - s->t;
+        if (edmd_slab(s, (int32_t)i)->t != EDMD_INF)
+            d[ns++] = edmd_slab(s, (int32_t)i)->t - s->t;
     double w = 1.0;
     if (ns) {
         qsort(d, ns, sizeof *d, cmp_double);
@@ -356,7 +356,7 @@ int edmd_cal_build(gr_edmd *s)
         w = 1e-300;
     double tmin = EDMD_INF;
     for (size_t i = 0; i < s->n; i++)
-        tmin = s->lf[i].t < tmin ? s->lf[i].t : tmin;
+        tmin = edmd_slab(s, (int32_t)i)->t < tmin ? edmd_slab(s, (int32_t)i)->t : tmin;
     size_t nb = 16;
     while (nb < nv / EDMD_CAL_SLOTDIV)
         nb *= 2;

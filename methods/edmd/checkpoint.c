@@ -35,8 +35,24 @@ static void unpack(gr_edmd *s, const unsigned char *b)
 
 static size_t ncells(const gr_edmd *s) { return (size_t)s->nx * (size_t)s->ny; }
 
+/* The leaves as the tree keeps them: the calendar leaves the array alone,
+ * its slabs' slot 0 hold the same events. */
+static edmd_ev *leaves(const gr_edmd *s)
+{
+    edmd_ev *lf = malloc((size_t)s->P * sizeof *lf);
+    if (!lf)
+        return NULL;
+    for (int32_t i = 0; i < s->P; i++)
+        lf[i] = (size_t)i < s->n && s->p[i].nev ? *edmd_slab(s, i) : (edmd_ev){EDMD_INF, 0, 0};
+    return lf;
+}
+
 int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
 {
+    edmd_ev *lf = s->use_cal ? leaves(s) : s->lf;
+    if (!lf)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the checkpoint");
+    int rc = GR_OK;
     unsigned char sc[SCALAR_BYTES];
     pack(s, sc);
     uint64_t dims[5] = {s->n, (uint64_t)s->ecap, ncells(s), (uint64_t)s->P, s->cacc != NULL};
@@ -49,9 +65,13 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_f64(ck, "edmd.tacc", s->tacc, n, err) ||
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
-        gr_ckpt_put_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
+        gr_ckpt_put_bytes(ck, "edmd.leaves", lf, (size_t)s->P * sizeof *lf, err) ||
         gr_rng_save(s->rng, ck, "edmd.rng", err))
-        return err->code;
+        rc = err->code;
+    if (lf != s->lf)
+        free(lf);
+    if (rc)
+        return rc;
     /* a re-sort renumbers the grains: save the numbering */
     if (gr_ckpt_put_i64(ck, "edmd.id", s->id, n, err) ||
         gr_ckpt_put_f64(ck, "edmd.mass", s->m, n, err) ||

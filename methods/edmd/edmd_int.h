@@ -51,7 +51,7 @@ typedef struct {
     double x, y, vx, vy, t, r;
     int32_t cell;    /* event cell, -1 when not in a cell (naive) */
     int16_t nev;     /* events in its slab */
-    int16_t emin;    /* slot of its earliest event, -1 if none */
+    int16_t spare;
     int32_t cnext;   /* next particle in its cell */
     uint32_t ncol;   /* state changes so far (collision counter) */
 } edmd_p;
@@ -139,7 +139,7 @@ struct gr_edmd {
     /* events */
     edmd_ev *ev;             /* n slabs of ecap events */
     int32_t ecap;
-    edmd_ev *lf;             /* leaves: a copy of each grain's earliest event */
+    edmd_ev *lf;             /* leaves: a copy of each grain's earliest event (tree queue only) */
     edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
     int32_t P;               /* leaves (power of K >= n) */
     int tshift;              /* log2 of the tree's branching K (1: binary) */
@@ -237,6 +237,11 @@ static inline double edmd_fall_time(double dy, double vy, double g)
     return 2.0 * dy / (sq - vy);
 }
 
+/* Grain i's event slab. Slot 0 holds its earliest event (time INF when
+ * the slab is empty): the queue reads it from the slab's first line, which
+ * the event needs anyway, rather than from a separate leaf array. */
+static inline edmd_ev *edmd_slab(const gr_edmd *s, int32_t i) { return s->ev + (size_t)i * (size_t)s->ecap; }
+
 /* tree.c: event pool, per-particle lists, complete binary tree */
 int edmd_events_init(gr_edmd *s, gr_err *err);
 void *edmd_big_alloc(size_t bytes);
@@ -264,7 +269,7 @@ int edmd_predict_all(gr_edmd *s, int32_t i);
 void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
 /* Front positions (0: the next event) of the look-ahead's five stages:
- * grain, leaf and slab; cell heads and partner; first grains and the
+ * grain and slab; cell heads and partner; first grains and the
  * partner's heads; second grains and the partner's first; the partner's
  * second. The front is kept EDMD_CAL_AHEAD deep. */
 #define EDMD_LA_1 9

@@ -126,7 +126,7 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
             i = edmd_cal_top(s);
             if (i == -2)
                 return gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar");
-            t = i >= 0 ? s->lf[i].t : EDMD_INF;
+            t = i >= 0 ? edmd_slab(s, i)->t : EDMD_INF;
         } else {
             i = s->node[1].i;
             t = s->node[1].t;
@@ -143,12 +143,12 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
         if (s->P >= EDMD_PREFETCH_P && !s->use_cal)
             edmd_tree_prefetch(s, i);
-        edmd_ev ev = s->lf[i];
+        edmd_ev ev = *edmd_slab(s, i);
         if (ev.partner >= 0) {
             __builtin_prefetch(&s->p[ev.partner], 1);
             __builtin_prefetch(s->ev + (size_t)ev.partner * (size_t)s->ecap, 1);
         }
-        int32_t e = s->p[i].emin;
+        const int32_t e = 0; /* the earliest event's slot */
         int kind = edmd_ev_kind(&ev);
         if (kind == EV_PAIR) {
             int32_t j = ev.partner;

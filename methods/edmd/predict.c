@@ -549,7 +549,7 @@ static inline void pf_grains_but(const gr_edmd *s, int c, int depth, int but)
 static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner)
 {
     const edmd_qe *f = &s->fr[s->fr_head + k];
-    const edmd_ev *e = &s->lf[f->i];
+    const edmd_ev *e = edmd_slab(s, f->i);
     *partner = -1;
     if (e->t != f->t)
         return -1;
@@ -579,7 +579,6 @@ static void la_stage(const gr_edmd *s, int32_t k, int q)
     if (q == 1) {
         int32_t i = s->fr[s->fr_head + k].i;
         edmd_pf(&s->p[i]);
-        edmd_pf(&s->lf[i]);
         pf_slab(s, i);
         pf_grain_side(s, i);
     } else if ((c = la_cell(s, k, &j)) < 0) {

@@ -117,6 +117,7 @@ int edmd_sort(gr_edmd *s, gr_err *err)
     for (size_t j = 0; j < n; j++) {
         const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
         edmd_ev *dst = ev + j * cap;
+        dst[0] = (edmd_ev){EDMD_INF, 0, 0}; /* if empty */
         for (int32_t k = 0; k < s->p[j].nev; k++) {
             dst[k] = src[k];
             if (dst[k].partner >= 0)
@@ -126,12 +127,13 @@ int edmd_sort(gr_edmd *s, gr_err *err)
     free(s->ev);
     s->ev = ev;
     edmd_ev *lf = buf; /* n leaves fit in n grains' room */
-    for (size_t j = 0; j < n; j++) {
+    for (size_t j = 0; j < n && !s->use_cal; j++) {
         lf[j] = s->lf[perm[j]];
         if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
             lf[j].partner = inv[lf[j].partner];
     }
-    memcpy(s->lf, lf, n * sizeof *lf);
+    if (!s->use_cal)
+        memcpy(s->lf, lf, n * sizeof *lf);
     free(perm);
     free(inv);
     free(buf);

@@ -4,8 +4,10 @@
  * children, so the next event is at the root and an update costs log2 N
  * comparisons. A particle's list is a slab of a fixed capacity in one array
  * (not linked nodes scattered in a pool): clearing it is O(1) and scanning
- * it touches one or two cache lines. A full slab first drops its stale
- * events; if still full, every slab doubles. */
+ * it touches one or two cache lines. The earliest event is kept in slot 0.
+ * A full slab first drops its stale events; if still full, every slab
+ * doubles. The leaves (a copy of slot 0 in an array of their own, so that
+ * siblings share lines) are kept for the tree only. */
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -61,7 +63,7 @@ int edmd_events_init(gr_edmd *s, gr_err *err)
         s->lf[i] = (edmd_ev){EDMD_INF, 0, 0};
     for (size_t i = 0; i < s->n; i++) {
         s->p[i].nev = 0;
-        s->p[i].emin = -1;
+        edmd_slab(s, (int32_t)i)->t = EDMD_INF;
     }
     if (s->use_cal)
         return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
@@ -78,33 +80,41 @@ static int grow(gr_edmd *s)
     edmd_ev *ev = edmd_ev_alloc(n * 2 * c);
     if (!ev)
         return GR_ERUN;
-    for (size_t i = 0; i < n; i++)
-        memcpy(ev + i * 2 * c, s->ev + i * c, (size_t)s->p[i].nev * sizeof *ev);
+    for (size_t i = 0; i < n; i++) /* slot 0 even when empty: its INF */
+        memcpy(ev + i * 2 * c, s->ev + i * c, (size_t)(s->p[i].nev > 0 ? s->p[i].nev : 1) * sizeof *ev);
     free(s->ev);
     s->ev = ev;
     s->ecap = (int32_t)(2 * c);
     return GR_OK;
 }
 
+/* The earliest event (the first of equal ones) to slot 0. */
 static void rescan(gr_edmd *s, int32_t i)
 {
-    const edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
-    double best = EDMD_INF;
-    int32_t be = -1;
-    for (int32_t k = 0; k < s->p[i].nev; k++)
-        if (v[k].t < best) {
-            best = v[k].t;
-            be = k;
+    edmd_ev *v = edmd_slab(s, i);
+    int32_t nev = s->p[i].nev;
+    if (nev == 0) {
+        v[0] = (edmd_ev){EDMD_INF, 0, 0};
+    } else {
+        int32_t be = 0;
+        for (int32_t k = 1; k < nev; k++)
+            if (v[k].t < v[be].t)
+                be = k;
+        if (be) {
+            edmd_ev e = v[0];
+            v[0] = v[be];
+            v[be] = e;
         }
-    s->lf[i] = be >= 0 ? v[be] : (edmd_ev){EDMD_INF, 0, 0};
-    s->p[i].emin = (int16_t)be;
+    }
+    if (!s->use_cal)
+        s->lf[i] = v[0];
 }
 
 /* Drop the pair events of a full slab whose partner has changed state
  * since (they would be dropped when popped anyway). */
 static void compact(gr_edmd *s, int32_t i)
 {
-    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
+    edmd_ev *v = edmd_slab(s, i);
     int32_t m = 0;
     for (int32_t k = 0; k < s->p[i].nev; k++) {
         if (v[k].partner >= 0 && s->p[v[k].partner].ncol != v[k].pncol) {
@@ -126,28 +136,32 @@ int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uin
             return GR_ERUN;
     }
     int32_t k = p->nev++;
-    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap + k;
-    v->t = t;
-    v->partner = kind == EV_PAIR ? partner : -1 - (partner << 2 | kind);
-    v->pncol = pncol;
-    if (t < s->lf[i].t) {
-        s->lf[i] = *v;
-        s->p[i].emin = (int16_t)k;
+    edmd_ev *v = edmd_slab(s, i);
+    edmd_ev e = {t, kind == EV_PAIR ? partner : -1 - (partner << 2 | kind), pncol};
+    if (k > 0 && !(t < v[0].t)) { /* an empty slab's slot 0 is INF */
+        v[k] = e;
+        return GR_OK;
     }
+    if (k > 0)
+        v[k] = v[0];
+    v[0] = e;
+    if (!s->use_cal)
+        s->lf[i] = e;
     return GR_OK;
 }
 
 void edmd_list_clear(gr_edmd *s, int32_t i)
 {
     s->p[i].nev = 0;
-    s->lf[i].t = EDMD_INF;
-    s->p[i].emin = -1;
+    edmd_slab(s, i)->t = EDMD_INF;
+    if (!s->use_cal)
+        s->lf[i].t = EDMD_INF;
 }
 
 /* Remove slot k (the last slot moves into it) and find the new earliest. */
 void edmd_list_remove(gr_edmd *s, int32_t i, int32_t k)
 {
-    edmd_ev *v = s->ev + (size_t)i * (size_t)s->ecap;
+    edmd_ev *v = edmd_slab(s, i);
     int32_t last = --s->p[i].nev;
     v[k] = v[last];
     rescan(s, i);
