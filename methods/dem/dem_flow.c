@@ -141,9 +141,12 @@ static inline void wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
 #if defined(__x86_64__) || defined(__i386__)
         __builtin_ia32_pause();
 #endif
-        /* a neighbour that lost its core: give ours up rather than spin */
-        if (++spins > (1u << 16))
-            sched_yield(), spins = 0;
+        /* a neighbour that lost its core (another job on the machine):
+         * after some 0.1 ms give ours up at every try rather than spin */
+        if (spins < (1u << 11))
+            spins++;
+        else
+            sched_yield();
     }
 }
 
