@@ -4,6 +4,7 @@
 #define GR_DEM_H
 
 #include <stddef.h>
+#include <math.h>
 #include <stdint.h>
 
 #include "ckpt.h"
@@ -148,6 +149,20 @@ typedef struct gr_dem {
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
  * the number of threads). */
 #define DEM_BLOCK 512
+
+/* sqrt of the two largest of v[0..n) (squared displacements) summed: the
+ * Verlet-list test, the same whatever grouping produced v (maxima). */
+static inline double gr_dem_top2_sum(const double *v, size_t n)
+{
+    double m1 = 0, m2 = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (v[k] > m1)
+            m2 = m1, m1 = v[k];
+        else if (v[k] > m2)
+            m2 = v[k];
+    }
+    return sqrt(m1) + sqrt(m2);
+}
 
 /* Parameters: defaults, then the scene's [dem] section; checks the time
  * step against the contact time (GR_EINPUT naming the key). */

@@ -12,37 +12,42 @@
 #include <omp.h>
 #endif
 
-/* Cut each colour's strips into nth contiguous runs of about equal cost:
- * the measured times once every strip of the colour has one, the grain
- * counts before. Each colour ends at a barrier, so each is balanced on its
- * own (one cut for all colours left a thread idle at every colour). */
+/* Cut the m strips first, first + step, ... into nth contiguous runs of
+ * about equal cost (the measured times once every one of them has one,
+ * the grain counts before): b[t] is the index, in that sequence, of the
+ * first strip of run t, b[nth] = m. */
+static void cut_runs(const gr_dem *d, const struct gr_dem_eval *ev, int first, int step, int m, int nth,
+                     int *b)
+{
+    const int32_t *i0 = d->strips.i0;
+    int timed = 1;
+    double total = 0.0, acc = 0.0;
+    for (int k = 0; k < m; k++)
+        timed &= ev->stime[first + k * step] > 0;
+#define WEIGHT(s) (timed ? ev->stime[s] : (double)(i0[(s) + 1] - i0[s]) + 1.0)
+    for (int k = 0; k < m; k++)
+        total += WEIGHT(first + k * step);
+    int t = 1;
+    b[0] = 0;
+    for (int k = 0; k < m && t < nth; k++) {
+        double w = WEIGHT(first + k * step);
+        /* cut before strip k when that lands nearer the target */
+        while (t < nth && acc + 0.5 * w >= total * t / nth)
+            b[t++] = k;
+        acc += w;
+    }
+#undef WEIGHT
+    while (t <= nth)
+        b[t++] = m;
+}
+
+/* Each colour ends at a barrier, so each is balanced on its own (one cut
+ * for all colours left a thread idle at every colour). */
 void gr_dem_split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth)
 {
     int ns = ev->ns, ncol = ev->c.ncol;
-    const int32_t *i0 = d->strips.i0;
-    for (int col = 0; col < ncol; col++) {
-        int *b = ev->split + col * (nth + 1);
-        int m = (ns - col + ncol - 1) / ncol, timed = 1;
-        double total = 0.0, acc = 0.0;
-        for (int k = 0; k < m; k++)
-            timed &= ev->stime[col + k * ncol] > 0;
-        for (int k = 0; k < m; k++) {
-            int s = col + k * ncol;
-            total += timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-        }
-        int t = 1;
-        b[0] = 0;
-        for (int k = 0; k < m && t < nth; k++) {
-            int s = col + k * ncol;
-            double w = timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-            /* cut before strip k when that lands nearer the target */
-            while (t < nth && acc + 0.5 * w >= total * t / nth)
-                b[t++] = k;
-            acc += w;
-        }
-        while (t <= nth)
-            b[t++] = m;
-    }
+    for (int col = 0; col < ncol; col++)
+        cut_runs(d, ev, col, ncol, (ns - col + ncol - 1) / ncol, nth, ev->split + col * (nth + 1));
 }
 
 int gr_dem_eval_fuse_kick(gr_dem *d, int p)
@@ -89,23 +94,7 @@ void gr_dem_eval_drift(gr_dem *d, int p, int q, int track)
 #pragma omp barrier
 }
 
-double gr_dem_eval_moved(const gr_dem *d)
-{
-    const struct gr_dem_eval *ev = d->ev;
-    double m1 = 0, m2 = 0;
-    for (int k = 0; k < 2 * ev->ns; k++) {
-        double s2 = ev->smove[k];
-        if (s2 > m2) {
-            if (s2 > m1) {
-                m2 = m1;
-                m1 = s2;
-            } else {
-                m2 = s2;
-            }
-        }
-    }
-    return sqrt(m1) + sqrt(m2);
-}
+double gr_dem_eval_moved(const gr_dem *d) { return gr_dem_top2_sum(d->ev->smove, 2 * (size_t)d->ev->ns); }
 
 double gr_dem_eval_kinetic(const gr_dem *d)
 {
@@ -159,23 +148,7 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     ev->epoch++;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
-    int *S = ev->split + 3 * (nth + 1), timed = 1;
-    const int32_t *i0 = d->strips.i0;
-    double total = 0.0, acc = 0.0;
-    for (int s = 0; s < ns; s++)
-        timed &= ev->stime[s] > 0;
-    for (int s = 0; s < ns; s++)
-        total += timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-    int t = 1;
-    S[0] = 0;
-    for (int s = 0; s < ns && t < nth; s++) {
-        double w = timed ? ev->stime[s] : (double)(i0[s + 1] - i0[s]) + 1.0;
-        while (t < nth && acc + 0.5 * w >= total * t / nth)
-            S[t++] = s;
-        acc += w;
-    }
-    while (t <= nth)
-        S[t++] = ns;
+    cut_runs(d, ev, 0, 1, ns, nth, ev->split + 3 * (nth + 1));
     return 1;
 }
 

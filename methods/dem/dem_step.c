@@ -111,20 +111,7 @@ static void predict_block(gr_dem *d, int p, int q, int track, size_t b)
  * predict_block left (the same whatever the thread count: a maximum). */
 static double moved_from_blocks(const gr_dem *d)
 {
-    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-    double m1 = 0, m2 = 0;
-    for (size_t k = 0; k < 2 * nb; k++) {
-        double s2 = d->blk[k];
-        if (s2 > m2) {
-            if (s2 > m1) {
-                m2 = m1;
-                m1 = s2;
-            } else {
-                m2 = s2;
-            }
-        }
-    }
-    return sqrt(m1) + sqrt(m2);
+    return gr_dem_top2_sum(d->blk, 2 * ((d->n + DEM_BLOCK - 1) / DEM_BLOCK));
 }
 
 /* Returns the sum of the two largest displacements since the list build
