@@ -545,8 +545,11 @@ static inline void pf_grains_but(const gr_edmd *s, int c, int depth, int but)
 
 /* The cell around which the event at front position k will look for
  * partners (for a crossing, the cell it enters), and its partner (-1 if
- * none); -1, -1 when the entry is superseded. */
-static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner)
+ * none); -1, -1 when the entry is superseded, or, once the partner's line
+ * has been requested (stale_known), when its pair event is stale: a stale
+ * event only drops itself, and a partner's collision counter never goes
+ * back, so prefetching its cells would be wasted. */
+static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner, int stale_known)
 {
     const edmd_qe *f = &s->fr[s->fr_head + k];
     const edmd_ev *e = edmd_slab(s, f->i);
@@ -555,6 +558,8 @@ static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner)
         return -1;
     int c = s->p[f->i].cell;
     if (e->partner >= 0) {
+        if (stale_known && s->p[e->partner].ncol != e->pncol)
+            return -1;
         *partner = e->partner;
         return c;
     }
@@ -581,7 +586,7 @@ static void la_stage(const gr_edmd *s, int32_t k, int q)
         edmd_pf(&s->p[i]);
         pf_slab(s, i);
         pf_grain_side(s, i);
-    } else if ((c = la_cell(s, k, &j)) < 0) {
+    } else if ((c = la_cell(s, k, &j, q >= 3)) < 0) {
         return;
 
     } else if (q == 2) {
