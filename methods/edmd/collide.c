@@ -14,14 +14,16 @@
  * smooth (no tangential impulse), so that neither the normal nor the
  * tangential rule can drain energy in an accumulation of collisions (a
  * rough grain wedged in a corner collapses through friction alone). */
-static int guarded(gr_edmd *s, int dissipative, double gn, double tl_i, double tl_j, double t)
+/* The collision clocks are read only under the tc rule: at large N each
+ * is a random line, which an elastic run would wait for in vain. */
+static int guarded(gr_edmd *s, int dissipative, double gn, int32_t i, int32_t j, double t)
 {
     if (!dissipative)
         return 0;
     int on = 0;
     switch (s->prm.collapse) {
     case GR_EDMD_COLLAPSE_TC:
-        on = t - tl_i < s->prm.tc || t - tl_j < s->prm.tc;
+        on = t - s->tlast[i] < s->prm.tc || (j >= 0 && t - s->tlast[j] < s->prm.tc);
         break;
     case GR_EDMD_COLLAPSE_THRESHOLD:
         on = -gn < s->prm.v_threshold;
@@ -72,7 +74,7 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double vy0i = a->vy, vy0j = b->vy;
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0) {
-        int guard = guarded(s, s->alpha < 1.0 || (s->rough && s->beta < 1.0), gn, s->tlast[i], s->tlast[j], t);
+        int guard = guarded(s, s->alpha < 1.0 || (s->rough && s->beta < 1.0), gn, i, j, t);
         double al = guard ? 1.0 : s->alpha;
         double mred = mi * mj / (mi + mj);
         Jn = -(1.0 + al) * mred * gn;
@@ -166,7 +168,7 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     double vy0 = a->vy;
     double Jn = 0.0;
     if (gn < 0.0) {
-        int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, s->tlast[i], -EDMD_INF, t);
+        int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, i, -1, t);
         double e = guard ? 1.0 : s->alpha_w;
         Jn = -(1.0 + e) * m * gn;
         double Jt = 0.0, tx = -ny, ty = nx;
