@@ -2,7 +2,7 @@
  * strips, the kick fused into the colours, the drift by the thread that
  * kicked, and the one-barrier step (gr_dem_eval_flow). */
 #include <math.h>
-#include <sched.h>
+#include <time.h>
 #include <string.h>
 
 #include "dem.h"
@@ -131,11 +131,14 @@ static inline void wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
         __builtin_ia32_pause();
 #endif
         /* a neighbour that lost its core (another job on the machine):
-         * after some 0.1 ms give ours up at every try rather than spin */
-        if (spins < (1u << 11))
+         * after some 50 us sleep rather than spin, so that the scheduler
+         * can give it ours */
+        if (spins < (1u << 11)) {
             spins++;
-        else
-            sched_yield();
+        } else {
+            struct timespec ts = {0, 20000};
+            nanosleep(&ts, NULL);
+        }
     }
 }
 
