@@ -234,6 +234,10 @@ static int load_next(gr_edmd *s)
     /* buckets are read in order, but slowly and between random lines: the
      * hardware does not see the stream */
     edmd_pf(&s->cal[(s->cal_b + 4) & (int64_t)(s->cal_nb - 1)]);
+    /* and the spill line of a full bucket two ahead, whose line is in by now */
+    int32_t m2 = s->cal[(s->cal_b + 2) & (int64_t)(s->cal_nb - 1)].more;
+    if (m2)
+        edmd_pf(&s->chunk[m2 - 1]);
     if (!q->n)
         return GR_OK;
     int32_t cnt = q->n;
