@@ -135,6 +135,14 @@ struct gr_edmd {
     int32_t *corder;         /* cells in Morton order, for spatial sorting */
     uint64_t sort_period;    /* collisions between re-sorts, 0 = never */
     uint64_t last_sort;      /* collision count at the last sort */
+    /* the re-sort's room, kept from one sort to the next: freeing and
+     * allocating it anew cost more than the sort itself at large N (the
+     * kernel zeroes every fresh page) */
+    edmd_p *sort_p;          /* grains in the new order; swapped with p */
+    edmd_ev *sort_ev;        /* slabs in the new order; swapped with ev */
+    size_t sort_ev_n;        /* events sort_ev holds */
+    int32_t *sort_perm, *sort_inv;
+    void *sort_buf;          /* n leaves or doubles */
 
     /* events */
     edmd_ev *ev;             /* n slabs of ecap events */

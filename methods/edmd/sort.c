@@ -62,17 +62,37 @@ int edmd_sort_setup(gr_edmd *s, gr_err *err)
         memcpy((arr), tmp_, n * sizeof(T));       \
     } while (0)
 
+/* The sort's room: allocated at the first sort, the slabs again when
+ * they have grown. */
+static int sort_room(gr_edmd *s)
+{
+    size_t n = s->n, nev = n * (size_t)s->ecap;
+    if (!s->sort_p) {
+        s->sort_p = edmd_big_alloc(n * sizeof *s->sort_p);
+        s->sort_perm = malloc(n * sizeof *s->sort_perm);
+        s->sort_inv = malloc(n * sizeof *s->sort_inv);
+        s->sort_buf = edmd_big_alloc(n * sizeof(edmd_ev));
+        if (!s->sort_p || !s->sort_perm || !s->sort_inv || !s->sort_buf)
+            return GR_ERUN;
+    }
+    if (s->sort_ev_n != nev) {
+        free(s->sort_ev);
+        s->sort_ev_n = 0;
+        s->sort_ev = edmd_ev_alloc(nev);
+        if (!s->sort_ev)
+            return GR_ERUN;
+        s->sort_ev_n = nev;
+    }
+    return GR_OK;
+}
+
 int edmd_sort(gr_edmd *s, gr_err *err)
 {
     size_t n = s->n, nc = (size_t)s->nx * (size_t)s->ny;
-    int32_t *perm = malloc(n * sizeof *perm), *inv = malloc(n * sizeof *inv);
-    void *buf = malloc(n * sizeof(edmd_p));
-    if (!perm || !inv || !buf) {
-        free(perm);
-        free(inv);
-        free(buf);
+    if (sort_room(s))
         return gr_fail(err, GR_ERUN, "edmd: out of memory while sorting %zu grains", n);
-    }
+    int32_t *perm = s->sort_perm, *inv = s->sort_inv;
+    void *buf = s->sort_buf;
     size_t k = 0;
     for (size_t q = 0; q < nc; q++)
         for (int32_t i = s->chead[s->corder[q]]; i >= 0; i = s->p[i].cnext)
@@ -82,7 +102,11 @@ int edmd_sort(gr_edmd *s, gr_err *err)
             perm[k++] = (int32_t)i;
     for (size_t j = 0; j < n; j++)
         inv[perm[j]] = (int32_t)j;
-    PERMUTE(s->p, edmd_p);
+    edmd_p *np = s->sort_p;
+    for (size_t j = 0; j < n; j++)
+        np[j] = s->p[perm[j]];
+    s->sort_p = s->p;
+    s->p = np;
     PERMUTE(s->w, double);
     PERMUTE(s->m, double);
     PERMUTE(s->inertia, double);
@@ -107,13 +131,7 @@ int edmd_sort(gr_edmd *s, gr_err *err)
      * (predicting them again would cost a full schedule, a second or so at
      * N = 1e6, and could round some times differently). */
     size_t cap = (size_t)s->ecap;
-    edmd_ev *ev = edmd_ev_alloc(n * cap);
-    if (!ev) {
-        free(perm);
-        free(inv);
-        free(buf);
-        return gr_fail(err, GR_ERUN, "edmd: out of memory while sorting %zu grains", n);
-    }
+    edmd_ev *ev = s->sort_ev;
     for (size_t j = 0; j < n; j++) {
         const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
         edmd_ev *dst = ev + j * cap;
@@ -124,19 +142,17 @@ int edmd_sort(gr_edmd *s, gr_err *err)
                 dst[k].partner = inv[dst[k].partner];
         }
     }
-    free(s->ev);
+    s->sort_ev = s->ev;
     s->ev = ev;
-    edmd_ev *lf = buf; /* n leaves fit in n grains' room */
-    for (size_t j = 0; j < n && !s->use_cal; j++) {
-        lf[j] = s->lf[perm[j]];
-        if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
-            lf[j].partner = inv[lf[j].partner];
-    }
-    if (!s->use_cal)
+    if (!s->use_cal) {
+        edmd_ev *lf = buf;
+        for (size_t j = 0; j < n; j++) {
+            lf[j] = s->lf[perm[j]];
+            if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
+                lf[j].partner = inv[lf[j].partner];
+        }
         memcpy(s->lf, lf, n * sizeof *lf);
-    free(perm);
-    free(inv);
-    free(buf);
+    }
     s->last_sort = s->steps;
     if (s->use_cal)
         return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;

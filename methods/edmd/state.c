@@ -77,6 +77,11 @@ void gr_edmd_free(gr_edmd *s)
     free(s->chead);
     free(s->wmask);
     free(s->corder);
+    free(s->sort_p);
+    free(s->sort_ev);
+    free(s->sort_perm);
+    free(s->sort_inv);
+    free(s->sort_buf);
     free(s->ev);
     free(s->lf);
     free(s->node);
