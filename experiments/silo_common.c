@@ -509,3 +509,21 @@ int silo_sweep_run(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
     munmap(slot, (n + 1) * sizeof *slot);
     return rc;
 }
+
+int silo_sweep_and_report(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
+                          silo_label_fn key, silo_report_fn report, void *ctx, char *summary,
+                          size_t nsum, double *seconds, size_t *reused, gr_err *err)
+{
+    char **parts = calloc(sw->nunits, sizeof *parts);
+    if (!parts)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    double t0 = gr_wall_seconds();
+    int rc = silo_sweep_run(sw, fn, label, key, ctx, parts, reused, err);
+    *seconds = gr_wall_seconds() - t0;
+    if (!rc)
+        rc = report(ctx, parts, summary, nsum, err);
+    for (size_t u = 0; u < sw->nunits; u++)
+        free(parts[u]);
+    free(parts);
+    return rc;
+}

@@ -109,6 +109,15 @@ int silo_sweep_run(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
                    silo_label_fn key, void *ctx, char **paths, size_t *done_before,
                    gr_err *err);
 
+/* The whole sweep of a command: run (or reuse) every unit, then
+ * report(ctx, parts, summary, nsum, err) from all the parts. *seconds is
+ * the wall time of the units, *reused the parts found done. */
+typedef int (*silo_report_fn)(const void *ctx, char *const *parts, char *summary, size_t nsum,
+                              gr_err *err);
+int silo_sweep_and_report(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
+                          silo_label_fn key, silo_report_fn report, void *ctx, char *summary,
+                          size_t nsum, double *seconds, size_t *reused, gr_err *err);
+
 /* Part file helpers. */
 int silo_part_key_matches(const char *path, const char *key);
 int silo_put_particles(gr_ckpt *ck, const char *name, const gr_particles *p, gr_err *err);

@@ -176,6 +176,11 @@ static int parse_long(const char *s, long lo, long *out)
     return 0;
 }
 
+static int sf_report_any(const void *ctx, char *const *parts, char *summary, size_t nsum, gr_err *err)
+{
+    return sf_report(ctx, parts, summary, nsum, err);
+}
+
 int cmd_silo_flow(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -254,23 +259,15 @@ int cmd_silo_flow(int argc, char **argv)
     c.dir = dir;
     gr_err e = {0};
     size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    char **parts = calloc(nu, sizeof *parts);
-    if (!parts)
-        return 1;
     silo_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
-    double t0 = gr_wall_seconds();
-    int rc = silo_sweep_run(&sw, sf_unit, sf_label, sf_key, &c, parts, &reused, &e);
-    double t_units = gr_wall_seconds() - t0;
     char summary[4096] = "";
-    if (!rc)
-        rc = sf_report(&c, parts, summary, sizeof summary, &e);
+    double t_units = 0;
+    int rc = silo_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, &c, summary,
+                                   sizeof summary, &t_units, &reused, &e);
     if (rc)
         fprintf(stderr, "grano silo-flow: %s\n", e.msg);
     else if (!quiet)
         fprintf(stderr, "grano silo-flow: %zu units (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
                 nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
-    for (size_t u = 0; u < nu; u++)
-        free(parts[u]);
-    free(parts);
     return rc;
 }

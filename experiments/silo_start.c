@@ -425,6 +425,11 @@ static void make_times(ss_ctx *c)
         }
 }
 
+static int ss_report_any(const void *ctx, char *const *parts, char *summary, size_t nsum, gr_err *err)
+{
+    return ss_report(ctx, parts, summary, nsum, err);
+}
+
 int cmd_silo_start(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -501,23 +506,15 @@ int cmd_silo_start(int argc, char **argv)
     c.dir = dir;
     gr_err e = {0};
     size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    char **parts = calloc(nu, sizeof *parts);
-    if (!parts)
-        return 1;
     silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges", force};
-    double t0 = gr_wall_seconds();
-    int rc = silo_sweep_run(&sw, ss_unit, ss_label, ss_key, &c, parts, &reused, &e);
-    double t_units = gr_wall_seconds() - t0;
     char summary[4096] = "";
-    if (!rc)
-        rc = ss_report(&c, parts, summary, sizeof summary, &e);
+    double t_units = 0;
+    int rc = silo_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, &c, summary,
+                                   sizeof summary, &t_units, &reused, &e);
     if (rc)
         fprintf(stderr, "grano silo-start: %s\n", e.msg);
     else if (!quiet)
         fprintf(stderr, "grano silo-start: %zu discharges (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
                 nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
-    for (size_t u = 0; u < nu; u++)
-        free(parts[u]);
-    free(parts);
     return rc;
 }
