@@ -13,6 +13,7 @@
 
 #include "ckpt.h"
 #include "err.h"
+#include "h5md.h"
 #include "method.h"
 #include "particles.h"
 #include "scene.h"
@@ -117,6 +118,13 @@ typedef int (*silo_report_fn)(const void *ctx, char *const *parts, char *summary
 int silo_sweep_and_report(const silo_sweep *sw, silo_unit_fn fn, silo_label_fn label,
                           silo_label_fn key, silo_report_fn report, void *ctx, char *summary,
                           size_t nsum, double *seconds, size_t *reused, gr_err *err);
+
+/* A result table: to the HDF5 file (columns named by cols_csv, comma
+ * separated, or NULL) and as a plain .dat with a '# header' line. */
+int silo_put_result(gr_h5md *h, const char *name, size_t rows, size_t cols, const char *cols_csv,
+                    const char *desc, const double *v, gr_err *err);
+int silo_write_dat(const char *path, const char *header, const double *v, size_t rows, size_t cols,
+                   gr_err *err);
 
 /* Part file helpers. */
 int silo_part_key_matches(const char *path, const char *key);

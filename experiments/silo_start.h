@@ -75,8 +75,6 @@ int ss_fig_stationarity(const char *png, const ss_ctx *c, ss_res *res, size_t nr
                         gr_err *err);
 /* The silo snapshot (end of the first discharge of orifice o) and fig. 3.1. */
 int ss_pictures(const ss_ctx *c, char *const *parts, size_t o, gr_err *err);
-int ss_write_dat(const char *path, const char *header, const double *v, size_t rows, size_t cols,
-                 gr_err *err);
 
 void ss_label(size_t unit, void *ctx, char *buf, size_t n);
 void ss_key(size_t unit, void *ctx, char *buf, size_t n);

@@ -187,19 +187,6 @@ int ss_fig_stationarity(const char *png, const ss_ctx *c, ss_res *res, size_t nr
     return gr_plot_close(gp, png, err);
 }
 
-int ss_write_dat(const char *path, const char *header, const double *v, size_t rows,
-                     size_t cols, gr_err *err)
-{
-    FILE *f = fopen(path, "w");
-    if (!f)
-        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
-    fprintf(f, "# %s\n", header);
-    for (size_t i = 0; i < rows; i++)
-        for (size_t j = 0; j < cols; j++)
-            fprintf(f, "%.8g%c", v[i * cols + j], j + 1 < cols ? ' ' : '\n');
-    return fclose(f) ? gr_fail(err, GR_ERUN, "%s: write failed", path) : GR_OK;
-}
-
 int ss_pictures(const ss_ctx *c, char *const *parts, size_t last_orif, gr_err *err)
 {
     gr_particles *p = gr_particles_create(0, err);
