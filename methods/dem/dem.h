@@ -226,11 +226,9 @@ void gr_dem_eval_run(gr_dem *d);
  * kicked state, summed strip by strip in order: gr_dem_eval_kinetic. */
 int gr_dem_eval_fuse_kick(gr_dem *d, int p);
 double gr_dem_eval_kinetic(const gr_dem *d);
-/* Inside a parallel region, after gr_dem_eval_fuse_kick: each thread
- * drifts (gr_dem_drift) the strips it will kick, then all wait; the sum of
- * the two largest displacements since the list build, from those strips
- * (the same value as from blocks: a maximum). */
-void gr_dem_eval_drift(gr_dem *d, int p, int q, int track);
+/* After the one-barrier step: the sum of the two largest displacements
+ * since the list build, from its per-strip drifts (the same value as from
+ * blocks: a maximum). */
 double gr_dem_eval_moved(const gr_dem *d);
 /* The one-barrier step (two colours, kick fused, two or more threads):
  * _begin (one thread, after the evaluation's begin and the fusing) says

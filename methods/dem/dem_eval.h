@@ -54,7 +54,7 @@ struct gr_dem_eval {
     unsigned char *son;
     double *stime;   /* per strip cost, kept across evaluations */
     double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
-    int *kicker, *powner; /* per strip: the strip that kicks it; the thread */
+    int *kicker;     /* per strip: the strip after whose pushes it is kicked */
     int *split;      /* ncol x (nth + 1), then nth + 1 for the one-barrier step */
     size_t cap_split;
     double *svmax;   /* per strip: largest speed^2 of the next drift's half kick */

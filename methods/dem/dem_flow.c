@@ -1,6 +1,6 @@
 /* How the threads share a velocity Verlet step: cost-balanced runs of
- * strips, the kick fused into the colours, the drift by the thread that
- * kicked, and the one-barrier step (gr_dem_eval_flow). */
+ * strips, the kick fused into the colours, and the one-barrier step
+ * (gr_dem_eval_flow). */
 #include <math.h>
 #include <time.h>
 #include <string.h>
@@ -67,31 +67,11 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
             k = r - 1;
         ev->kicker[r] = k;
     }
-    /* the thread that will kick a strip drifts it at the next step */
-    int nth = ev->c.nth;
-    for (int r = 0; r < ns; r++) {
-        int k = ev->kicker[r], col = k % ncol, j = k / ncol, t = 0;
-        if (nth > 1 && ns > 1)
-            while (t + 1 < nth && j >= ev->split[col * (nth + 1) + t + 1])
-                t++;
-        ev->powner[r] = t;
-        ev->kin[r] = 0.0;
-    }
     for (int r = 0; r < ns; r++)
-        ev->svmax[r] = 0.0;
+        ev->kin[r] = ev->svmax[r] = 0.0;
     ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
     ev->c.kick = 1, ev->c.kick_p = p;
     return 1;
-}
-
-void gr_dem_eval_drift(gr_dem *d, int p, int q, int track)
-{
-    const struct gr_dem_eval *ev = d->ev;
-    int t = omp_get_thread_num(), T = omp_get_num_threads(), ns = ev->ns;
-    for (int r = 0; r < ns; r++)
-        if (T == 1 || T != ev->c.nth ? r % T == t : ev->powner[r] == t)
-            gr_dem_drift(d, p, q, track, (size_t)d->strips.i0[r], (size_t)d->strips.i0[r + 1], ev->smove + 2 * r);
-#pragma omp barrier
 }
 
 double gr_dem_eval_moved(const gr_dem *d) { return gr_dem_top2_sum(d->ev->smove, 2 * (size_t)d->ev->ns); }
@@ -103,7 +83,6 @@ double gr_dem_eval_kinetic(const gr_dem *d)
         ek += d->ev->kin[s];
     return ek;
 }
-
 
 double gr_dem_eval_vmax2(const gr_dem *d)
 {

@@ -382,7 +382,7 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
     free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
     free(ev->si), free(ev->sj), free(ev->son);
     free(ev->stime), free(ev->split), free(ev->kin), free(ev->kicker);
-    free(ev->smove), free(ev->powner), free(ev->svmax), free(ev->tdrift);
+    free(ev->smove), free(ev->svmax), free(ev->tdrift);
     free((void *)ev->dflag), free((void *)ev->cflag);
     free(ev);
 }
@@ -394,7 +394,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
     if ((size_t)ns > ev->cap_ns) {
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
-        free(ev->kin), free(ev->kicker), free(ev->smove), free(ev->powner);
+        free(ev->kin), free(ev->kicker), free(ev->smove);
         free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag);
         ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
         ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
@@ -407,7 +407,6 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
         ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
         ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
-        ev->powner = malloc((size_t)ns * sizeof *ev->powner);
         ev->smax = malloc((size_t)ns * sizeof *ev->smax);
         ev->sel = malloc((size_t)ns * sizeof *ev->sel);
         ev->si = malloc((size_t)ns * sizeof *ev->si);
@@ -436,7 +435,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->cap_sseg = nsf;
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
-        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->powner || !ev->svmax ||
+        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
         !ev->tdrift || !ev->dflag || !ev->cflag) {
         gr_dem_eval_free(ev);
         d->ev = NULL;

@@ -462,43 +462,31 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     double tn = d->t0 + (double)E * dt;
     int mode = d->par.neighbour;
     double moved = 0;
-    if (early(d)) {
+    const int ahead = early(d);
+    if (ahead) {
         if (d->need_build && rebuild_now(d, err))
             return err->code;
         moved = predict_verlet(d, p, q, 1);
-        d->f_zeroed = 1;
-        if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
-            return err->code;
-        int fused = gr_dem_eval_fuse_kick(d, p);
-        gr_dem_eval_run(d);
-        if (gr_dem_eval_end(d, d->seg_force, err)) {
-            gr_dem_hist_undo_at(d, E);
-            return err->code;
+    } else {
+        switch (d->par.integrator) {
+        case GR_DEM_GEAR: predict_gear(d, p, q); break;
+        case GR_DEM_EULER: predict_euler(d, p, q); break;
+        default:
+            moved = predict_verlet(d, p, q, mode == GR_DEM_NB_VERLET && !d->need_build);
+            break;
         }
-        double ek = fused ? gr_dem_eval_kinetic(d) : correct_verlet(d, p, q);
-        if (commit(d, q, E, tn, ek, err))
-            return err->code;
-        plan_rebuild(d, fused, moved);
-        return GR_OK;
-    }
-    switch (d->par.integrator) {
-    case GR_DEM_GEAR: predict_gear(d, p, q); break;
-    case GR_DEM_EULER: predict_euler(d, p, q); break;
-    default:
-        moved = predict_verlet(d, p, q, mode == GR_DEM_NB_VERLET && !d->need_build);
-        break;
-    }
-    if (mode == GR_DEM_NB_VERLET && d->par.integrator != GR_DEM_VERLET && !d->need_build) {
-        for (size_t i = 0; i < d->n; i++) {
-            double dx = gr_dem_image(d->f[F_X][q][i] - d->xref[i], d->Lx);
-            double dy = gr_dem_image(d->f[F_Y][q][i] - d->yref[i], d->Ly);
-            /* twice the largest displacement bounds the sum of the two
-             * largest; Verlet's fused loop has the exact rule */
-            moved = fmax(moved, 2 * sqrt(dx * dx + dy * dy));
+        if (mode == GR_DEM_NB_VERLET && d->par.integrator != GR_DEM_VERLET && !d->need_build) {
+            for (size_t i = 0; i < d->n; i++) {
+                double dx = gr_dem_image(d->f[F_X][q][i] - d->xref[i], d->Lx);
+                double dy = gr_dem_image(d->f[F_Y][q][i] - d->yref[i], d->Ly);
+                /* twice the largest displacement bounds the sum of the two
+                 * largest; Verlet's fused loop has the exact rule */
+                moved = fmax(moved, 2 * sqrt(dx * dx + dy * dy));
+            }
         }
+        if (maybe_rebuild(d, p, q, mode, moved, err))
+            return err->code;
     }
-    if (maybe_rebuild(d, p, q, mode, moved, err))
-        return err->code;
     d->f_zeroed = d->par.integrator == GR_DEM_VERLET;
     if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
         return err->code;
@@ -518,12 +506,16 @@ int gr_dem_step(gr_dem *d, gr_err *err)
             correct_gear(d, q);
         ek = kinetic(d, q);
     }
-    return commit(d, q, E, tn, ek, err);
+    if (commit(d, q, E, tn, ek, err))
+        return err->code;
+    if (ahead)
+        plan_rebuild(d, fused, moved);
+    return GR_OK;
 }
 
 /* What the threaded Verlet loop carries from one step to the next. */
 typedef struct {
-    int stop, p, q, track, begun, fused, early, flow;
+    int stop, p, q, track, fused, early, flow;
     uint64_t done, E;
     double tn;
     size_t nb;
@@ -549,8 +541,7 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
         return v->stop = 1, err->code;
     v->track = d->par.neighbour == GR_DEM_NB_VERLET && !d->need_build;
     v->nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
-    v->begun = v->track;
-    if (v->begun) {
+    if (v->track) {
         d->f_zeroed = 1; /* the drift zeroes the new forces */
         if (gr_dem_eval_begin(d, v->q, v->tn, v->E, d->par.dt, d->par.neighbour, err))
             return v->stop = 1, err->code;
@@ -561,14 +552,14 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
 }
 
 /* Velocity Verlet on several threads, many steps in one parallel region.
- * A step waits at: the drift (with Verlet lists each thread drifts the
- * strips it kicked), each colour of strips (two or three; with
- * Verlet lists a strip's grains are kicked as soon as their last push is
- * in), the kick (linked cells only), and the serial end of the step, which
- * also starts the next one;
- * a list rebuild (rare, decided by every thread from the same block
- * maxima) or linked cells add one after the drift. The work and every sum
- * are split exactly as in gr_dem_step, so the runs are the same bits. */
+ * With Verlet lists and two colours a step is the one-barrier step of
+ * dem_flow.c, then the serial end, which also starts the next step. Else
+ * a step waits at the drift (over blocks), each colour of strips (two or
+ * three; with Verlet lists the colours also kick), the kick over blocks
+ * (linked cells), and the serial end; linked cells, or a list rebuild
+ * outside the look-ahead rule (decided by every thread from the same block
+ * maxima), add a serial section after the drift. The work and every sum are
+ * split exactly as in gr_dem_step, so the runs are the same bits. */
 static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
     const int mode = d->par.neighbour, nth = nthreads(d);
@@ -589,16 +580,12 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
                 gr_dem_eval_flow(d, p, q, order, per);
 #pragma omp barrier
             } else {
-                if (v.fused) {
-                    gr_dem_eval_drift(d, p, q, v.track);
-                } else {
 #pragma omp for schedule(static)
-                    for (size_t b = 0; b < nb; b++)
-                        predict_block(d, p, q, v.track, b);
-                }
+                for (size_t b = 0; b < nb; b++)
+                    predict_block(d, p, q, v.track, b);
                 /* every thread reads the same maxima: the same decision */
-                double moved = !v.track ? 0.0 : v.fused ? gr_dem_eval_moved(d) : moved_from_blocks(d);
-                if (!v.begun || (!v.early && moved > d->par.skin)) {
+                double moved = v.track ? moved_from_blocks(d) : 0.0;
+                if (!v.track || (!v.early && moved > d->par.skin)) {
 #pragma omp single
                     {
                         d->f_zeroed = 1;
@@ -633,8 +620,11 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
                 } else if (commit(d, q, v.E, v.tn, ek, err)) {
                     rc = err->code, v.stop = 1;
                 } else {
+                    /* the drift's maxima: per strip in the one-barrier step, per
+                     * block otherwise (no kick over blocks has overwritten them
+                     * when the kick was fused) */
                     if (v.early)
-                        plan_rebuild(d, v.fused, v.fused ? gr_dem_eval_moved(d) : 0.0);
+                        plan_rebuild(d, v.fused, !v.fused ? 0.0 : v.flow ? gr_dem_eval_moved(d) : moved_from_blocks(d));
                     v.done++;
                     rc = vt_start(d, &v, t_end, max_steps, err);
                 }
