@@ -276,15 +276,14 @@ int edmd_cell_of(const gr_edmd *s, double x, double y);
 int edmd_predict_all(gr_edmd *s, int32_t i);
 void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
-/* Front positions (0: the next event) of the look-ahead's five stages:
+/* Front positions (0: the next event) of the look-ahead's four stages:
  * grain and slab; cell heads and partner; first grains and the
- * partner's heads; second grains and the partner's first; the partner's
- * second. The front is kept EDMD_CAL_AHEAD deep. */
+ * partner's heads; the partner's first grains. The front is kept
+ * EDMD_CAL_AHEAD deep. */
 #define EDMD_LA_1 9
 #define EDMD_LA_2 7
 #define EDMD_LA_3 5
 #define EDMD_LA_4 3
-#define EDMD_LA_5 2
 #define EDMD_CAL_AHEAD 12
 void edmd_lookahead(gr_edmd *s);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
