@@ -486,18 +486,29 @@ static inline void pf_heads(const gr_edmd *s, int c)
     }
 }
 
-/* The cells' first grains. Their successors are not requested: finding
- * one reads the first grain's line, requested only two events before,
- * and the look-ahead then waited on that line more often than a second
- * grain (rare below eta 0.5) saved a miss. */
-static inline void pf_grains(const gr_edmd *s, int c)
+/* The first grains of the cells around c, but for those also around
+ * `but` (-1: none), whose lines are requested already (the partner's
+ * block overlaps the grain's). Their successors are not requested:
+ * finding one reads the first grain's line, requested only two events
+ * before, and the look-ahead then waited on that line more often than a
+ * second grain (rare below eta 0.5) saved a miss. */
+static inline void pf_grains(const gr_edmd *s, int c, int but)
 {
-    int nc = s->nx * s->ny;
+    int nc = s->nx * s->ny, bx = 0, by = 0;
+    if (but >= 0) {
+        bx = but % s->nx;
+        by = but / s->nx;
+    }
     for (int dy = -1; dy <= 1; dy++)
         for (int dx = -1; dx <= 1; dx++) {
             int cc = c + dy * s->nx + dx;
             cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
             cc = cc < 0 ? 0 : cc >= nc ? nc - 1 : cc; /* boxes one or two cells high */
+            if (but >= 0) {
+                int ex = cc % s->nx - bx, ey = cc / s->nx - by;
+                if (ex >= -1 && ex <= 1 && ey >= -1 && ey <= 1)
+                    continue;
+            }
             int32_t j = s->chead[cc];
             if (j >= 0)
                 edmd_pf(&s->p[j]);
@@ -522,25 +533,6 @@ static inline void pf_grain_side(const gr_edmd *s, int32_t i)
     }
     if (s->prm.collapse != GR_EDMD_COLLAPSE_NONE)
         edmd_pf(&s->tlast[i]);
-}
-
-/* pf_grains for the cells around c that are not around `but` (the
- * partner's block overlaps the grain's, whose lines are requested). */
-static inline void pf_grains_but(const gr_edmd *s, int c, int but)
-{
-    int nc = s->nx * s->ny, bx = but % s->nx, by = but / s->nx;
-    for (int dy = -1; dy <= 1; dy++)
-        for (int dx = -1; dx <= 1; dx++) {
-            int cc = c + dy * s->nx + dx;
-            cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
-            cc = cc < 0 ? 0 : cc >= nc ? nc - 1 : cc; /* boxes one or two cells high */
-            int ex = cc % s->nx - bx, ey = cc / s->nx - by;
-            if (ex >= -1 && ex <= 1 && ey >= -1 && ey <= 1)
-                continue;
-            int32_t j = s->chead[cc];
-            if (j >= 0)
-                edmd_pf(&s->p[j]);
-        }
 }
 
 /* The cell around which the event at front position k will look for
@@ -600,11 +592,11 @@ static void la_stage(const gr_edmd *s, int32_t k, int q)
             pf_grain_side(s, j);
         }
     } else if (q == 3) {
-        pf_grains(s, c);
+        pf_grains(s, c, -1);
         if (j >= 0)
             pf_heads(s, s->p[j].cell);
     } else if (j >= 0) {
-        pf_grains_but(s, s->p[j].cell, c);
+        pf_grains(s, s->p[j].cell, c);
     }
 }
 
