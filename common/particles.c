@@ -95,3 +95,40 @@ size_t gr_particles_count_mobile(const gr_particles *p)
         m += !(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE));
     return m;
 }
+
+static int cmp_id_index(const void *a, const void *b)
+{
+    const gr_id_index *x = a, *y = b;
+    if (x->id != y->id)
+        return x->id < y->id ? -1 : 1;
+    return (x->i > y->i) - (x->i < y->i);
+}
+
+void gr_id_index_sort(const int64_t *id, size_t n, gr_id_index *ix)
+{
+    for (size_t k = 0; k < n; k++)
+        ix[k] = (gr_id_index){id[k], k};
+    if (n > 1)
+        qsort(ix, n, sizeof *ix, cmp_id_index);
+}
+
+const gr_id_index *gr_id_index_find(const gr_id_index *ix, size_t n, int64_t id)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ix[mid].id < id)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo < n && ix[lo].id == id ? &ix[lo] : NULL;
+}
+
+int64_t gr_id_index_duplicate(const gr_id_index *ix, size_t n)
+{
+    for (size_t k = 1; k < n; k++)
+        if (ix[k].id == ix[k - 1].id)
+            return ix[k].id;
+    return -1;
+}
