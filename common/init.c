@@ -11,7 +11,6 @@
 #include "rng.h"
 
 /* Streams of the scene seed used here; methods use others. */
-enum { STREAM_INIT = 0x1417 };
 
 static double species_mass(const gr_species *sp, double d) { return sp->density * M_PI * d * d / 4; }
 
@@ -267,7 +266,7 @@ static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
 
 int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
 {
-    gr_rng *rng = gr_rng_create(sc->seed, STREAM_INIT, err);
+    gr_rng *rng = gr_rng_create(sc->seed, GR_STREAM_INIT, err);
     if (!rng)
         return err->code;
     out->n = 0;

@@ -26,4 +26,23 @@ unsigned long gr_rng_below(gr_rng *r, unsigned long n); /* [0, n) */
 int gr_rng_save(const gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
 int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
 
+/* Every random stream of the code, in one table so that no two draw the
+ * same numbers: a stream is the pair (scene seed, id). The name is also the
+ * stream's dataset in checkpoints. */
+enum {
+    GR_STREAM_INIT = 0x1417,           /* initial positions and velocities */
+    GR_STREAM_DEM_REINSERT = 0xD3E1,   /* dem: reinsertion spots */
+    GR_STREAM_EDMD = 0x65646d64,       /* edmd: high-frequency floor phases */
+    GR_STREAM_SILO_START = 77,         /* silo-start: per-discharge seeds */
+    GR_STREAM_METHOD_BASE = 0x10000    /* first of the streams a backend
+                                          numbers itself (gr_sim_stream) */
+};
+typedef struct {
+    uint64_t id;
+    const char *name;
+    const char *doc;
+} gr_stream_info;
+/* The table, ended by a NULL name. */
+const gr_stream_info *gr_stream_table(void);
+
 #endif

@@ -21,9 +21,10 @@ void gr_run_ckpt_path(const char *out, char *buf, size_t n)
         snprintf(buf, n, "%s.ckpt", out);
 }
 
-int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
-                const void *state, const uint64_t counters[3], gr_err *err)
+int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_err *err)
 {
+    const gr_scene *sc = gr_sim_scene(sim);
+    const gr_method_type *m = gr_sim_type(sim);
     gr_ckpt *ck = gr_ckpt_create(path, err);
     if (!ck)
         return err->code;
@@ -36,16 +37,15 @@ int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
     if (!rc)
         rc = gr_ckpt_put_u64(ck, "run_counters", counters, 3, err);
     if (!rc)
-        rc = m->save(state, ck, err);
-    if (!rc) {
-        /* The H5MD part makes a checkpoint readable by grano info and h5py. */
-        /* observe() would reset the backend's averaging windows, so the
-         * frame carries the time and the run's sample count as its step. */
+        rc = gr_sim_save(sim, ck, err);
+    if (!rc && m->snapshot) {
+        /* The H5MD part makes a checkpoint readable by grano info and h5py;
+         * its frame carries the time and the run's sample count as step. */
         gr_particles *p = gr_particles_create(0, err);
         gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .version = GRANO_VERSION};
-        rc = !p ? GR_ERUN : m->snapshot((void *)state, p, err);
+        rc = !p ? GR_ERUN : gr_sim_snapshot(sim, p, err);
         if (!rc)
-            rc = gr_ckpt_put_h5md(ck, sc, &ho, counters[0], m->time(state), p, err);
+            rc = gr_ckpt_put_h5md(ck, sc, &ho, counters[0], gr_sim_time(sim), p, err);
         gr_particles_free(p);
     }
     if (rc) {
@@ -73,9 +73,10 @@ static int check_text(gr_ckpt *ck, const char *name, const char *want, const cha
     return rc;
 }
 
-int gr_run_load(const char *path, const gr_scene *sc, const gr_method_type *m, void *state,
-                uint64_t counters[3], gr_err *err)
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err)
 {
+    const gr_scene *sc = gr_sim_scene(sim);
+    const gr_method_type *m = gr_sim_type(sim);
     gr_ckpt *ck = gr_ckpt_open(path, err);
     if (!ck)
         return err->code;
@@ -89,7 +90,7 @@ int gr_run_load(const char *path, const gr_scene *sc, const gr_method_type *m, v
     if (!rc)
         rc = gr_ckpt_get_u64(ck, "run_counters", counters, 3, err);
     if (!rc)
-        rc = m->load(state, ck, err);
+        rc = gr_sim_load(sim, ck, err);
     gr_err ignore = {0};
     gr_ckpt_close(ck, &ignore);
     return rc;
@@ -130,34 +131,34 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
 /* Observables every observe_every, frames and fields every output_every,
  * checkpoints every checkpoint_every; times are k * interval from the start
  * so that they do not drift and a restart lands on the same ones. */
-static int loop(gr_scene *sc, const gr_method_type *m, void *st, run_io *io, const gr_run_opts *o,
-                uint64_t k[3], double t0, gr_err *err)
+static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint64_t k[3],
+                double t0, gr_err *err)
 {
+    int frames = gr_sim_type(st)->snapshot != NULL;
     const gr_runctl *rc = &sc->run;
-    gr_progress *pg = o->progress ? gr_progress_create(stderr, m->time(st), rc->until, 1.0) : NULL;
+    gr_progress *pg = o->progress ? gr_progress_create(stderr, gr_sim_time(st), rc->until, 1.0) : NULL;
     const double eps = 1e-9 * (rc->until > 1 ? rc->until : 1);
     int status = GR_OK;
     for (;;) {
-        double t = m->time(st);
+        double t = gr_sim_time(st);
         gr_obs obs;
         gr_obs_clear(&obs);
         int observed = 0;
         if (t >= t0 + (double)k[0] * rc->observe_every - eps) {
-            if ((status = m->observe(st, &obs, err)) || (status = gr_h5md_write_obs(io->h, &obs, err)))
+            if ((status = gr_sim_observe(st, &obs, err)) || (status = gr_h5md_write_obs(io->h, &obs, err)))
                 break;
+            /* Each sample averages its window since the previous one. */
+            gr_sim_reset_window(st);
             observed = 1;
-            if (io->field) {
-                if ((status = m->snapshot(st, io->snap, err)) ||
-                    (status = gr_field_add(io->field, io->snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
-                    break;
-            }
+            if (io->field && (status = gr_sim_fields(st, io->field, 1.0, err)))
+                break;
             k[0]++;
             gr_progress_update(pg, t, "E_kin", obs.ekin_trans + obs.ekin_rot);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
-            if ((!observed && (status = m->observe(st, &obs, err))) ||
-                (status = m->snapshot(st, io->snap, err)) ||
-                (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err)))
+            if ((!observed && (status = gr_sim_observe(st, &obs, err))) ||
+                (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
+                (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
@@ -167,7 +168,7 @@ static int loop(gr_scene *sc, const gr_method_type *m, void *st, run_io *io, con
         if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
             while (t >= t0 + (double)k[2] * rc->checkpoint_every - eps)
                 k[2]++;
-            if (o->ckpt && (status = gr_run_save(o->ckpt, sc, m, st, k, err)))
+            if (o->ckpt && (status = gr_run_save(o->ckpt, st, k, err)))
                 break;
         }
         if (t >= rc->until - eps)
@@ -178,7 +179,7 @@ static int loop(gr_scene *sc, const gr_method_type *m, void *st, run_io *io, con
             double next = t0 + (double)k[j] * every;
             target = next < target ? next : target;
         }
-        if ((status = m->advance(st, target, 0, err)))
+        if ((status = gr_sim_advance(st, target, 0, err)))
             break;
     }
     gr_progress_free(pg);
@@ -188,7 +189,7 @@ static int loop(gr_scene *sc, const gr_method_type *m, void *st, run_io *io, con
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
     run_io io = {0};
-    void *st = NULL;
+    gr_sim *st = NULL;
     int rc = GR_OK;
     gr_particles *init = gr_particles_create(0, err);
     io.snap = gr_particles_create(0, err);
@@ -196,12 +197,12 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = GR_ERUN;
         goto done;
     }
-    if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_method_create(m, sc, init, &st, err)))
+    if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
-    double t0 = m->time(st);
+    double t0 = gr_sim_time(st);
     if (o->restart) {
-        if ((rc = gr_run_load(o->restart, sc, m, st, k, err)))
+        if ((rc = gr_run_load(o->restart, st, k, err)))
             goto done;
     }
     if (sc->run.field_nx > 0) {
@@ -218,18 +219,18 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = err->code;
         goto done;
     }
-    rc = loop(sc, m, st, &io, o, k, t0, err);
+    rc = loop(sc, st, &io, o, k, t0, err);
     if (rc == GR_ERUN && o->ckpt) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};
-        if (gr_run_save(o->ckpt, sc, m, st, k, &e2) == GR_OK)
+        if (gr_run_save(o->ckpt, st, k, &e2) == GR_OK)
             gr_err_prefix(err, "(last good state saved in %s) ", o->ckpt);
     } else if (rc == GR_OK && o->ckpt) {
-        rc = gr_run_save(o->ckpt, sc, m, st, k, err);
+        rc = gr_run_save(o->ckpt, st, k, err);
     }
     if (rc == GR_OK && o->snapshot) {
-        if (!(rc = m->snapshot(st, io.snap, err)))
-            rc = gr_plot_snapshot(o->snapshot, io.snap, sc->width, sc->height, m->time(st), sc->name, err);
+        if (!(rc = gr_sim_snapshot(st, io.snap, err)))
+            rc = gr_plot_snapshot(o->snapshot, io.snap, sc->width, sc->height, gr_sim_time(st), sc->name, err);
     }
     {
         gr_err e2 = {0};
@@ -242,8 +243,7 @@ done:
     gr_h5md_free(io.h);
     free(io.buf);
     gr_field_free(io.field);
-    if (st)
-        m->free(st);
+    gr_sim_free(st);
     gr_particles_free(init);
     gr_particles_free(io.snap);
     return rc;

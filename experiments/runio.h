@@ -26,9 +26,7 @@ void gr_run_ckpt_path(const char *out, char *buf, size_t n);
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err);
 
 /* Save / restore a method's full state and the run counters. */
-int gr_run_save(const char *path, const gr_scene *sc, const gr_method_type *m,
-                const void *state, const uint64_t counters[3], gr_err *err);
-int gr_run_load(const char *path, const gr_scene *sc, const gr_method_type *m, void *state,
-                uint64_t counters[3], gr_err *err);
+int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_err *err);
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err);
 
 #endif

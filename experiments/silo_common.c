@@ -129,10 +129,9 @@ double silo_packing(const gr_particles *p, double x0, double y0, double x1, doub
     return a / ((x1 - x0) * (y1 - y0));
 }
 
-int silo_advance(void *state, uint64_t steps, gr_err *err)
+int silo_advance(gr_sim *sim, uint64_t steps, gr_err *err)
 {
-    const gr_method_type *m = gr_method_find("dem");
-    return m->advance(state, 1e300, steps, err);
+    return gr_sim_advance(sim, 1e300, steps, err);
 }
 
 void silo_settled_free(silo_settled *s)
@@ -160,10 +159,10 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
     if (!sc)
         return err->code;
     gr_particles *p = gr_particles_create(0, err);
-    void *st = NULL;
+    gr_sim *st = NULL;
     int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
     if (!rc)
-        rc = gr_method_create(m, sc, p, &st, err);
+        rc = gr_sim_create(m, sc, p, &st, err);
     /* Inside: below the hopper's outlet, less half a diameter: the grains
      * fill the container to its rim, and one resting on the pile just above
      * the rim is settled, not still falling. */
@@ -173,9 +172,9 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
         rc = gr_fail(err, GR_ERUN, "out of memory");
     const uint64_t chunk = (uint64_t)llround(0.5 / c->dt);
     while (!rc) {
-        if ((rc = silo_advance(st, chunk, err)) || (rc = m->snapshot(st, p, err)))
+        if ((rc = silo_advance(st, chunk, err)) || (rc = gr_sim_snapshot(st, p, err)))
             break;
-        double t = m->time(st), ek = 0;
+        double t = gr_sim_time(st), ek = 0;
         size_t nm = 0, inside = 0;
         for (size_t i = 0; i < p->n; i++) {
             if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
@@ -221,8 +220,7 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
             break;
         }
     }
-    if (st)
-        m->free(st);
+    gr_sim_free(st);
     gr_particles_free(p);
     gr_scene_free(sc);
     free(ebuf);
@@ -231,7 +229,7 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
     return rc;
 }
 
-int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **scp, void **state, gr_err *err)
+int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **scp, gr_sim **state, gr_err *err)
 {
     const gr_method_type *m = gr_method_find("dem");
     silo_cfg co = *c;
@@ -240,7 +238,7 @@ int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **scp, void **s
     gr_scene *sc = silo_scene(&co, 0.0, err);
     if (!sc)
         return err->code;
-    int rc = gr_method_create(m, sc, s->p, state, err);
+    int rc = gr_sim_create(m, sc, s->p, state, err);
     if (rc) {
         gr_scene_free(sc);
         return rc;

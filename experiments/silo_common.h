@@ -66,11 +66,11 @@ void silo_settled_free(silo_settled *s);
  * leave are reinserted (when c->reinsert) in a band from 1 d to 5 d above
  * the settled packing's highest grain, so that they land on its surface
  * and the height stays constant. */
-int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, void **state,
+int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, gr_sim **state,
               gr_err *err);
 
 /* Advance exactly `steps` steps. */
-int silo_advance(void *state, uint64_t steps, gr_err *err);
+int silo_advance(gr_sim *sim, uint64_t steps, gr_err *err);
 
 /* Highest mobile grain of a snapshot (-INFINITY if none). */
 double silo_top(const gr_particles *p);

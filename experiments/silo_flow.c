@@ -44,7 +44,6 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     cfg.orifice = c->orifice[o];
     cfg.seed = c->seed + r;
     cfg.reinsert = 1;
-    const gr_method_type *m = gr_method_find("dem");
     silo_settled set;
     volatile double fillp = 0;
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
@@ -53,7 +52,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (rc)
         return rc;
     gr_scene *sc = NULL;
-    void *st = NULL;
+    gr_sim *st = NULL;
     gr_particles *snap = gr_particles_create(0, err);
     double *count = calloc((size_t)c->nblocks, sizeof *count);
     double *phi = calloc((size_t)c->nblocks, sizeof *phi);
@@ -73,14 +72,14 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (!rc && (rc = silo_advance(st, (uint64_t)c->discard, err)) == GR_OK) {
         gr_obs ob;
         gr_obs_clear(&ob);
-        rc = m->observe(st, &ob, err);
+        rc = gr_sim_observe(st, &ob, err);
         uint64_t last = ob.outflow;
         for (int b = 0; b < c->nblocks && !rc; b++) {
             long done = 0;
             int ns = 0;
             while (done < c->block && !rc) {
                 long k = c->sample_every < c->block - done ? c->sample_every : c->block - done;
-                if ((rc = silo_advance(st, (uint64_t)k, err)) || (rc = m->snapshot(st, snap, err)))
+                if ((rc = silo_advance(st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
                     break;
                 done += k;
                 phi[b] += silo_packing(snap, sq[0], sq[1], sq[2], sq[3]);
@@ -88,7 +87,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
                 if (progress)
                     *progress = 0.3 * fillp + 0.7 * (double)(c->discard + b * c->block + done) / (double)total;
             }
-            if (rc || (rc = m->observe(st, &ob, err)))
+            if (rc || (rc = gr_sim_observe(st, &ob, err)))
                 break;
             phi[b] /= ns > 0 ? ns : 1;
             count[b] = (double)(ob.outflow - last);
@@ -116,8 +115,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         else
             rc = gr_ckpt_close(ck, err);
     }
-    if (st)
-        m->free(st);
+    gr_sim_free(st);
     gr_scene_free(sc);
     gr_particles_free(snap);
     free(count), free(phi), free(top);

@@ -239,7 +239,6 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     cfg.orifice = c->orifice[o];
     cfg.seed = c->seed + r;
     cfg.reinsert = 0;
-    const gr_method_type *m = gr_method_find("dem");
     silo_settled set;
     ustate u;
     if (ustate_init(&u, c, cfg.seed, err))
@@ -252,7 +251,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         return rc;
     }
     gr_scene *sc = NULL;
-    void *st = NULL;
+    gr_sim *st = NULL;
     gr_particles *snap = gr_particles_create(0, err);
     gr_field *fld[SS_MAX_TIMES] = {0};
     size_t tscap = 3 * (size_t)(c->max_steps / (10 * c->fs) + 4), nts = 0;
@@ -279,7 +278,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0, top = top0;
     long f = 0, step = 0;
     while (!rc) {
-        if ((rc = m->snapshot(st, snap, err)))
+        if ((rc = gr_sim_snapshot(st, snap, err)))
             break;
         for (size_t j = 0; j < c->ntimes; j++)
             if (labs(step - c->times[j]) <= 2 * c->fs &&
@@ -314,7 +313,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         if (f % 10 == 0 && nts + 3 <= tscap) {
             gr_obs ob;
             gr_obs_clear(&ob);
-            if ((rc = m->observe(st, &ob, err)))
+            if ((rc = gr_sim_observe(st, &ob, err)))
                 break;
             ts[nts++] = (double)step, ts[nts++] = top, ts[nts++] = (double)ob.outflow;
         }
@@ -333,8 +332,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
     for (size_t j = 0; j < c->ntimes; j++)
         gr_field_free(fld[j]);
-    if (st)
-        m->free(st);
+    gr_sim_free(st);
     gr_scene_free(sc);
     gr_particles_free(snap);
     free(ts);

@@ -1,9 +1,9 @@
+/* The registry: one line per backend. */
 #include "method.h"
 
 #include <stdio.h>
 #include <string.h>
 
-/* One line per backend. */
 extern const gr_method_type gr_edmd_method;
 extern const gr_method_type gr_dem_method;
 static const gr_method_type *const registry[] = {
@@ -31,23 +31,19 @@ const gr_method_type *gr_method_find(const char *name)
     return NULL;
 }
 
-int gr_method_create(const gr_method_type *m, const gr_scene *sc,
-                     const gr_particles *init, void **state, gr_err *err)
+int gr_method_lookup(const char *name, const char *who, const gr_method_type **out, gr_err *err)
 {
-    *state = NULL;
-    unsigned missing = gr_scene_features(sc) & ~m->features;
-    if (missing) {
-        for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
-            if (missing & (1u << b)) {
-                char where[1200];
-                gr_scene_feature_where(sc, 1u << b, where, sizeof where);
-                return gr_fail(err, GR_EINPUT,
-                               "%s: method '%s' does not support %s",
-                               where, m->name, gr_feature_name(1u << b));
-            }
-        }
-    }
-    if (gr_scene_check_keys(sc, m->name, m->param_keys, err))
-        return err->code;
-    return m->create(sc, init, state, err);
+    if ((*out = gr_method_find(name)))
+        return GR_OK;
+    const char *names[GR_MAX_METHODS + 1];
+    gr_method_names(names, GR_MAX_METHODS + 1);
+    char list[256] = "";
+    size_t o = 0;
+    for (size_t i = 0; names[i] && o + 2 < sizeof list; i++)
+        o += (size_t)snprintf(list + o, sizeof list - o, "%s%s", i ? ", " : "", names[i]);
+    const char *near = gr_nearest(name, names);
+    if (near && strcmp(near, name))
+        return gr_fail(err, GR_EINPUT, "%s: unknown method '%s'; did you mean '%s'? (methods: %s)",
+                       who, name, near, list);
+    return gr_fail(err, GR_EINPUT, "%s: unknown method '%s' (methods: %s)", who, name, list);
 }

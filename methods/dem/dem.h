@@ -179,6 +179,8 @@ void gr_dem_free(gr_dem *d);
 int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);
 int gr_dem_snapshot(gr_dem *d, gr_particles *out, gr_err *err);
 int gr_dem_observe(gr_dem *d, gr_obs *o, gr_err *err);
+/* Start a new wall-pressure window (observe averages since the last reset). */
+void gr_dem_reset_window(gr_dem *d);
 int gr_dem_save(const gr_dem *d, gr_ckpt *ck, gr_err *err);
 int gr_dem_load(gr_dem *d, gr_ckpt *ck, gr_err *err);
 

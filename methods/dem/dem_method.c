@@ -1,18 +1,18 @@
 /* The soft DEM backend's table (methods/method.h). */
+#include <math.h>
+
 #include "dem.h"
+#include "dem_params.h"
 #include "method.h"
 
-static const char *const dem_keys[] = {
-    "dt", "dt_fraction", "v_impact", "integrator", "neighbour", "skin", "threads",
-    "max_overlap", "energy_jump", "sort_every", "cvode_rtol", "cvode_atol", NULL};
-
-static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
+static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
 {
     gr_dem_params par;
-    if (gr_dem_params_read(sc, &par, err) || gr_dem_check_dt(sc, init, &par, err))
+    gr_dem_params_from(ctx->params, &par);
+    if (gr_dem_check_dt(ctx->scene, init, &par, err))
         return err->code;
     gr_dem *d;
-    if (gr_dem_create(sc, init, &par, &d, err))
+    if (gr_dem_create(ctx->scene, init, &par, &d, err))
         return err->code;
     *state = d;
     return GR_OK;
@@ -29,6 +29,18 @@ static int m_snapshot(void *s, gr_particles *out, gr_err *err) { return gr_dem_s
 
 static int m_observe(void *s, gr_obs *o, gr_err *err) { return gr_dem_observe(s, o, err); }
 
+static void m_reset_window(void *s) { gr_dem_reset_window(s); }
+
+static size_t m_counters(const void *s, gr_counter *out, size_t cap)
+{
+    const gr_dem *d = s;
+    gr_counter c[] = {{"steps", d->step}, {"outflow", d->outflow}};
+    size_t n = 0;
+    for (; n < cap && n < sizeof c / sizeof c[0]; n++)
+        out[n] = c[n];
+    return n;
+}
+
 static int m_save(const void *s, gr_ckpt *ck, gr_err *err) { return gr_dem_save(s, ck, err); }
 
 static int m_load(void *s, gr_ckpt *ck, gr_err *err) { return gr_dem_load(s, ck, err); }
@@ -38,17 +50,20 @@ static void m_free(void *s) { gr_dem_free(s); }
 const gr_method_type gr_dem_method = {
     .name = "dem",
     .summary = "soft-particle DEM: linear/Hertz contacts, four friction laws, Verlet/Gear/Euler/CVODE",
+    .repr = GR_REPR_PARTICLES,
     .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_CONTACT_HISTORY | GR_FEAT_PERIODIC |
                 GR_FEAT_OPEN_SIDE | GR_FEAT_SEGMENTS | GR_FEAT_WALL_GRAINS | GR_FEAT_ORIFICE |
                 GR_FEAT_VIBRATING_FLOOR | GR_FEAT_REINSERT | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE |
                 GR_FEAT_HERTZ,
-    .param_keys = dem_keys,
+    .params = gr_dem_param_table,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,
-    .snapshot = m_snapshot,
     .observe = m_observe,
     .save = m_save,
     .load = m_load,
     .free = m_free,
+    .snapshot = m_snapshot,
+    .counters = m_counters,
+    .reset_window = m_reset_window,
 };

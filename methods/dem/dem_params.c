@@ -4,6 +4,7 @@
 #include <stdio.h>
 
 #include "dem.h"
+#include "dem_params.h"
 
 void gr_dem_params_default(gr_dem_params *p)
 {
@@ -104,46 +105,51 @@ int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params 
     return GR_OK;
 }
 
-int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err)
+const gr_param gr_dem_param_table[] = {
+    {"dt", GR_PARAM_REAL, NAN, 0, INFINITY, 1, NULL, "tau",
+     "time step; absent: a fifth of the stable limit, rounded down to 1, 2, 2.5, 4, 5 or 8 x 10^k"},
+    {"dt_fraction", GR_PARAM_REAL, 0.1, 0, INFINITY, 1, NULL, "1",
+     "refuse dt above this fraction of the contact time t_c"},
+    {"v_impact", GR_PARAM_REAL, NAN, 0, INFINITY, 1, NULL, "d tau-1",
+     "impact speed for the Hertz t_c; absent: from gravity, height and initial speeds"},
+    {"integrator", GR_PARAM_CHOICE, GR_DEM_VERLET, 0, 0, 0, integrators, "", "time integrator"},
+    {"neighbour", GR_PARAM_CHOICE, GR_DEM_NB_VERLET, 0, 0, 0, neighbours, "", "neighbour search"},
+    {"skin", GR_PARAM_REAL, 0.2, 0, INFINITY, 0, NULL, "d", "Verlet-list skin"},
+    {"threads", GR_PARAM_INT, 1, 1, 256, 0, NULL, "1", "threads (results do not depend on it)"},
+    {"max_overlap", GR_PARAM_REAL, 0.3, 0, INFINITY, 1, NULL, "1",
+     "failure bound on overlap / smaller diameter"},
+    {"energy_jump", GR_PARAM_REAL, 1.0, 0, INFINITY, 1, NULL, "1",
+     "failure bound on the relative energy rise in one step"},
+    {"sort_every", GR_PARAM_INT, 100, 1, 1e15, 0, NULL, "steps",
+     "spatial sort period with neighbour = cells"},
+    {"cvode_rtol", GR_PARAM_REAL, 1e-10, 0, INFINITY, 1, NULL, "1", "CVODE relative tolerance"},
+    {"cvode_atol", GR_PARAM_REAL, 1e-12, 0, INFINITY, 1, NULL, "d", "CVODE absolute tolerance"},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL},
+};
+
+void gr_dem_params_from(const gr_param_values *pv, gr_dem_params *p)
 {
     gr_dem_params_default(p);
-    const char *S = "dem";
-    char where[1200];
-#define POS(key, field)                                                            \
-    do {                                                                           \
-        if (gr_scene_get_double(sc, S, key, p->field, &p->field, err))             \
-            return err->code;                                                      \
-        if (!(p->field > 0) && gr_scene_find(sc, S, key)) {                        \
-            gr_scene_where(sc, S, key, where, sizeof where);                       \
-            return gr_fail(err, GR_EINPUT, "%s: must be positive", where);         \
-        }                                                                          \
-    } while (0)
-    POS("dt", dt);
-    POS("dt_fraction", dt_fraction);
-    POS("v_impact", v_impact);
-    POS("max_overlap", max_overlap);
-    POS("energy_jump", energy_jump);
-    POS("cvode_rtol", cvode_rtol);
-    POS("cvode_atol", cvode_atol);
-    if (gr_scene_get_double(sc, S, "skin", p->skin, &p->skin, err))
+    double dt = gr_param_get(pv, "dt"), v = gr_param_get(pv, "v_impact");
+    p->dt = isnan(dt) ? 0.0 : dt;
+    p->v_impact = isnan(v) ? 0.0 : v;
+    p->dt_fraction = gr_param_get(pv, "dt_fraction");
+    p->integrator = (int)gr_param_get(pv, "integrator");
+    p->neighbour = (int)gr_param_get(pv, "neighbour");
+    p->skin = gr_param_get(pv, "skin");
+    p->threads = (long)gr_param_get(pv, "threads");
+    p->max_overlap = gr_param_get(pv, "max_overlap");
+    p->energy_jump = gr_param_get(pv, "energy_jump");
+    p->sort_every = (long)gr_param_get(pv, "sort_every");
+    p->cvode_rtol = gr_param_get(pv, "cvode_rtol");
+    p->cvode_atol = gr_param_get(pv, "cvode_atol");
+}
+
+int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err)
+{
+    gr_param_values pv;
+    if (gr_params_read(sc, "dem", gr_dem_param_table, &pv, err))
         return err->code;
-    if (!(p->skin >= 0)) {
-        gr_scene_where(sc, S, "skin", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: must not be negative", where);
-    }
-#undef POS
-    if (gr_scene_get_choice(sc, S, "integrator", integrators, p->integrator, &p->integrator, err) ||
-        gr_scene_get_choice(sc, S, "neighbour", neighbours, p->neighbour, &p->neighbour, err) ||
-        gr_scene_get_long(sc, S, "threads", p->threads, &p->threads, err) ||
-        gr_scene_get_long(sc, S, "sort_every", p->sort_every, &p->sort_every, err))
-        return err->code;
-    if (p->threads < 1 || p->threads > 256) {
-        gr_scene_where(sc, S, "threads", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: %ld threads; use 1 to 256", where, p->threads);
-    }
-    if (p->sort_every < 1) {
-        gr_scene_where(sc, S, "sort_every", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: must be at least 1", where);
-    }
+    gr_dem_params_from(&pv, p);
     return GR_OK;
 }

@@ -463,9 +463,13 @@ int gr_dem_observe(gr_dem *d, gr_obs *o, gr_err *err)
     for (int k = 0; k < d->nseg; k++)
         len += hypot(d->seg[k].x1 - d->seg[k].x0, d->seg[k].y1 - d->seg[k].y0);
     o->wall_pressure = d->wall_time > 0 && len > 0 ? d->wall_impulse / d->wall_time / len : NAN;
+    return GR_OK;
+}
+
+void gr_dem_reset_window(gr_dem *d)
+{
     d->wall_impulse = 0;
     d->wall_time = 0;
-    return GR_OK;
 }
 
 int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err)

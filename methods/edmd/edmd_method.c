@@ -2,29 +2,32 @@
 #include <math.h>
 
 #include "edmd_int.h"
+#include "edmd_params.h"
 #include "observe.h"
 
-static const char *const param_keys[] = {"algorithm",  "cell",       "collapse",   "tc", "v_threshold",
-                                         "fields",     "sort_every", "tree_arity", "queue", NULL};
-
-static int m_create(const gr_scene *sc, const gr_particles *init, void **state, gr_err *err)
+static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
 {
     gr_edmd_params prm;
-    if (gr_edmd_params_read(sc, &prm, err))
+    if (gr_edmd_params_from(ctx->scene, ctx->params, &prm, err))
         return err->code;
     gr_edmd *s;
-    if (gr_edmd_create(sc, init, &prm, &s, err))
+    if (gr_edmd_create(ctx->scene, init, &prm, &s, err))
         return err->code;
     *state = s;
     return GR_OK;
 }
+
 static int m_advance(void *st, double t_end, uint64_t max_steps, gr_err *err)
 {
     return gr_edmd_advance(st, t_end, max_steps, err);
 }
+
 static double m_time(const void *st) { return gr_edmd_time(st); }
+
 static int m_snapshot(void *st, gr_particles *out, gr_err *err) { return gr_edmd_snapshot(st, out, err); }
 
+/* Wall pressure: momentum given to the hard sides since the window opened,
+ * per unit length and time. */
 static int m_observe(void *st, gr_obs *o, gr_err *err)
 {
     gr_edmd *s = st;
@@ -47,10 +50,33 @@ static int m_observe(void *st, gr_obs *o, gr_err *err)
     double T = s->t - s->obs_t0;
     o->wall_pressure = len > 0.0 && T > 0.0 ? s->obs_mom / (len * T) : NAN;
     o->max_overlap = NAN;
-    s->obs_t0 = s->t;
-    s->obs_mom = 0.0;
     return GR_OK;
 }
+
+static void m_reset_window(void *st)
+{
+    gr_edmd *s = st;
+    s->obs_t0 = s->t;
+    s->obs_mom = 0.0;
+}
+
+static size_t m_counters(const void *st, gr_counter *out, size_t cap)
+{
+    gr_edmd_counters c;
+    gr_edmd_get_counters(st, &c);
+    gr_counter all[] = {{"events", ((const gr_edmd *)st)->steps},
+                        {"pair_collisions", c.pair},
+                        {"wall_collisions", c.wall},
+                        {"floor_collisions", c.floor},
+                        {"cell_crossings", c.crossing},
+                        {"stale_events", c.stale},
+                        {"elastic_guard", c.elastic_guard}};
+    size_t n = 0;
+    for (; n < cap && n < sizeof all / sizeof all[0]; n++)
+        out[n] = all[n];
+    return n;
+}
+
 static int m_save(const void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_save(st, ck, err); }
 static int m_load(void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_load(st, ck, err); }
 static void m_free(void *st) { gr_edmd_free(st); }
@@ -58,16 +84,19 @@ static void m_free(void *st) { gr_edmd_free(st); }
 const gr_method_type gr_edmd_method = {
     .name = "edmd",
     .summary = "event-driven inelastic hard disks (cells, event tree, exact averages)",
+    .repr = GR_REPR_PARTICLES,
     .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_PERIODIC | GR_FEAT_VIBRATING_FLOOR |
                 GR_FEAT_HF_FLOOR | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE | GR_FEAT_SEGMENTS | GR_FEAT_ORIFICE |
                 GR_FEAT_OPEN_SIDE | GR_FEAT_REINSERT,
-    .param_keys = param_keys,
+    .params = gr_edmd_param_table,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,
-    .snapshot = m_snapshot,
     .observe = m_observe,
     .save = m_save,
     .load = m_load,
     .free = m_free,
+    .snapshot = m_snapshot,
+    .counters = m_counters,
+    .reset_window = m_reset_window,
 };

@@ -1,7 +1,9 @@
 /* The [edmd] section: defaults and reading. */
+#include <math.h>
 #include <stdio.h>
 
 #include "edmd.h"
+#include "edmd_params.h"
 
 static const char *const algo_names[] = {"tree", "naive", NULL};
 static const char *const collapse_names[] = {"none", "tc", "threshold", NULL};
@@ -21,39 +23,51 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->calendar = 1;
 }
 
-int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
+const gr_param gr_edmd_param_table[] = {
+    {"algorithm", GR_PARAM_CHOICE, GR_EDMD_TREE, 0, 0, 0, algo_names, "",
+     "tree: O(log N) per event; naive: the slides' v1.0, O(N^2)"},
+    {"cell", GR_PARAM_REAL, 0.0, 0, INFINITY, 0, NULL, "d", "minimum cell side; 0: the largest diameter"},
+    {"collapse", GR_PARAM_CHOICE, GR_EDMD_COLLAPSE_NONE, 0, 0, 0, collapse_names, "",
+     "guard against inelastic collapse"},
+    {"tc", GR_PARAM_REAL, 1e-5, 0, INFINITY, 0, NULL, "tau",
+     "TC model: elastic if a partner collided less than tc ago"},
+    {"v_threshold", GR_PARAM_REAL, 1e-4, 0, INFINITY, 0, NULL, "d tau-1",
+     "threshold model: elastic below this normal speed"},
+    {"fields", GR_PARAM_CHOICE, 0, 0, 0, 0, yesno, "", "accumulate hydrodynamic fields on the cells"},
+    {"sort_every", GR_PARAM_REAL, -1.0, -INFINITY, INFINITY, 0, NULL, "1",
+     "collisions per grain between spatial re-sorts; 0 never, < 0 automatic"},
+    {"tree_arity", GR_PARAM_INT, 2, 2, 4, 0, NULL, "1",
+     "2: the slides' binary tree; 4: every other level elided"},
+    {"queue", GR_PARAM_CHOICE, 1, 0, 0, 0, queue_names, "",
+     "calendar: Paul's calendar queue; tree: the binary tree (same events)"},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL},
+};
+
+int gr_edmd_params_from(const gr_scene *sc, const gr_param_values *pv, gr_edmd_params *p,
+                        gr_err *err)
 {
     gr_edmd_params_default(p);
-    int v;
-    if (gr_scene_get_choice(sc, "edmd", "algorithm", algo_names, 0, &v, err))
-        return err->code;
-    p->algorithm = (gr_edmd_algorithm)v;
-    if (gr_scene_get_choice(sc, "edmd", "collapse", collapse_names, 0, &v, err))
-        return err->code;
-    p->collapse = (gr_edmd_collapse)v;
-    if (gr_scene_get_choice(sc, "edmd", "fields", yesno, 0, &p->fields, err))
-        return err->code;
-    if (gr_scene_get_choice(sc, "edmd", "queue", queue_names, p->calendar, &p->calendar, err))
-        return err->code;
-    long arity = 2;
-    if (gr_scene_get_long(sc, "edmd", "tree_arity", 2, &arity, err))
-        return err->code;
-    if (arity != 2 && arity != 4) {
+    p->algorithm = (gr_edmd_algorithm)gr_param_get(pv, "algorithm");
+    p->cell = gr_param_get(pv, "cell");
+    p->collapse = (gr_edmd_collapse)gr_param_get(pv, "collapse");
+    p->tc = gr_param_get(pv, "tc");
+    p->v_threshold = gr_param_get(pv, "v_threshold");
+    p->fields = (int)gr_param_get(pv, "fields");
+    p->sort_every = gr_param_get(pv, "sort_every");
+    p->tree_arity = (int)gr_param_get(pv, "tree_arity");
+    p->calendar = (int)gr_param_get(pv, "queue");
+    if (p->tree_arity == 3) {
         char where[1200];
         gr_scene_where(sc, "edmd", "tree_arity", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [edmd] key 'tree_arity' must be 2 or 4, got %ld", where, arity);
-    }
-    p->tree_arity = (int)arity;
-    if (gr_scene_get_double(sc, "edmd", "cell", 0.0, &p->cell, err) ||
-        gr_scene_get_double(sc, "edmd", "tc", p->tc, &p->tc, err) ||
-        gr_scene_get_double(sc, "edmd", "v_threshold", p->v_threshold, &p->v_threshold, err) ||
-        gr_scene_get_double(sc, "edmd", "sort_every", p->sort_every, &p->sort_every, err))
-        return err->code;
-    const char *bad = !(p->cell >= 0) ? "cell" : !(p->tc >= 0) ? "tc" : !(p->v_threshold >= 0) ? "v_threshold" : NULL;
-    if (bad) {
-        char where[1200];
-        gr_scene_where(sc, "edmd", bad, where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [edmd] key '%s' must be >= 0", where, bad);
+        return gr_fail(err, GR_EINPUT, "%s: [edmd] key 'tree_arity' must be 2 or 4, got 3", where);
     }
     return GR_OK;
+}
+
+int gr_edmd_params_read(const gr_scene *sc, gr_edmd_params *p, gr_err *err)
+{
+    gr_param_values pv;
+    if (gr_params_read(sc, "edmd", gr_edmd_param_table, &pv, err))
+        return err->code;
+    return gr_edmd_params_from(sc, &pv, p, err);
 }

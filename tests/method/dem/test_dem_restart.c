@@ -51,35 +51,35 @@ static gr_particles *run(const char *text, double t_save, double t_end, const ch
     gr_err e = {0};
     gr_particles *init = gr_particles_create(0, &e);
     assert_int_equal(gr_init_particles(sc, init, &e), GR_OK);
-    void *st = NULL;
-    if (gr_method_create(m, sc, init, &st, &e))
+    gr_sim *st = NULL;
+    if (gr_sim_create(m, sc, init, &st, &e))
         print_error("%s\n", e.msg);
     assert_non_null(st);
     if (load) {
         gr_ckpt *ck = gr_ckpt_open(ck_path, &e);
         assert_non_null(ck);
-        if (m->load(st, ck, &e))
+        if (gr_sim_load(st, ck, &e))
             print_error("load: %s\n", e.msg);
         assert_int_equal(e.code, GR_OK);
         gr_ckpt_close(ck, &e);
-        assert_true(fabs(m->time(st) - t_save) < 1e-9);
+        assert_true(fabs(gr_sim_time(st) - t_save) < 1e-9);
     } else if (ck_path) {
-        assert_int_equal(m->advance(st, t_save, 0, &e), GR_OK);
+        assert_int_equal(gr_sim_advance(st, t_save, 0, &e), GR_OK);
         unlink(ck_path);
         gr_ckpt *ck = gr_ckpt_create(ck_path, &e);
         assert_non_null(ck);
-        if (m->save(st, ck, &e))
+        if (gr_sim_save(st, ck, &e))
             print_error("save: %s\n", e.msg);
         assert_int_equal(e.code, GR_OK);
         assert_int_equal(gr_ckpt_close(ck, &e), GR_OK);
     }
-    if (m->advance(st, t_end, 0, &e))
+    if (gr_sim_advance(st, t_end, 0, &e))
         print_error("advance: %s\n", e.msg);
     assert_int_equal(e.code, GR_OK);
     gr_particles *p = gr_particles_create(0, &e);
-    assert_int_equal(m->snapshot(st, p, &e), GR_OK);
-    *outflow = ((gr_dem *)st)->outflow;
-    m->free(st);
+    assert_int_equal(gr_sim_snapshot(st, p, &e), GR_OK);
+    *outflow = ((gr_dem *)gr_sim_state(st))->outflow;
+    gr_sim_free(st);
     gr_particles_free(init);
     gr_scene_free(sc);
     return p;

@@ -65,12 +65,12 @@ static void discharge(void **st)
         gr_err e = {0};
         gr_particles *p = gr_particles_create(0, &e);
         assert_int_equal(gr_init_particles(sc, p, &e), GR_OK);
-        void *state = NULL;
-        int rc = gr_method_create(&gr_edmd_method, sc, p, &state, &e);
+        gr_sim *sim = NULL;
+        int rc = gr_sim_create(&gr_edmd_method, sc, p, &sim, &e);
         if (rc)
             fprintf(stderr, "%s\n", e.msg);
         assert_int_equal(rc, GR_OK);
-        gr_edmd *s = state;
+        gr_edmd *s = gr_sim_state(sim);
         double worst = 0;
         rc = gr_edmd_advance(s, 4.99, 0, &e);
         if (rc)
@@ -80,7 +80,7 @@ static void discharge(void **st)
         worst = fmax(worst, worst_overlap(sc, p, gr_edmd_time(s)));
         gr_obs o;
         gr_obs_clear(&o);
-        assert_int_equal(gr_edmd_method.observe(s, &o, &e), GR_OK);
+        assert_int_equal(gr_sim_observe(sim, &o, &e), GR_OK);
         assert_int_equal(o.outflow, 0); /* closed before the gate opens */
         for (int k = 1; k <= 6; k++) {
             rc = gr_edmd_advance(s, 5.0 + 5.0 * k, 0, &e);
@@ -90,7 +90,7 @@ static void discharge(void **st)
             assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
             worst = fmax(worst, worst_overlap(sc, p, gr_edmd_time(s)));
         }
-        assert_int_equal(gr_edmd_method.observe(s, &o, &e), GR_OK);
+        assert_int_equal(gr_sim_observe(sim, &o, &e), GR_OK);
         size_t gone = 0;
         for (size_t i = 0; i < p->n; i++) {
             if (p->flags[i] & GR_PF_GONE) {
@@ -113,7 +113,7 @@ static void discharge(void **st)
         else
             assert_int_equal(gone, o.outflow);
         assert_true(worst < 1e-9);
-        gr_edmd_method.free(s);
+        gr_sim_free(sim);
         gr_particles_free(p);
         gr_scene_free(sc);
     }

@@ -1,0 +1,259 @@
+/* The instance: a backend's table, its state and the scene it came from,
+ * with the defaults of the optional operations (methods/method.h). */
+#include "method.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_STREAMS 16
+
+struct gr_sim {
+    const gr_method_type *type;
+    void *state;
+    const gr_scene *scene;
+    gr_param_values params;
+    int nrng;
+    uint64_t rng_id[MAX_STREAMS];
+    gr_rng *rng[MAX_STREAMS];
+    gr_particles *scratch; /* snapshots for the default fields */
+};
+
+static const char *const op_names[GR_OP_COUNT] = {"snapshots", "fields", "counters",
+                                                 "measurement windows", "single steps"};
+
+const char *gr_op_name(unsigned op)
+{
+    for (unsigned b = 0; b < GR_OP_COUNT; b++)
+        if (op == 1u << b)
+            return op_names[b];
+    return "an unknown operation";
+}
+
+unsigned gr_method_ops(const gr_method_type *m)
+{
+    return (m->snapshot ? GR_OP_SNAPSHOT : 0) | (m->fields ? GR_OP_FIELDS : 0) |
+           (m->counters ? GR_OP_COUNTERS : 0) | (m->reset_window ? GR_OP_RESET_WINDOW : 0) |
+           (m->step ? GR_OP_STEP : 0);
+}
+
+/* Operations a backend gives, itself or through a default. */
+static unsigned ops_available(const gr_method_type *m)
+{
+    unsigned ops = gr_method_ops(m) | GR_OP_COUNTERS | GR_OP_RESET_WINDOW | GR_OP_STEP;
+    if (m->snapshot)
+        ops |= GR_OP_FIELDS;
+    return ops;
+}
+
+int gr_sim_require(const gr_method_type *m, unsigned ops, const char *who, gr_err *err)
+{
+    unsigned missing = ops & ~ops_available(m);
+    for (unsigned b = 0; b < GR_OP_COUNT; b++)
+        if (missing & (1u << b))
+            return gr_fail(err, GR_EINPUT, "%s needs %s, which method '%s' does not give", who,
+                           op_names[b], m->name);
+    return GR_OK;
+}
+
+int gr_method_require_features(const gr_method_type *m, unsigned features, const char *who,
+                               gr_err *err)
+{
+    unsigned missing = features & ~m->features;
+    for (unsigned b = 0; b < GR_FEAT_COUNT; b++)
+        if (missing & (1u << b))
+            return gr_fail(err, GR_EINPUT, "%s needs %s, which method '%s' does not support", who,
+                           gr_feature_name(1u << b), m->name);
+    return GR_OK;
+}
+
+static int refuse_features(const gr_method_type *m, const gr_scene *sc, gr_err *err)
+{
+    unsigned missing = gr_scene_features(sc) & ~m->features;
+    for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
+        if (missing & (1u << b)) {
+            char where[1200];
+            gr_scene_feature_where(sc, 1u << b, where, sizeof where);
+            return gr_fail(err, GR_EINPUT, "%s: method '%s' does not support %s", where, m->name,
+                           gr_feature_name(1u << b));
+        }
+    }
+    return GR_OK;
+}
+
+int gr_sim_create(const gr_method_type *m, const gr_scene *sc, const gr_particles *init,
+                  gr_sim **out, gr_err *err)
+{
+    *out = NULL;
+    if (refuse_features(m, sc, err))
+        return err->code;
+    gr_sim *s = calloc(1, sizeof *s);
+    if (!s)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    s->type = m;
+    s->scene = sc;
+    if (gr_params_read(sc, m->name, m->params, &s->params, err)) {
+        free(s);
+        return err->code;
+    }
+    gr_method_ctx ctx = {sc, &s->params, s};
+    if (m->create(&ctx, init, &s->state, err)) {
+        gr_sim_free(s);
+        return err->code;
+    }
+    *out = s;
+    return GR_OK;
+}
+
+void gr_sim_free(gr_sim *s)
+{
+    if (!s)
+        return;
+    if (s->state)
+        s->type->free(s->state);
+    for (int k = 0; k < s->nrng; k++)
+        gr_rng_free(s->rng[k]);
+    gr_particles_free(s->scratch);
+    free(s);
+}
+
+const gr_method_type *gr_sim_type(const gr_sim *s) { return s->type; }
+const gr_scene *gr_sim_scene(const gr_sim *s) { return s->scene; }
+const gr_param_values *gr_sim_params(const gr_sim *s) { return &s->params; }
+void *gr_sim_state(gr_sim *s) { return s->state; }
+double gr_sim_time(const gr_sim *s) { return s->type->time(s->state); }
+
+int gr_sim_advance(gr_sim *s, double t_end, uint64_t max_steps, gr_err *err)
+{
+    return s->type->advance(s->state, t_end, max_steps, err);
+}
+
+int gr_sim_step(gr_sim *s, gr_err *err)
+{
+    if (s->type->step)
+        return s->type->step(s->state, err);
+    return s->type->advance(s->state, INFINITY, 1, err);
+}
+
+int gr_sim_observe(gr_sim *s, gr_obs *obs, gr_err *err)
+{
+    return s->type->observe(s->state, obs, err);
+}
+
+void gr_sim_reset_window(gr_sim *s)
+{
+    if (s->type->reset_window)
+        s->type->reset_window(s->state);
+}
+
+int gr_sim_snapshot(gr_sim *s, gr_particles *out, gr_err *err)
+{
+    if (!s->type->snapshot)
+        return gr_sim_require(s->type, GR_OP_SNAPSHOT, "a snapshot", err);
+    return s->type->snapshot(s->state, out, err);
+}
+
+int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err)
+{
+    if (s->type->fields)
+        return s->type->fields(s->state, f, w, err);
+    if (!s->type->snapshot)
+        return gr_sim_require(s->type, GR_OP_FIELDS, "coarse-grained fields", err);
+    if (!s->scratch && !(s->scratch = gr_particles_create(0, err)))
+        return err->code;
+    if (s->type->snapshot(s->state, s->scratch, err))
+        return err->code;
+    return gr_field_add(f, s->scratch, GR_PF_FIXED | GR_PF_GONE, w, err);
+}
+
+size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap)
+{
+    return s->type->counters ? s->type->counters(s->state, out, cap) : 0;
+}
+
+/* ---- random streams ---- */
+
+/* A backend's stream k is stored as "<method>.stream<k>". */
+static void stream_name(const gr_sim *s, uint64_t id, char *buf, size_t n)
+{
+    snprintf(buf, n, "%s.stream%llu", s->type->name,
+             (unsigned long long)(id - GR_STREAM_METHOD_BASE));
+}
+
+gr_rng *gr_sim_stream(gr_sim *s, uint64_t k, gr_err *err)
+{
+    if (k >= GR_STREAM_METHOD_BASE) {
+        gr_fail(err, GR_ERUN, "%s: stream %llu is not below %d", s->type->name,
+                (unsigned long long)k, GR_STREAM_METHOD_BASE);
+        return NULL;
+    }
+    uint64_t id = GR_STREAM_METHOD_BASE + k;
+    for (int i = 0; i < s->nrng; i++)
+        if (s->rng_id[i] == id)
+            return s->rng[i];
+    if (s->nrng == MAX_STREAMS) {
+        gr_fail(err, GR_ERUN, "%s: more than %d random streams", s->type->name, MAX_STREAMS);
+        return NULL;
+    }
+    gr_rng *r = gr_rng_create(s->scene->seed, id, err);
+    if (r) {
+        s->rng_id[s->nrng] = id;
+        s->rng[s->nrng++] = r;
+    }
+    return r;
+}
+
+/* ---- checkpoints ---- */
+
+int gr_sim_save(const gr_sim *s, gr_ckpt *ck, gr_err *err)
+{
+    const gr_param_values *pv = &s->params;
+    if (pv->n && gr_ckpt_put_f64(ck, "sim_params", pv->v, (size_t)pv->n, err))
+        return err->code;
+    for (int i = 0; i < s->nrng; i++) {
+        char name[96];
+        stream_name(s, s->rng_id[i], name, sizeof name);
+        if (gr_rng_save(s->rng[i], ck, name, err))
+            return err->code;
+    }
+    return s->type->save(s->state, ck, err);
+}
+
+/* The checkpoint's parameters must be the scene's, bit for bit: a restart
+ * with another dt or tolerance would not continue the same run. */
+static int compare_params(const gr_sim *s, gr_ckpt *ck, gr_err *err)
+{
+    const gr_param_values *pv = &s->params;
+    if (!pv->n)
+        return GR_OK;
+    double v[GR_MAX_PARAMS];
+    size_t n;
+    if (gr_ckpt_len(ck, "sim_params", &n, err) || n != (size_t)pv->n ||
+        gr_ckpt_get_f64(ck, "sim_params", v, n, err))
+        return gr_fail(err, GR_EINPUT, "checkpoint: no parameter table of method '%s' (%d values)",
+                       s->type->name, pv->n);
+    for (int k = 0; k < pv->n; k++) {
+        if (memcmp(&v[k], &pv->v[k], sizeof v[k]) == 0)
+            continue;
+        char a[64], b[64];
+        gr_param_format(&pv->table[k], v[k], a, sizeof a);
+        gr_param_format(&pv->table[k], pv->v[k], b, sizeof b);
+        return gr_fail(err, GR_EINPUT, "checkpoint: written with [%s] %s = %s, the scene gives %s",
+                       s->type->name, pv->table[k].name, a, b);
+    }
+    return GR_OK;
+}
+
+int gr_sim_load(gr_sim *s, gr_ckpt *ck, gr_err *err)
+{
+    if (compare_params(s, ck, err))
+        return err->code;
+    for (int i = 0; i < s->nrng; i++) {
+        char name[96];
+        stream_name(s, s->rng_id[i], name, sizeof name);
+        if (gr_rng_load(s->rng[i], ck, name, err))
+            return err->code;
+    }
+    return s->type->load(s->state, ck, err);
+}
