@@ -55,7 +55,12 @@ void gr_param_format(const gr_param *p, double v, char *buf, size_t n)
     } else if (p->type == GR_PARAM_INT) {
         snprintf(buf, n, "%.0f", v);
     } else {
-        snprintf(buf, n, "%.17g", v);
+        /* the shortest text that reads back as the same double */
+        for (int prec = 6; prec <= 17; prec++) {
+            snprintf(buf, n, "%.*g", prec, v);
+            if (strtod(buf, NULL) == v)
+                break;
+        }
     }
 }
 
@@ -71,7 +76,7 @@ static void format_range(const gr_param *p, char *buf, size_t n)
         snprintf(hi, sizeof hi, "inf");
     else
         snprintf(hi, sizeof hi, "%g", p->max);
-    snprintf(buf, n, "%s%s, %s%s", p->min_open ? "(" : "[", lo, hi, isinf(p->max) ? ")" : "]");
+    snprintf(buf, n, "%s%s, %s%s", p->min_open || isinf(p->min) ? "(" : "[", lo, hi, isinf(p->max) ? ")" : "]");
 }
 
 static int read_one(const gr_scene *sc, const char *section, const gr_param *p, double *v,

@@ -5,6 +5,7 @@
 
 int cmd_run(int argc, char **argv);
 int cmd_info(int argc, char **argv);
+int cmd_methods(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_silo_start(int argc, char **argv);
 int cmd_silo_flow(int argc, char **argv);

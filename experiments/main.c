@@ -14,6 +14,7 @@ typedef struct {
 
 static const subcommand commands[] = {
     {"run", "run a scene with one method, writing H5MD", cmd_run},
+    {"methods", "the methods: features, operations, parameter tables", cmd_methods},
     {"info", "describe what a grano result file holds", cmd_info},
     {"bench", "throughput and speed-against-error benchmarks", cmd_bench},
     {"silo-start", "start of a silo discharge (thesis chapter 3)", cmd_silo_start},

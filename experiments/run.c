@@ -116,13 +116,9 @@ int cmd_run(int argc, char **argv)
     if (rc)
         return rc;
     gr_err e = {0};
-    const gr_method_type *m = gr_method_find(a.method);
-    if (!m) {
-        const char *names[GR_MAX_METHODS + 1];
-        gr_method_names(names, GR_MAX_METHODS + 1);
-        const char *near = gr_nearest(a.method, names);
-        fprintf(stderr, "grano run: --method: unknown method '%s'%s%s%s\n", a.method,
-                near ? "; did you mean '" : "", near ? near : "", near ? "'?" : "");
+    const gr_method_type *m;
+    if (gr_method_lookup(a.method, "grano run: --method", &m, &e)) {
+        fprintf(stderr, "%s\n", e.msg);
         return 2;
     }
     const char *names[GR_MAX_METHODS + 1];

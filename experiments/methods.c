@@ -1,0 +1,75 @@
+/* grano methods: every registered backend with its representation, the
+ * scene features it supports, its optional operations and its parameter
+ * table, all read from the registry. */
+#include <stdio.h>
+#include <string.h>
+
+#include "cmd.h"
+#include "method.h"
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: grano methods [NAME]\n\n"
+               "Each registered method (or only NAME): what it represents, the scene features\n"
+               "it supports (a scene asking for another is refused), its optional operations,\n"
+               "and the keys of its scene section with type, default, range, unit and meaning.\n");
+}
+
+static void print_method(const gr_method_type *m)
+{
+    printf("%s: %s\n", m->name, m->summary);
+    printf("  represents: %s\n", m->repr == GR_REPR_PARTICLES ? "particles (snapshots)" : "a lattice (node occupations)");
+    printf("  features:");
+    int first = 1;
+    for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
+        if (m->features & (1u << b)) {
+            printf("%s %s", first ? "" : ";", gr_feature_name(1u << b));
+            first = 0;
+        }
+    }
+    printf("\n  not supported:");
+    first = 1;
+    for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
+        if (!(m->features & (1u << b))) {
+            printf("%s %s", first ? "" : ";", gr_feature_name(1u << b));
+            first = 0;
+        }
+    }
+    printf("%s\n  operations of its own:", first ? " none" : "");
+    unsigned ops = gr_method_ops(m);
+    for (unsigned b = 0; b < GR_OP_COUNT; b++)
+        if (ops & (1u << b))
+            printf(" %s;", gr_op_name(1u << b));
+    printf("\n  [%s] parameters:\n", m->name);
+    printf("    %-14s %-6s %-10s %-22s %-6s %s\n", "key", "type", "default", "range", "unit", "meaning");
+    gr_params_print(stdout, m->params);
+}
+
+int cmd_methods(int argc, char **argv)
+{
+    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
+        usage(stdout);
+        return 0;
+    }
+    if (argc > 2) {
+        usage(stderr);
+        return 2;
+    }
+    if (argc == 2) {
+        const gr_method_type *m;
+        gr_err err = {0};
+        if (gr_method_lookup(argv[1], "grano methods", &m, &err)) {
+            fprintf(stderr, "grano: %s\n", err.msg);
+            return 2;
+        }
+        print_method(m);
+        return 0;
+    }
+    const gr_method_type *const *all = gr_method_all();
+    for (size_t i = 0; all[i]; i++) {
+        if (i)
+            printf("\n");
+        print_method(all[i]);
+    }
+    return 0;
+}
