@@ -11,7 +11,7 @@ typedef struct {
     unsigned feature;   /* the GR_FEAT_* bit it exercises (0: none) */
     const char *text;
     double t_end;       /* run length */
-    uint64_t save_after; /* steps (events) before the restart checkpoint */
+    uint64_t save_after; /* steps (events) past 0.6 t_end: the restart point */
     long grains;        /* mobile grains at the start */
 } conf_scene;
 

@@ -144,15 +144,17 @@ static outcome run_plain(const gr_method_type *m, const gr_scene *sc, double t_e
     return r;
 }
 
-/* Save after `steps` steps (an arbitrary point, not a time boundary), run
+/* Save `steps` steps past 0.6 t_end (an arbitrary point, not a time boundary), run
  * on to t_end; a fresh instance loads the checkpoint and runs to t_end. */
 static outcome run_restarted(const gr_method_type *m, const gr_scene *sc, double t_end,
                              uint64_t steps, const char *path, outcome *uninterrupted)
 {
     gr_err e = {0};
     gr_sim *a = create(m, sc);
+    advance(a, 0.6 * t_end);
     assert_int_equal(gr_sim_advance(a, t_end, steps, &e), GR_OK);
     double t_save = gr_sim_time(a);
+    assert_true(t_save < t_end); /* the checkpoint is taken mid-run */
     unlink(path);
     gr_ckpt *ck = gr_ckpt_create(path, &e);
     assert_non_null(ck);
