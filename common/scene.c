@@ -16,7 +16,7 @@ static const char *const keys_domain[] = {"width", "height", "left", "right", "b
 static const char *const keys_material[] = {
     "normal", "tangential", "kn", "gamma_n", "kt", "gamma_t", "mu", "restitution",
     "tangential_restitution", "wall_restitution", "clip_attraction", NULL};
-static const char *const keys_species[] = {"diameter", "polydispersity", "density", "count", NULL};
+static const char *const keys_species[] = {"diameter", "polydispersity", "density", "count", "weight", NULL};
 static const char *const keys_floor[] = {"motion", "amplitude", "omega", NULL};
 static const char *const keys_silo[] = {
     "width", "height", "left", "base", "orifice", "orifice_center", "open_time", "walls",
@@ -216,7 +216,8 @@ static int read_species(gr_scene *sc, gr_err *err)
         snprintf(sp->name, sizeof sp->name, "%s", strchr(sec, '.') ? strchr(sec, '.') + 1 : "");
         if (POSITIVE(sec, "diameter", 1.0, &sp->diameter) ||
             get_num(sc, sec, "polydispersity", 0.0, 0.0, 0, 0.9, &sp->polydispersity, err) ||
-            POSITIVE(sec, "density", 4.0 / M_PI, &sp->density))
+            POSITIVE(sec, "density", 4.0 / M_PI, &sp->density) ||
+            POSITIVE(sec, "weight", 1.0, &sp->weight))
             return err->code;
         if (gr_scene_get_long(sc, sec, "count", 0, &sp->count, err))
             return err->code;
@@ -228,6 +229,7 @@ static int read_species(gr_scene *sc, gr_err *err)
         gr_species *sp = &sc->species[sc->nspecies++];
         sp->diameter = 1.0;
         sp->density = 4.0 / M_PI;
+        sp->weight = 1.0;
         sp->count = 0;
     }
     return GR_OK;

@@ -40,6 +40,8 @@ typedef struct {
     double polydispersity; /* diameters uniform in d(1 +- p) */
     double density;        /* areal: mass = density * pi d^2 / 4 */
     long count;            /* mobile grains of this species */
+    double weight;         /* real grains each simulated particle stands for
+                              (DSMC); 1 everywhere else */
 } gr_species;
 
 /* A wall segment of infinite mass. A gate (open_time finite) vanishes at
@@ -151,9 +153,10 @@ enum {
     GR_FEAT_POLYDISPERSE = 1u << 10,
     GR_FEAT_MIXTURE = 1u << 11,
     GR_FEAT_HERTZ = 1u << 12,
-    GR_FEAT_HF_FLOOR = 1u << 13       /* high-frequency floor limits */
+    GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
+    GR_FEAT_WEIGHTS = 1u << 14        /* a particle stands for several grains */
 };
-#define GR_FEAT_COUNT 14
+#define GR_FEAT_COUNT 15
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;

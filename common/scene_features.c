@@ -26,6 +26,7 @@ static const feature_info features[GR_FEAT_COUNT] = {
     {GR_FEAT_MIXTURE, "several species", "species", "diameter"},
     {GR_FEAT_HERTZ, "the Hertz normal force", "material", "normal"},
     {GR_FEAT_HF_FLOOR, "a high-frequency floor limit", "floor", "motion"},
+    {GR_FEAT_WEIGHTS, "particle weights (a simulated particle standing for several grains)", "species", "weight"},
 };
 
 unsigned gr_scene_features(const gr_scene *sc)
@@ -66,6 +67,9 @@ unsigned gr_scene_features(const gr_scene *sc)
             f |= GR_FEAT_POLYDISPERSE;
     if (sc->nspecies > 1)
         f |= GR_FEAT_MIXTURE;
+    for (int k = 0; k < sc->nspecies; k++)
+        if (sc->species[k].weight != 1.0)
+            f |= GR_FEAT_WEIGHTS;
     if (m->normal == GR_NORMAL_HERTZ)
         f |= GR_FEAT_HERTZ;
     return f;
@@ -100,9 +104,12 @@ static const gr_scene_entry *feature_entry(const gr_scene *sc, unsigned bit)
         return e ? e : gr_scene_find(sc, "material", "tangential_restitution");
     case GR_FEAT_POLYDISPERSE:
     case GR_FEAT_MIXTURE:
+    case GR_FEAT_WEIGHTS:
         for (size_t i = 0; i < sc->nentries && !e; i++)
             if (!strncmp(sc->entries[i].section, "species", 7) &&
-                !strcmp(sc->entries[i].key, bit == GR_FEAT_MIXTURE ? "count" : "polydispersity"))
+                !strcmp(sc->entries[i].key, bit == GR_FEAT_MIXTURE  ? "count"
+                                            : bit == GR_FEAT_WEIGHTS ? "weight"
+                                                                     : "polydispersity"))
                 e = &sc->entries[i];
         return e;
     case GR_FEAT_SEGMENTS:

@@ -43,6 +43,7 @@ const conf_scene conf_scenes[] = {
      BOX MAT "[species.a]\ncount = 20\n[species.b]\ncount = 20\ndiameter = 0.8\n" INIT, 4.0, 2, 40},
     {"hertz", GR_FEAT_HERTZ,
      BOX "[material]\nrestitution = 0.9\nkn = 1e4\ngamma_n = 5\nnormal = hertz\n" SP INIT, 4.0, 2, 40},
+    {"weights", GR_FEAT_WEIGHTS, BOX MAT "[species]\ncount = 40\nweight = 25\n" INIT, 4.0, 2, 40},
     {"hf-floor", GR_FEAT_HF_FLOOR,
      DOMG MAT SP INIT "region = 1 1 19 6\n[floor]\nmotion = sine-hf\namplitude = 0.01\nomega = 100\n", 4.0, 2,
      40},
