@@ -102,8 +102,8 @@ static int read_one(const gr_scene *sc, const char *section, const gr_param *p, 
         char where[1200], range[100];
         gr_scene_where(sc, section, p->name, where, sizeof where);
         format_range(p, range, sizeof range);
-        return gr_fail(err, GR_EINPUT, "%s: [%s] key '%s' = %g is outside its range %s (%s)",
-                       where, section, p->name, *v, range, p->doc);
+        return gr_fail(err, GR_EINPUT, "%s: %g is outside its range %s (%s)", where, *v, range,
+                       p->doc);
     }
     return GR_OK;
 }
