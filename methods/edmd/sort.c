@@ -71,7 +71,7 @@ static int sort_room(gr_edmd *s)
         s->sort_p = edmd_big_alloc(n * sizeof *s->sort_p);
         s->sort_perm = malloc(n * sizeof *s->sort_perm);
         s->sort_inv = malloc(n * sizeof *s->sort_inv);
-        s->sort_buf = edmd_big_alloc(n * sizeof(edmd_ev));
+        s->sort_buf = edmd_big_alloc(n * sizeof(double)); /* the widest per-grain field */
         if (!s->sort_p || !s->sort_perm || !s->sort_inv || !s->sort_buf)
             return GR_ERUN;
     }
@@ -127,9 +127,9 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         p->cnext = s->chead[p->cell];
         s->chead[p->cell] = (int32_t)j;
     }
-    /* The event lists and leaves move with their grains, partners renamed
-     * (predicting them again would cost a full schedule, a second or so at
-     * N = 1e6, and could round some times differently). */
+    /* The event lists move with their grains, partners renamed (predicting
+     * them again would cost a full schedule, a second or so at N = 1e6, and
+     * could round some times differently); the queue is rebuilt from them. */
     size_t cap = (size_t)s->ecap;
     edmd_ev *ev = s->sort_ev;
     for (size_t j = 0; j < n; j++) {
@@ -144,18 +144,8 @@ int edmd_sort(gr_edmd *s, gr_err *err)
     }
     s->sort_ev = s->ev;
     s->ev = ev;
-    if (!s->use_cal) {
-        edmd_ev *lf = buf;
-        for (size_t j = 0; j < n; j++) {
-            lf[j] = s->lf[perm[j]];
-            if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
-                lf[j].partner = inv[lf[j].partner];
-        }
-        memcpy(s->lf, lf, n * sizeof *lf);
-    }
     s->last_sort = s->steps;
-    if (s->use_cal)
-        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
-    edmd_tree_build(s);
+    if (s->q->build(s))
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
     return GR_OK;
 }

@@ -28,9 +28,8 @@ void gr_edmd_free(gr_edmd *s)
     free(s->sort_inv);
     free(s->sort_buf);
     free(s->ev);
-    free(s->lf);
-    free(s->node);
-    edmd_cal_free(s);
+    if (s->q)
+        s->q->free(s);
     free(s->cacc);
     free(s->species);
     free(s->seg);
@@ -313,6 +312,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!s)
         return gr_fail(err, GR_ERUN, "edmd: out of memory");
     s->prm = *prm;
+    s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
     int rc = setup_scene(s, sc, err);
     if (!rc)
         rc = setup_particles(s, init, err);
@@ -325,7 +325,6 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
-    s->use_cal = s->prm.calendar && s->prm.algorithm == GR_EDMD_TREE;
     if (!rc)
         rc = edmd_events_init(s, err);
     s->t = 0.0;
@@ -362,31 +361,4 @@ void gr_edmd_set_event_hook(gr_edmd *s, gr_edmd_event_fn fn, void *user)
 {
     s->hook = fn;
     s->hook_user = user;
-}
-
-int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
-{
-    out->n = 0;
-    if (gr_particles_reserve(out, s->n, err))
-        return err->code;
-    double t = s->t, g = s->g, Ly = s->H - s->ybot;
-    for (size_t k = 0; k < s->n; k++) {
-        size_t i = s->order[k];
-        const edmd_p *p = &s->p[i];
-        int gone = s->gone[i];
-        double x = gone ? p->x : edmd_x_at(p, t), y = gone ? p->y : edmd_y_at(p, t, g);
-        if (s->periodic_x)
-            x -= s->W * floor(x / s->W);
-        if (s->periodic_y)
-            y -= Ly * floor((y - s->ybot) / Ly);
-        long j = gr_particles_push(out, x, y, p->r, s->m[i], gone ? GR_PF_GONE : 0, s->species[i], err);
-        if (j < 0)
-            return err->code;
-        out->vx[j] = gone ? 0.0 : p->vx;
-        out->vy[j] = gone ? 0.0 : edmd_vy_at(p, t, g);
-        out->omega[j] = s->w[i];
-        out->inertia[j] = s->inertia[i];
-        out->id[j] = s->id[i];
-    }
-    return GR_OK;
 }
