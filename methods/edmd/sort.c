@@ -1,11 +1,11 @@
 /* Spatial re-sorting: grains renumbered along a Morton (Z) curve over the
- * cells, so that a grain's neighbours, their events and their tree leaves
- * sit close in memory. Large systems lose that order as grains diffuse, and
- * the cost per event then grows with N through cache misses; a re-sort every
- * few tens of collisions per grain keeps it flat. The event lists move
- * with the grains, so a sorted run executes the same events as an unsorted
- * one (up to the order of exactly simultaneous events of different grains,
- * which follows the numbering). */
+ * cells, so that a grain's neighbours, their events and their queue
+ * entries sit close in memory. Large systems lose that order as grains
+ * diffuse, and the cost per event then grows with N through cache misses;
+ * a re-sort every few tens of collisions per grain keeps it flat. The
+ * event lists move with the grains, so a sorted run executes the same
+ * events as an unsorted one (up to the order of exactly simultaneous
+ * events of different grains, which follows the numbering). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -86,6 +86,27 @@ static int sort_room(gr_edmd *s)
     return GR_OK;
 }
 
+/* The event lists move with their grains, partners renamed (predicting
+ * them again would cost a full schedule, a second or so at N = 1e6, and
+ * could round some times differently); the queue is rebuilt from them. */
+static void move_slabs(gr_edmd *s, const int32_t *perm, const int32_t *inv)
+{
+    size_t n = s->n, cap = (size_t)s->ecap;
+    edmd_ev *ev = s->sort_ev;
+    for (size_t j = 0; j < n; j++) {
+        const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
+        edmd_ev *dst = ev + j * cap;
+        dst[0] = (edmd_ev){EDMD_INF, 0, 0}; /* if empty */
+        for (int32_t k = 0; k < s->p[j].nev; k++) {
+            dst[k] = src[k];
+            if (dst[k].partner >= 0)
+                dst[k].partner = inv[dst[k].partner];
+        }
+    }
+    s->sort_ev = s->ev;
+    s->ev = ev;
+}
+
 int edmd_sort(gr_edmd *s, gr_err *err)
 {
     size_t n = s->n, nc = (size_t)s->nx * (size_t)s->ny;
@@ -127,23 +148,7 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         p->cnext = s->chead[p->cell];
         s->chead[p->cell] = (int32_t)j;
     }
-    /* The event lists move with their grains, partners renamed (predicting
-     * them again would cost a full schedule, a second or so at N = 1e6, and
-     * could round some times differently); the queue is rebuilt from them. */
-    size_t cap = (size_t)s->ecap;
-    edmd_ev *ev = s->sort_ev;
-    for (size_t j = 0; j < n; j++) {
-        const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
-        edmd_ev *dst = ev + j * cap;
-        dst[0] = (edmd_ev){EDMD_INF, 0, 0}; /* if empty */
-        for (int32_t k = 0; k < s->p[j].nev; k++) {
-            dst[k] = src[k];
-            if (dst[k].partner >= 0)
-                dst[k].partner = inv[dst[k].partner];
-        }
-    }
-    s->sort_ev = s->ev;
-    s->ev = ev;
+    move_slabs(s, perm, inv);
     s->last_sort = s->steps;
     if (s->q->build(s))
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
