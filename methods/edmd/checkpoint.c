@@ -1,5 +1,5 @@
-/* Checkpoints: the full state, event lists and leaves included, so that a loaded
- * run pops the very same events in the same order as the uninterrupted one
+/* Checkpoints: the full state, event lists included, so that a loaded run
+ * pops the very same events in the same order as the uninterrupted one
  * (re-predicting on load would round some floor roots differently). */
 #include <stdlib.h>
 #include <string.h>
@@ -35,8 +35,10 @@ static void unpack(gr_edmd *s, const unsigned char *b)
 
 static size_t ncells(const gr_edmd *s) { return (size_t)s->nx * (size_t)s->ny; }
 
-/* The leaves as the tree keeps them: the calendar leaves the array alone,
- * its slabs' slot 0 hold the same events. */
+/* The "edmd.leaves" dataset: each grain's earliest event (its slot 0, INF
+ * for an empty slab) for every leaf of the tree, whichever queue runs. The
+ * queue is a function of the slabs and is rebuilt from them on load, so
+ * the leaves are written for the layout's sake and only checked on load. */
 static edmd_ev *leaves(const gr_edmd *s)
 {
     edmd_ev *lf = malloc((size_t)s->P * sizeof *lf);
@@ -49,7 +51,7 @@ static edmd_ev *leaves(const gr_edmd *s)
 
 int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
 {
-    edmd_ev *lf = s->use_cal ? leaves(s) : s->lf;
+    edmd_ev *lf = leaves(s);
     if (!lf)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the checkpoint");
     int rc = GR_OK;
@@ -68,8 +70,7 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_bytes(ck, "edmd.leaves", lf, (size_t)s->P * sizeof *lf, err) ||
         gr_rng_save(s->rng, ck, "edmd.rng", err))
         rc = err->code;
-    if (lf != s->lf)
-        free(lf);
+    free(lf);
     if (rc)
         return rc;
     /* a re-sort renumbers the grains: save the numbering */
@@ -85,7 +86,9 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
     return GR_OK;
 }
 
-int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
+/* The dimensions and the slabs' room: a checkpoint may have slabs of
+ * another size than this run's. */
+static int load_dims(gr_edmd *s, gr_ckpt *ck, gr_err *err)
 {
     uint64_t dims[5];
     if (gr_ckpt_get_u64(ck, "edmd.dims", dims, 5, err))
@@ -104,7 +107,19 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         s->ev = ev;
         s->ecap = (int32_t)dims[1];
     }
+    return GR_OK;
+}
+
+int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
+{
+    if (load_dims(s, ck, err))
+        return err->code;
+    size_t n = s->n, nc = ncells(s);
+    edmd_ev *lf = malloc((size_t)s->P * sizeof *lf);
+    if (!lf)
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the checkpoint");
     unsigned char sc[SCALAR_BYTES];
+    int rc = GR_OK;
     if (gr_ckpt_get_bytes(ck, "edmd.scalars", sc, sizeof sc, err) ||
         gr_ckpt_get_bytes(ck, "edmd.particles", s->p, n * sizeof *s->p, err) ||
         gr_ckpt_get_f64(ck, "edmd.omega", s->w, n, err) ||
@@ -112,9 +127,12 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_f64(ck, "edmd.tacc", s->tacc, n, err) ||
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
-        gr_ckpt_get_bytes(ck, "edmd.leaves", s->lf, (size_t)s->P * sizeof *s->lf, err) ||
+        gr_ckpt_get_bytes(ck, "edmd.leaves", lf, (size_t)s->P * sizeof *lf, err) ||
         gr_rng_load(s->rng, ck, "edmd.rng", err))
-        return err->code;
+        rc = err->code;
+    free(lf);
+    if (rc)
+        return rc;
     if (gr_ckpt_get_i64(ck, "edmd.id", s->id, n, err) ||
         gr_ckpt_get_f64(ck, "edmd.mass", s->m, n, err) ||
         gr_ckpt_get_f64(ck, "edmd.inertia", s->inertia, n, err) ||
@@ -125,11 +143,10 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
     if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;
     unpack(s, sc);
-    /* The queue is a function of the leaves (ties go to the lower index in
+    /* The queue is a function of the slabs (ties go to the lower index in
      * both the tree and the calendar): rebuilt, not stored, so either queue
      * resumes a checkpoint written with the other. */
-    if (s->use_cal)
-        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
-    edmd_tree_build(s);
+    if (s->q->build(s))
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
     return GR_OK;
 }

@@ -86,6 +86,24 @@ typedef struct {
 #define EDMD_CAL_FILL 2.0
 #define EDMD_CAL_SLOTDIV 1
 
+/* The event queue: which grain holds the earliest of all the slabs'
+ * slot 0 events. Two implementations pop the same events in the same
+ * order (ties go to the lower index): the complete binary tree (tree.c,
+ * edmd_queue_tree) and Paul's calendar (calendar.c, edmd_queue_calendar),
+ * chosen at creation; the engine calls them through this table only. */
+typedef struct {
+    int (*init)(gr_edmd *s);               /* its room, once the slabs are there */
+    int (*build)(gr_edmd *s);              /* anew from every slab's slot 0 */
+    int (*update)(gr_edmd *s, int32_t i);  /* grain i's slot 0 may have changed */
+    int32_t (*top)(gr_edmd *s, double *t); /* the next event's grain and time (INF: none);
+                                              -2: out of memory */
+    void (*pop)(gr_edmd *s);               /* the top event is being handled */
+    void (*prefetch)(const gr_edmd *s, int32_t i); /* an update of grain i is coming */
+    void (*free)(gr_edmd *s);
+    int looks_ahead;                       /* requests the coming events' lines itself */
+} edmd_queue;
+extern const edmd_queue edmd_queue_tree, edmd_queue_calendar;
+
 /* Per-cell field accumulators: time integrals of mass-weighted moments and
  * sums of collisional transfers over the averaging window. */
 typedef struct {
@@ -142,17 +160,17 @@ struct gr_edmd {
     edmd_ev *sort_ev;        /* slabs in the new order; swapped with ev */
     size_t sort_ev_n;        /* events sort_ev holds */
     int32_t *sort_perm, *sort_inv;
-    void *sort_buf;          /* n leaves or doubles */
+    void *sort_buf;          /* n doubles */
 
     /* events */
     edmd_ev *ev;             /* n slabs of ecap events */
     int32_t ecap;
-    edmd_ev *lf;             /* leaves: a copy of each grain's earliest event (tree queue only) */
+    const edmd_queue *q;     /* the event queue */
+    edmd_ev *lf;             /* tree: leaves, a copy of each grain's slot 0 */
     edmd_node *node;         /* complete binary tree: inner nodes 1..P-1, node[1] the root */
-    int32_t P;               /* leaves (power of K >= n) */
+    int32_t P;               /* tree leaves (power of K >= n); both queues' size class */
     int tshift;              /* log2 of the tree's branching K (1: binary) */
-    int use_cal;             /* the calendar queue instead of the tree */
-    edmd_slot *cal;          /* ring of cal_nb buckets */
+    edmd_slot *cal;          /* calendar: ring of cal_nb buckets */
     size_t cal_nb;
     double cal_inv_w;        /* 1 / bucket width */
     int64_t cal_b;           /* last bucket loaded into the front */
@@ -250,54 +268,60 @@ static inline double edmd_fall_time(double dy, double vy, double g)
  * the event needs anyway, rather than from a separate leaf array. */
 static inline edmd_ev *edmd_slab(const gr_edmd *s, int32_t i) { return s->ev + (size_t)i * (size_t)s->ecap; }
 
-/* tree.c: event pool, per-particle lists, complete binary tree */
-int edmd_events_init(gr_edmd *s, gr_err *err);
+/* Large systems whose queue does not look ahead: the engine and the
+ * prediction request an event's lines themselves. */
+static inline int edmd_engine_prefetches(const gr_edmd *s)
+{
+    return s->P >= EDMD_PREFETCH_P && !s->q->looks_ahead;
+}
+
+/* Files, bottom-up (docs/methods/edmd.md, "Files and layers"). */
+
+/* alloc.c */
 void *edmd_big_alloc(size_t bytes);
 edmd_ev *edmd_ev_alloc(size_t count);
-int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol);
-void edmd_list_clear(gr_edmd *s, int32_t i);
-void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);
-void edmd_tree_update(gr_edmd *s, int32_t i);
-void edmd_tree_build(gr_edmd *s);
-void edmd_tree_prefetch(const gr_edmd *s, int32_t i);
-static inline int32_t edmd_tree_top(const gr_edmd *s) { return s->node[1].i; }
 
-/* calendar.c */
-int edmd_cal_build(gr_edmd *s);
-int edmd_cal_push(gr_edmd *s, int32_t i);
-int32_t edmd_cal_top(gr_edmd *s);
-void edmd_cal_free(gr_edmd *s);
-
-/* predict.c */
-double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
-double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon);
-double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir);
+/* cells.c */
 int edmd_cell_of(const gr_edmd *s, double x, double y);
-int edmd_predict_all(gr_edmd *s, int32_t i);
-void edmd_prefetch_block(const gr_edmd *s, int32_t i);
-int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
-/* Front positions (0: the next event) of the look-ahead's four stages:
- * grain and slab; cell heads and partner; first grains and the
- * partner's heads; the partner's first grains. The front is kept
- * EDMD_CAL_AHEAD deep. */
+void edmd_cell_remove(gr_edmd *s, int32_t i);
+void edmd_cell_insert(gr_edmd *s, int32_t i, int c);
+
+/* roots.c */
+double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);
+double edmd_floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon);
+
+/* lookahead.c: front positions (0: the next event) of the look-ahead's
+ * four stages: grain and slab; cell heads and partner; first grains and
+ * the partner's heads; the partner's first grains. The calendar keeps its
+ * front EDMD_CAL_AHEAD deep. */
 #define EDMD_LA_1 9
 #define EDMD_LA_2 7
 #define EDMD_LA_3 5
 #define EDMD_LA_4 3
 #define EDMD_CAL_AHEAD 12
 void edmd_lookahead(gr_edmd *s);
-int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
+
+/* slab.c: per-grain event lists (slabs); edmd_events_init also sets up
+ * the queue */
+int edmd_events_init(gr_edmd *s, gr_err *err);
+int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol);
+void edmd_list_clear(gr_edmd *s, int32_t i);
+void edmd_list_remove(gr_edmd *s, int32_t i, int32_t e);
+
+/* segment.c */
 int edmd_segments_setup(gr_edmd *s, const gr_scene *sc, gr_err *err);
-double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);
 double edmd_segment_time(const gr_edmd *s, int32_t i, int k, double t_from, double horizon);
 /* unit normal from segment k to a grain at (x, y), and its distance */
 double edmd_segment_normal(const gr_edmd *s, int k, double x, double y, double *nx, double *ny);
-/* collide.c: a grain leaves (reinserted at the top of the silo or gone) */
-int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err);
 
-/* collide.c: return the energy change of the event */
-void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
-void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t);
+/* predict.c */
+double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
+double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon);
+double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir);
+int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
+int edmd_predict_all(gr_edmd *s, int32_t i);
+int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
+void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 
 /* measure.c */
 void edmd_measure_init(gr_edmd *s);
@@ -307,15 +331,24 @@ void edmd_measure_pair(gr_edmd *s, int32_t i, int32_t j, double dvx_i, double dv
                        double dE_i, double dE_j, double dx, double dy);
 double edmd_kinetic(const gr_edmd *s, int32_t i, double t);
 
-/* engine.c */
-int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
-int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
-int edmd_schedule_all(gr_edmd *s, gr_err *err);
-void edmd_cell_remove(gr_edmd *s, int32_t i);
-void edmd_cell_insert(gr_edmd *s, int32_t i, int c);
+/* snapshot.c: gr_edmd_snapshot */
+
+/* collide.c: the collision rules; a grain leaves (reinserted at the top of
+ * the silo or gone) */
+void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
+void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t);
+int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err);
 
 /* sort.c: renumber grains along a Morton curve over the cells */
 int edmd_sort_setup(gr_edmd *s, gr_err *err);
 int edmd_sort(gr_edmd *s, gr_err *err);
+
+/* engine.c */
+int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
+int edmd_advance_naive(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err);
+int edmd_schedule_all(gr_edmd *s, gr_err *err);
+
+/* checkpoint.c: gr_edmd_save, gr_edmd_load; state.c: creation, the rest
+ * of the public API */
 
 #endif

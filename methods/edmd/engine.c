@@ -1,31 +1,11 @@
 /* The event loops: the efficient scheme (cells, per-particle lists, the
- * complete binary tree, collision counters) and the slides' algorithm v1.0
+ * event queue, collision counters) and the slides' algorithm v1.0
  * (predict everything, take the minimum, O(N^2) per event). Both count
  * state-changing events (pair, wall and floor collisions) as steps. */
 #include <math.h>
 #include <stdio.h>
 
 #include "edmd_int.h"
-
-/* Cell lists are singly linked: a grain's predecessor is found from the
- * head (a cell holds about one grain, and its head and grains are in cache
- * by then), where a back link would cost a random line per change. */
-void edmd_cell_remove(gr_edmd *s, int32_t i)
-{
-    edmd_p *p = &s->p[i];
-    int32_t *link = &s->chead[p->cell];
-    while (*link != i)
-        link = &s->p[*link].cnext;
-    *link = p->cnext;
-}
-
-void edmd_cell_insert(gr_edmd *s, int32_t i, int c)
-{
-    edmd_p *p = &s->p[i];
-    p->cell = c;
-    p->cnext = s->chead[c];
-    s->chead[c] = i;
-}
 
 int edmd_schedule_all(gr_edmd *s, gr_err *err)
 {
@@ -34,9 +14,8 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
     for (size_t i = 0; i < s->n; i++)
         if (!s->gone[i] && edmd_predict_all(s, (int32_t)i))
             return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
-    if (s->use_cal)
-        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
-    edmd_tree_build(s);
+    if (s->q->build(s))
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
     return GR_OK;
 }
 
@@ -101,121 +80,114 @@ static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *er
     return GR_OK;
 }
 
-/* Grain i's earliest event may have changed: tell the queue. */
-static inline int q_update(gr_edmd *s, int32_t i)
+/* The event handlers return 1 for a state-changing event (a step), 0 for
+ * another, -1 on failure (err set). Grain i's event is ev, at time t. */
+static int oom(const gr_edmd *s, gr_err *err)
 {
-    if (s->use_cal)
-        return edmd_cal_push(s, i);
-    edmd_tree_update(s, i);
-    return GR_OK;
+    gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists (%d per grain)", s->ecap);
+    return -1;
 }
 
-#define OOM(s, err) gr_fail(err, GR_ERUN, "edmd: out of memory for the event lists (%d per grain)", (s)->ecap)
+/* A stale event only drops itself. */
+static int drop(gr_edmd *s, int32_t i, gr_err *err)
+{
+    s->cnt.stale++;
+    edmd_list_remove(s, i, 0);
+    return s->q->update(s, i) ? oom(s, err) : 0;
+}
 
+static inline int on_pair(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
+{
+    int32_t j = ev->partner;
+    if (s->p[j].ncol != ev->pncol)
+        return drop(s, i, err);
+    if (check_collapse(s, i, j, t, err))
+        return -1;
+    if (edmd_engine_prefetches(s)) {
+        s->q->prefetch(s, j);
+        edmd_prefetch_block(s, i);
+        edmd_prefetch_block(s, j);
+    }
+    s->t = t;
+    edmd_collide_pair(s, i, j, t);
+    edmd_list_clear(s, i);
+    edmd_list_clear(s, j);
+    if (edmd_predict_all(s, i) || edmd_predict_all(s, j) || s->q->update(s, i) || s->q->update(s, j))
+        return oom(s, err);
+    return 1;
+}
+
+static inline int on_wall(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
+{
+    int w = edmd_ev_sub(ev);
+    if (w >= W_SEG && t >= s->seg[w - W_SEG].open_time) /* the gate has opened */
+        return drop(s, i, err);
+    if (w != W_EXIT && check_collapse(s, i, -1, t, err))
+        return -1;
+    s->t = t;
+    if (w == W_EXIT) {
+        if (edmd_exit(s, i, t, err))
+            return -1;
+        edmd_list_clear(s, i);
+        if ((!s->gone[i] && edmd_predict_all(s, i)) || s->q->update(s, i))
+            return oom(s, err);
+        return 0;
+    }
+    edmd_collide_wall(s, i, w, t);
+    edmd_list_clear(s, i);
+    if (edmd_predict_all(s, i) || s->q->update(s, i))
+        return oom(s, err);
+    return 1;
+}
+
+static inline int on_cross(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
+{
+    s->t = t;
+    edmd_list_remove(s, i, 0);
+    do_cross(s, i, edmd_ev_sub(ev));
+    if (edmd_predict_cross(s, i, edmd_ev_sub(ev)) || s->q->update(s, i))
+        return oom(s, err);
+    s->cnt.crossing++;
+    return 0;
+}
+
+/* The next event, taken from the queue and handled; the earliest event of
+ * a grain is its slab's slot 0. */
 int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
 {
+    const edmd_queue *q = s->q;
+    const int pf = edmd_engine_prefetches(s);
     uint64_t done = 0;
     for (;;) {
         if (max_coll && done >= max_coll)
             return GR_OK;
         if (s->sort_period && s->steps - s->last_sort >= s->sort_period && edmd_sort(s, err))
             return err->code;
-        int32_t i;
         double t;
-        if (s->use_cal) {
-            i = edmd_cal_top(s);
-            if (i == -2)
-                return gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar");
-            t = i >= 0 ? edmd_slab(s, i)->t : EDMD_INF;
-        } else {
-            i = s->node[1].i;
-            t = s->node[1].t;
-        }
+        int32_t i = q->top(s, &t);
+        if (i == -2)
+            return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
         if (!(t <= t_end) || t == EDMD_INF)
             break;
-        if (s->use_cal) {
-            s->fr_head++; /* consumed: the grain's next entry is queued below */
-            if (s->P >= EDMD_PREFETCH_P)
-                edmd_lookahead(s);
-        }
+        q->pop(s);
         /* the grain, its leaf and its slab are all needed: fetch them at once */
         __builtin_prefetch(&s->p[i], 1);
         __builtin_prefetch(s->ev + (size_t)i * (size_t)s->ecap, 1);
-        if (s->P >= EDMD_PREFETCH_P && !s->use_cal)
-            edmd_tree_prefetch(s, i);
+        if (pf)
+            q->prefetch(s, i);
         edmd_ev ev = *edmd_slab(s, i);
         if (ev.partner >= 0) {
             __builtin_prefetch(&s->p[ev.partner], 1);
             __builtin_prefetch(s->ev + (size_t)ev.partner * (size_t)s->ecap, 1);
         }
-        const int32_t e = 0; /* the earliest event's slot */
         int kind = edmd_ev_kind(&ev);
-        if (kind == EV_PAIR) {
-            int32_t j = ev.partner;
-            if (s->p[j].ncol != ev.pncol) {
-                s->cnt.stale++;
-                edmd_list_remove(s, i, e);
-                if (q_update(s, i))
-                    return OOM(s, err);
-                continue;
-            }
-            if (check_collapse(s, i, j, t, err))
-                return err->code;
-            if (s->P >= EDMD_PREFETCH_P && !s->use_cal) { /* the calendar's look-ahead did it */
-                edmd_tree_prefetch(s, j);
-                edmd_prefetch_block(s, i);
-                edmd_prefetch_block(s, j);
-            }
-            s->t = t;
-            edmd_collide_pair(s, i, j, t);
-            edmd_list_clear(s, i);
-            edmd_list_clear(s, j);
-            if (edmd_predict_all(s, i) || edmd_predict_all(s, j))
-                return OOM(s, err);
-            if (q_update(s, i) || q_update(s, j))
-                return OOM(s, err);
-            done++;
-            s->steps++;
-        } else if (kind == EV_WALL) {
-            int w = edmd_ev_sub(&ev);
-            if (w >= W_SEG && t >= s->seg[w - W_SEG].open_time) { /* the gate has opened */
-                s->cnt.stale++;
-                edmd_list_remove(s, i, e);
-                if (q_update(s, i))
-                    return OOM(s, err);
-                continue;
-            }
-            if (w != W_EXIT && check_collapse(s, i, -1, t, err))
-                return err->code;
-            s->t = t;
-            if (w == W_EXIT) {
-                if (edmd_exit(s, i, t, err))
-                    return err->code;
-                edmd_list_clear(s, i);
-                if (!s->gone[i] && edmd_predict_all(s, i))
-                    return OOM(s, err);
-                if (q_update(s, i))
-                    return OOM(s, err);
-                continue;
-            }
-            edmd_collide_wall(s, i, w, t);
-            edmd_list_clear(s, i);
-            if (edmd_predict_all(s, i))
-                return OOM(s, err);
-            if (q_update(s, i))
-                return OOM(s, err);
-            done++;
-            s->steps++;
-        } else {
-            s->t = t;
-            edmd_list_remove(s, i, e);
-            do_cross(s, i, edmd_ev_sub(&ev));
-            if (edmd_predict_cross(s, i, edmd_ev_sub(&ev)))
-                return OOM(s, err);
-            if (q_update(s, i))
-                return OOM(s, err);
-            s->cnt.crossing++;
-        }
+        int r = kind == EV_PAIR ? on_pair(s, i, &ev, t, err)
+                : kind == EV_WALL ? on_wall(s, i, &ev, t, err)
+                                  : on_cross(s, i, &ev, t, err);
+        if (r < 0)
+            return err->code;
+        done += (uint64_t)r;
+        s->steps += (uint64_t)r;
     }
     if (t_end < EDMD_INF && t_end > s->t)
         s->t = t_end;

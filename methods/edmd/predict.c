@@ -1,9 +1,9 @@
 /* Event prediction: pair collisions (a quadratic, since gravity cancels in
  * relative motion), hard walls and virtual-wall crossings (parabolas), the
- * vibrating floor (a transcendental equation, solved by bounded
- * subdivision so that no touching is missed). Every time is a function of
- * the particles' reference states only, never of the moment of prediction,
- * so the naive and the tree algorithms compute the same bits. */
+ * vibrating floor (a transcendental equation, roots.c) and segments
+ * (segment.c). Every time is a function of the particles' reference
+ * states only, never of the moment of prediction, so the naive and the
+ * tree algorithms compute the same bits. */
 #include <math.h>
 
 #include "edmd_int.h"
@@ -33,18 +33,6 @@ double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b)
     if (disc <= 0.0)
         return EDMD_INF;
     return t0 + c / (sqrt(disc) - bb);
-}
-
-int edmd_cell_of(const gr_edmd *s, double x, double y)
-{
-    int ix = (int)floor(x / s->cw), iy = (int)floor((y - s->ybot) / s->ch);
-    if (s->periodic_x)
-        ix = ((ix % s->nx) + s->nx) % s->nx;
-    if (s->periodic_y)
-        iy = ((iy % s->ny) + s->ny) % s->ny;
-    ix = ix < 0 ? 0 : ix >= s->nx ? s->nx - 1 : ix;
-    iy = iy < 0 ? 0 : iy >= s->ny ? s->ny - 1 : iy;
-    return ix + s->nx * iy;
 }
 
 double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir)
@@ -111,121 +99,6 @@ int edmd_wall_relevant(const gr_edmd *s, int cell, int wall)
     default:
         return 0;
     }
-}
-
-/* ---- the sinusoidal floor: h(t) = y(t) - r - A cos(omega t) ---- */
-typedef struct {
-    const edmd_p *p;
-    double g, A, om, M;
-    int nev;
-    int point;       /* 1: h = |r(t) - E|^2 - R^2 for a segment end E */
-    double ex, ey;
-} floor_ctx;
-
-static double fh(floor_ctx *c, double t)
-{
-    c->nev++;
-    if (c->point) {
-        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
-        return qx * qx + qy * qy - c->p->r * c->p->r;
-    }
-    return edmd_y_at(c->p, t, c->g) - c->p->r - c->A * cos(c->om * t);
-}
-static double fdh(const floor_ctx *c, double t)
-{
-    if (c->point) {
-        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
-        return 2.0 * (qx * c->p->vx + qy * edmd_vy_at(c->p, t, c->g));
-    }
-    return edmd_vy_at(c->p, t, c->g) + c->A * c->om * sin(c->om * t);
-}
-
-/* First t in (a, b] with h(t) <= 0, given h(a) > 0; |h''| <= M bounds how
- * deep h can dip between two samples, so a root is never skipped. */
-static double first_root(floor_ctx *c, double a, double ha, double b, double hb, int depth)
-{
-    double L = b - a;
-    double tol = 4e-16 * (fabs(a) + 1.0);
-    if (hb <= 0.0 && L <= tol)
-        return b;
-    if (hb > 0.0) {
-        double lb = (ha < hb ? ha : hb) - c->M * L * L / 8.0;
-        if (lb > 0.0 || L <= tol || depth > 200 || c->nev > 20000)
-            return EDMD_INF;
-        /* concave lower bound from the slope at a: positive at both ends */
-        if (ha + fdh(c, a) * L - 0.5 * c->M * L * L > 0.0)
-            return EDMD_INF;
-    }
-    double m = a + 0.5 * L;
-    if (m <= a || m >= b)
-        return hb <= 0.0 ? b : EDMD_INF;
-    double hm = fh(c, m);
-    if (hm <= 0.0)
-        return first_root(c, a, ha, m, hm, depth + 1);
-    double r = first_root(c, a, ha, m, hm, depth + 1);
-    if (r < EDMD_INF)
-        return r;
-    return first_root(c, m, hm, b, hb, depth + 1);
-}
-
-/* First contact in [a, b] of a grain with a segment end (ex, ey) under
- * gravity (a quartic): bounded subdivision as for the floor, with the
- * curvature bound of |r - E|^2 over the interval. */
-double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b)
-{
-    double g = s->g;
-    if (!(b > a))
-        return EDMD_INF;
-    double L = b - a, vya = edmd_vy_at(p, a, g), vyb = edmd_vy_at(p, b, g);
-    double vmax2 = p->vx * p->vx + fmax(vya * vya, vyb * vyb);
-    double qy = fabs(edmd_y_at(p, a, g) - ey) + fabs(vya) * L + 0.5 * g * L * L;
-    floor_ctx c = {p, g, 0, 0, 2.0 * (vmax2 + g * qy) + 1e-300, 0, 1, ex, ey};
-    double ha = fh(&c, a), dha = fdh(&c, a);
-    if (ha <= 0.0) {
-        if (dha <= 0.0)
-            return a;
-        a += dha / c.M;
-        if (a >= b)
-            return EDMD_INF;
-        ha = fh(&c, a);
-        if (ha <= 0.0)
-            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
-    }
-    return first_root(&c, a, ha, b, fh(&c, b), 0);
-}
-
-static double floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
-{
-    double g = s->g, A = s->fA, om = s->fomega;
-    /* enter the band y - r <= A where the floor can be met */
-    if (edmd_y_at(p, a, g) - p->r > A) {
-        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
-        if (!(te < horizon))
-            return EDMD_INF;
-        a = te > a ? te : a;
-    }
-    /* certain contact by the time it falls to the floor's lowest point */
-    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
-    if (!(b < EDMD_INF))
-        b = a + 2.0 * M_PI / om;
-    if (b > horizon)
-        b = horizon;
-    if (!(b > a))
-        return EDMD_INF;
-    floor_ctx c = {p, g, A, om, g + A * om * om, 0, 0, 0, 0};
-    double ha = fh(&c, a), dha = fdh(&c, a);
-    if (ha <= 0.0) {
-        if (dha <= 0.0)
-            return a;
-        /* just left the floor: h >= dha s - M s^2 / 2 > 0 up to s = dha / M */
-        a += dha / c.M;
-        if (a >= b)
-            return EDMD_INF;
-        ha = fh(&c, a);
-        if (ha <= 0.0)
-            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
-    }
-    return first_root(&c, a, ha, b, fh(&c, b), 0);
 }
 
 /* The sawtooth floor rises at V = A omega / pi from -A to A and drops back:
@@ -297,7 +170,7 @@ double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double hor
         double a = t_from > p->t ? t_from : p->t;
         switch (s->floor) {
         case GR_FLOOR_SINE:
-            return floor_sine_time(s, p, a, horizon);
+            return edmd_floor_sine_time(s, p, a, horizon);
         case GR_FLOOR_SAWTOOTH:
             return floor_saw_time(s, p, a, horizon);
         default: /* high-frequency limits: the floor stays at y = 0 */
@@ -456,7 +329,7 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
             continue;
         seen[ns++] = cc;
     }
-    if (s->P >= EDMD_PREFETCH_P && !s->use_cal)
+    if (edmd_engine_prefetches(s))
         walk_side_by_side(s, seen, ns); /* overlaps the crossing and wall times */
     if (push_cross_and_walls(s, i))
         return GR_ERUN;
@@ -464,153 +337,4 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
         if (push_pairs_in_cell(s, i, seen[k]))
             return GR_ERUN;
     return GR_OK;
-}
-
-/* Look-ahead (calendar queue only): the front holds the next events in
- * order, so the lines each will read are requested several events before
- * it runs, in stages along the chain of dependent loads: first the grain,
- * its leaf and slab; when those have arrived, its partner and the cell
- * heads around it; then the first grains of those cells and the partner's
- * heads; last the partner's first grains. Read-only and only hints: a
- * superseded entry costs a few useless requests. */
-static inline void pf_heads(const gr_edmd *s, int c)
-{
-    int nc = s->nx * s->ny;
-    for (int dy = -1; dy <= 1; dy++) {
-        int r = c + dy * s->nx;
-        int a = r - 1, b = r + 1;
-        a = a < 0 ? 0 : a >= nc ? nc - 1 : a;
-        b = b < 0 ? 0 : b >= nc ? nc - 1 : b;
-        edmd_pf(&s->chead[a]);
-        edmd_pf(&s->chead[b]);
-    }
-}
-
-/* The first grains of the cells around c, but for those also around
- * `but` (-1: none), whose lines are requested already (the partner's
- * block overlaps the grain's). Their successors are not requested:
- * finding one reads the first grain's line, requested only two events
- * before, and the look-ahead then waited on that line more often than a
- * second grain (rare below eta 0.5) saved a miss. */
-static inline void pf_grains(const gr_edmd *s, int c, int but)
-{
-    int nc = s->nx * s->ny, bx = 0, by = 0;
-    if (but >= 0) {
-        bx = but % s->nx;
-        by = but / s->nx;
-    }
-    for (int dy = -1; dy <= 1; dy++)
-        for (int dx = -1; dx <= 1; dx++) {
-            int cc = c + dy * s->nx + dx;
-            cc = cc < 0 ? cc + nc : cc >= nc ? cc - nc : cc;
-            cc = cc < 0 ? 0 : cc >= nc ? nc - 1 : cc; /* boxes one or two cells high */
-            if (but >= 0) {
-                int ex = cc % s->nx - bx, ey = cc / s->nx - by;
-                if (ex >= -1 && ex <= 1 && ey >= -1 && ey <= 1)
-                    continue;
-            }
-            int32_t j = s->chead[cc];
-            if (j >= 0)
-                edmd_pf(&s->p[j]);
-        }
-}
-
-/* The slab's first line (the second, if in use, once the grain is in). */
-static inline void pf_slab(const gr_edmd *s, int32_t i)
-{
-    edmd_pf(s->ev + (size_t)i * (size_t)s->ecap);
-}
-
-/* What a collision reads beside the grain's line: its mass, and its spin
- * and collision clock when rough or guarded. */
-static inline void pf_grain_side(const gr_edmd *s, int32_t i)
-{
-    if (s->m_one == 0.0)
-        edmd_pf(&s->m[i]);
-    if (s->rough) {
-        edmd_pf(&s->w[i]);
-        edmd_pf(&s->inertia[i]);
-    }
-    if (s->prm.collapse != GR_EDMD_COLLAPSE_NONE)
-        edmd_pf(&s->tlast[i]);
-}
-
-/* The cell around which the event at front position k will look for
- * partners (for a crossing, the cell it enters), and its partner (-1 if
- * none); -1, -1 when the entry is superseded, or, once the partner's line
- * has been requested (stale_known), when its pair event is stale: a stale
- * event only drops itself, and a partner's collision counter never goes
- * back, so prefetching its cells would be wasted. */
-static inline int la_cell(const gr_edmd *s, int32_t k, int32_t *partner, int stale_known)
-{
-    const edmd_qe *f = &s->fr[s->fr_head + k];
-    const edmd_ev *e = edmd_slab(s, f->i);
-    *partner = -1;
-    if (e->t != f->t)
-        return -1;
-    int c = s->p[f->i].cell;
-    if (e->partner >= 0) {
-        if (stale_known && s->p[e->partner].ncol != e->pncol)
-            return -1;
-        *partner = e->partner;
-        return c;
-    }
-    if (edmd_ev_kind(e) == EV_CROSS) {
-        int nc = s->nx * s->ny;
-        switch (edmd_ev_sub(e)) {
-        case DIR_RIGHT: c += 1; break;
-        case DIR_LEFT: c -= 1; break;
-        case DIR_UP: c += s->nx; break;
-        default: c -= s->nx; break;
-        }
-        c = c < 0 ? c + nc : c >= nc ? c - nc : c;
-    }
-    return c;
-}
-
-/* Stage q of the look-ahead for the entry at front position k. */
-static void la_stage(const gr_edmd *s, int32_t k, int q)
-{
-    int32_t j;
-    int c;
-    if (q == 1) {
-        int32_t i = s->fr[s->fr_head + k].i;
-        edmd_pf(&s->p[i]);
-        pf_slab(s, i);
-        pf_grain_side(s, i);
-    } else if ((c = la_cell(s, k, &j, q >= 3)) < 0) {
-        return;
-
-    } else if (q == 2) {
-        int32_t i = s->fr[s->fr_head + k].i;
-        if (s->p[i].nev > 4) /* a rescan reads them all */
-            edmd_pf(s->ev + (size_t)i * (size_t)s->ecap + 4);
-        pf_heads(s, c);
-        if (j >= 0) {
-            edmd_pf(&s->p[j]);
-            pf_slab(s, j);
-            pf_grain_side(s, j);
-        }
-    } else if (q == 3) {
-        pf_grains(s, c, -1);
-        if (j >= 0)
-            pf_heads(s, s->p[j].cell);
-    } else if (j >= 0) {
-        pf_grains(s, s->p[j].cell, c);
-    }
-}
-
-/* Each entry goes through the stages in order as it nears the head; the
- * stage reached is kept in the entry, since superseded entries dropped at
- * the head and new ones inserted make entries skip positions. */
-void edmd_lookahead(gr_edmd *s)
-{
-    int32_t ahead = s->fr_n - s->fr_head;
-    int32_t k = ahead - 1 < EDMD_LA_1 ? ahead - 1 : EDMD_LA_1;
-    for (; k >= 0; k--) {
-        edmd_qe *f = &s->fr[s->fr_head + k];
-        int need = k <= EDMD_LA_4 ? 4 : k <= EDMD_LA_3 ? 3 : k <= EDMD_LA_2 ? 2 : 1;
-        while (f->pad < need)
-            la_stage(s, k, ++f->pad);
-    }
 }

@@ -1,11 +1,11 @@
 /* Spatial re-sorting: grains renumbered along a Morton (Z) curve over the
- * cells, so that a grain's neighbours, their events and their tree leaves
- * sit close in memory. Large systems lose that order as grains diffuse, and
- * the cost per event then grows with N through cache misses; a re-sort every
- * few tens of collisions per grain keeps it flat. The event lists move
- * with the grains, so a sorted run executes the same events as an unsorted
- * one (up to the order of exactly simultaneous events of different grains,
- * which follows the numbering). */
+ * cells, so that a grain's neighbours, their events and their queue
+ * entries sit close in memory. Large systems lose that order as grains
+ * diffuse, and the cost per event then grows with N through cache misses;
+ * a re-sort every few tens of collisions per grain keeps it flat. The
+ * event lists move with the grains, so a sorted run executes the same
+ * events as an unsorted one (up to the order of exactly simultaneous
+ * events of different grains, which follows the numbering). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,7 +71,7 @@ static int sort_room(gr_edmd *s)
         s->sort_p = edmd_big_alloc(n * sizeof *s->sort_p);
         s->sort_perm = malloc(n * sizeof *s->sort_perm);
         s->sort_inv = malloc(n * sizeof *s->sort_inv);
-        s->sort_buf = edmd_big_alloc(n * sizeof(edmd_ev));
+        s->sort_buf = edmd_big_alloc(n * sizeof(double)); /* the widest per-grain field */
         if (!s->sort_p || !s->sort_perm || !s->sort_inv || !s->sort_buf)
             return GR_ERUN;
     }
@@ -84,6 +84,27 @@ static int sort_room(gr_edmd *s)
         s->sort_ev_n = nev;
     }
     return GR_OK;
+}
+
+/* The event lists move with their grains, partners renamed (predicting
+ * them again would cost a full schedule, a second or so at N = 1e6, and
+ * could round some times differently); the queue is rebuilt from them. */
+static void move_slabs(gr_edmd *s, const int32_t *perm, const int32_t *inv)
+{
+    size_t n = s->n, cap = (size_t)s->ecap;
+    edmd_ev *ev = s->sort_ev;
+    for (size_t j = 0; j < n; j++) {
+        const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
+        edmd_ev *dst = ev + j * cap;
+        dst[0] = (edmd_ev){EDMD_INF, 0, 0}; /* if empty */
+        for (int32_t k = 0; k < s->p[j].nev; k++) {
+            dst[k] = src[k];
+            if (dst[k].partner >= 0)
+                dst[k].partner = inv[dst[k].partner];
+        }
+    }
+    s->sort_ev = s->ev;
+    s->ev = ev;
 }
 
 int edmd_sort(gr_edmd *s, gr_err *err)
@@ -127,35 +148,9 @@ int edmd_sort(gr_edmd *s, gr_err *err)
         p->cnext = s->chead[p->cell];
         s->chead[p->cell] = (int32_t)j;
     }
-    /* The event lists and leaves move with their grains, partners renamed
-     * (predicting them again would cost a full schedule, a second or so at
-     * N = 1e6, and could round some times differently). */
-    size_t cap = (size_t)s->ecap;
-    edmd_ev *ev = s->sort_ev;
-    for (size_t j = 0; j < n; j++) {
-        const edmd_ev *src = s->ev + (size_t)perm[j] * cap;
-        edmd_ev *dst = ev + j * cap;
-        dst[0] = (edmd_ev){EDMD_INF, 0, 0}; /* if empty */
-        for (int32_t k = 0; k < s->p[j].nev; k++) {
-            dst[k] = src[k];
-            if (dst[k].partner >= 0)
-                dst[k].partner = inv[dst[k].partner];
-        }
-    }
-    s->sort_ev = s->ev;
-    s->ev = ev;
-    if (!s->use_cal) {
-        edmd_ev *lf = buf;
-        for (size_t j = 0; j < n; j++) {
-            lf[j] = s->lf[perm[j]];
-            if (lf[j].partner >= 0 && lf[j].t != EDMD_INF)
-                lf[j].partner = inv[lf[j].partner];
-        }
-        memcpy(s->lf, lf, n * sizeof *lf);
-    }
+    move_slabs(s, perm, inv);
     s->last_sort = s->steps;
-    if (s->use_cal)
-        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
-    edmd_tree_build(s);
+    if (s->q->build(s))
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
     return GR_OK;
 }

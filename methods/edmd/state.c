@@ -1,4 +1,5 @@
-/* Creation from a scene, parameters, snapshots and observables. */
+/* Creation from a scene and parameters, freeing, and the small public calls
+ * (advance, time, restitution, counters, event hook). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,9 +29,8 @@ void gr_edmd_free(gr_edmd *s)
     free(s->sort_inv);
     free(s->sort_buf);
     free(s->ev);
-    free(s->lf);
-    free(s->node);
-    edmd_cal_free(s);
+    if (s->q)
+        s->q->free(s);
     free(s->cacc);
     free(s->species);
     free(s->seg);
@@ -106,17 +106,6 @@ static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
     return GR_OK;
 }
 
-typedef struct {
-    int64_t id;
-    size_t i;
-} id_index;
-
-static int cmp_id(const void *a, const void *b)
-{
-    int64_t x = ((const id_index *)a)->id, y = ((const id_index *)b)->id;
-    return x < y ? -1 : x > y;
-}
-
 static void *big_zalloc(size_t bytes)
 {
     void *m = edmd_big_alloc(bytes);
@@ -125,21 +114,9 @@ static void *big_zalloc(size_t bytes)
     return m;
 }
 
-static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
+static int grains_alloc(gr_edmd *s)
 {
-    size_t n = 0;
-    for (size_t i = 0; i < init->n; i++) {
-        if (init->flags[i] & GR_PF_FIXED)
-            return gr_fail(err, GR_EINPUT, "edmd: grain %lld is fixed; edmd walls are the sides and the floor",
-                           (long long)init->id[i]);
-        if (!(init->flags[i] & GR_PF_GONE))
-            n++;
-    }
-    if (n == 0)
-        return gr_fail(err, GR_EINPUT, "edmd: the scene has no mobile grains");
-    if (n >= (size_t)INT32_MAX / 2)
-        return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
-    s->n = n;
+    size_t n = s->n;
     /* one grain per 64-byte line */
     s->p = edmd_big_alloc(n * sizeof *s->p);
     if (s->p)
@@ -156,7 +133,13 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
     s->gone = calloc(n, 1);
     if (!s->gone || !s->p || !s->w || !s->m || !s->inertia || !s->tlast || !s->tacc || !s->id || !s->order ||
         !s->species)
-        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
+        return GR_ERUN;
+    return GR_OK;
+}
+
+/* The mobile grains of init, in their order. */
+static int grains_fill(gr_edmd *s, const gr_particles *init, gr_err *err)
+{
     size_t k = 0;
     s->rmax = 0.0;
     for (size_t i = 0; i < init->n; i++) {
@@ -186,19 +169,39 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
             s->rmax = p->r;
         k++;
     }
+    return GR_OK;
+}
+
+static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < init->n; i++) {
+        if (init->flags[i] & GR_PF_FIXED)
+            return gr_fail(err, GR_EINPUT, "edmd: grain %lld is fixed; edmd walls are the sides and the floor",
+                           (long long)init->id[i]);
+        if (!(init->flags[i] & GR_PF_GONE))
+            n++;
+    }
+    if (n == 0)
+        return gr_fail(err, GR_EINPUT, "edmd: the scene has no mobile grains");
+    if (n >= (size_t)INT32_MAX / 2)
+        return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
+    s->n = n;
+    if (grains_alloc(s))
+        return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
+    if (grains_fill(s, init, err))
+        return err->code;
     s->m_one = s->m[0];
     for (size_t i = 1; i < n; i++)
         if (s->m[i] != s->m_one)
             s->m_one = 0.0;
-    id_index *tmp = malloc(n * sizeof *tmp);
-    if (!tmp)
+    gr_id_index *ix = malloc(n * sizeof *ix);
+    if (!ix)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for %zu grains", n);
+    gr_id_index_sort(s->id, n, ix);
     for (size_t i = 0; i < n; i++)
-        tmp[i] = (id_index){s->id[i], i};
-    qsort(tmp, n, sizeof *tmp, cmp_id);
-    for (size_t i = 0; i < n; i++)
-        s->order[i] = tmp[i].i;
-    free(tmp);
+        s->order[i] = ix[i].i;
+    free(ix);
     return GR_OK;
 }
 
@@ -313,6 +316,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!s)
         return gr_fail(err, GR_ERUN, "edmd: out of memory");
     s->prm = *prm;
+    s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
     int rc = setup_scene(s, sc, err);
     if (!rc)
         rc = setup_particles(s, init, err);
@@ -325,7 +329,6 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
-    s->use_cal = s->prm.calendar && s->prm.algorithm == GR_EDMD_TREE;
     if (!rc)
         rc = edmd_events_init(s, err);
     s->t = 0.0;
@@ -362,31 +365,4 @@ void gr_edmd_set_event_hook(gr_edmd *s, gr_edmd_event_fn fn, void *user)
 {
     s->hook = fn;
     s->hook_user = user;
-}
-
-int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
-{
-    out->n = 0;
-    if (gr_particles_reserve(out, s->n, err))
-        return err->code;
-    double t = s->t, g = s->g, Ly = s->H - s->ybot;
-    for (size_t k = 0; k < s->n; k++) {
-        size_t i = s->order[k];
-        const edmd_p *p = &s->p[i];
-        int gone = s->gone[i];
-        double x = gone ? p->x : edmd_x_at(p, t), y = gone ? p->y : edmd_y_at(p, t, g);
-        if (s->periodic_x)
-            x -= s->W * floor(x / s->W);
-        if (s->periodic_y)
-            y -= Ly * floor((y - s->ybot) / Ly);
-        long j = gr_particles_push(out, x, y, p->r, s->m[i], gone ? GR_PF_GONE : 0, s->species[i], err);
-        if (j < 0)
-            return err->code;
-        out->vx[j] = gone ? 0.0 : p->vx;
-        out->vy[j] = gone ? 0.0 : edmd_vy_at(p, t, g);
-        out->omega[j] = s->w[i];
-        out->inertia[j] = s->inertia[i];
-        out->id[j] = s->id[i];
-    }
-    return GR_OK;
 }

@@ -1,175 +1,26 @@
-/* Event calendar of the slides: every particle owns the list of the events
- * it predicted; each leaf of a complete binary tree holds the earliest event
- * of one particle's list and each inner node the earlier of its two
- * children, so the next event is at the root and an update costs log2 N
- * comparisons. A particle's list is a slab of a fixed capacity in one array
- * (not linked nodes scattered in a pool): clearing it is O(1) and scanning
- * it touches one or two cache lines. The earliest event is kept in slot 0.
- * A full slab first drops its stale events; if still full, every slab
- * doubles. The leaves (a copy of slot 0 in an array of their own, so that
- * siblings share lines) are kept for the tree only. */
+/* The event queue as the slides' complete binary tree: each leaf holds
+ * the earliest event of one particle's list (a copy of its slab's slot 0,
+ * in an array of its own so that siblings share lines) and each inner
+ * node the earlier of its children, so the next event is at the root and
+ * an update costs log2 N comparisons. One of the two queues behind
+ * edmd_queue (edmd_int.h); calendar.c is the other. */
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "edmd_int.h"
 
-/* Events land on random grains, so at large N nearly every access to the
- * grain, slab, leaf and tree arrays also misses the TLB with 4 KiB pages
- * (a 10^6-grain run spans some 250 MB). Arrays of 2 MiB or more are
- * aligned to 2 MiB and flagged for transparent huge pages (where the kernel
- * has them in madvise mode, as here, this is what turns them on; a refusal
- * is harmless). Smaller arrays start on 64-byte lines. */
-void *edmd_big_alloc(size_t bytes)
+/* The leaves and nodes: groups of K siblings start on 64-byte lines. */
+static int tree_init(gr_edmd *s)
 {
-    const size_t huge = (size_t)2 << 20;
-    if (bytes < huge)
-        return aligned_alloc(64, (bytes + 63) & ~(size_t)63);
-    bytes = (bytes + huge - 1) & ~(huge - 1);
-    void *m = aligned_alloc(huge, bytes);
-#ifdef MADV_HUGEPAGE
-    if (m)
-        (void)madvise(m, bytes, MADV_HUGEPAGE);
-#endif
-    return m;
-}
-
-/* Slabs start on 64-byte lines (a slab of 8 events is two lines). */
-edmd_ev *edmd_ev_alloc(size_t count)
-{
-    return edmd_big_alloc(count * sizeof(edmd_ev));
-}
-
-int edmd_events_init(gr_edmd *s, gr_err *err)
-{
-    int K = 1 << s->tshift;
-    int32_t P = K; /* at least one full group of leaves */
-    while ((size_t)P < s->n)
-        P *= K;
-    s->P = P;
-    /* groups of K siblings start on 64-byte lines */
-    size_t lb = ((size_t)P * sizeof *s->lf + 63) & ~(size_t)63;
+    size_t lb = ((size_t)s->P * sizeof *s->lf + 63) & ~(size_t)63;
     s->lf = edmd_big_alloc(lb);
-    if (!s->use_cal) {
-        s->node = edmd_big_alloc(lb);
-        if (s->node)
-            memset(s->node, 0, lb);
-    }
-    /* Slabs double when some grain holds more valid events than fit. A
-     * large system gets there early (at N = 1e6 within 2 collisions per
-     * grain at packing fraction 0.6, 21 at 0.3), and doubling then stalls
-     * the run for the copy into fresh memory (0.7 s at N = 1e6): large
-     * systems start at the size they would reach. */
-    s->ecap = s->n >= EDMD_PREFETCH_P ? 16 : 8;
-    s->ev = edmd_ev_alloc(s->n * (size_t)s->ecap);
-    if (!s->lf || (!s->use_cal && !s->node) || !s->ev)
-        return gr_fail(err, GR_ERUN, "edmd: out of memory for the event calendar of %zu grains", s->n);
-    for (int32_t i = 0; i < P; i++)
+    s->node = edmd_big_alloc(lb);
+    if (!s->lf || !s->node)
+        return GR_ERUN;
+    memset(s->node, 0, lb);
+    for (int32_t i = 0; i < s->P; i++)
         s->lf[i] = (edmd_ev){EDMD_INF, 0, 0};
-    for (size_t i = 0; i < s->n; i++) {
-        s->p[i].nev = 0;
-        edmd_slab(s, (int32_t)i)->t = EDMD_INF;
-    }
-    if (s->use_cal)
-        return edmd_cal_build(s) ? gr_fail(err, GR_ERUN, "edmd: out of memory for the calendar") : GR_OK;
-    edmd_tree_build(s);
     return GR_OK;
-}
-
-/* Double every grain's slab; slots keep their numbers. */
-static int grow(gr_edmd *s)
-{
-    size_t n = s->n, c = (size_t)s->ecap;
-    if (c >= 16384) /* slots must fit the 16-bit counters */
-        return GR_ERUN;
-    edmd_ev *ev = edmd_ev_alloc(n * 2 * c);
-    if (!ev)
-        return GR_ERUN;
-    for (size_t i = 0; i < n; i++) /* slot 0 even when empty: its INF */
-        memcpy(ev + i * 2 * c, s->ev + i * c, (size_t)(s->p[i].nev > 0 ? s->p[i].nev : 1) * sizeof *ev);
-    free(s->ev);
-    s->ev = ev;
-    s->ecap = (int32_t)(2 * c);
-    return GR_OK;
-}
-
-/* The earliest event (the first of equal ones) to slot 0. */
-static void rescan(gr_edmd *s, int32_t i)
-{
-    edmd_ev *v = edmd_slab(s, i);
-    int32_t nev = s->p[i].nev;
-    if (nev == 0) {
-        v[0] = (edmd_ev){EDMD_INF, 0, 0};
-    } else {
-        int32_t be = 0;
-        for (int32_t k = 1; k < nev; k++)
-            if (v[k].t < v[be].t)
-                be = k;
-        if (be) {
-            edmd_ev e = v[0];
-            v[0] = v[be];
-            v[be] = e;
-        }
-    }
-    if (!s->use_cal)
-        s->lf[i] = v[0];
-}
-
-/* Drop the pair events of a full slab whose partner has changed state
- * since (they would be dropped when popped anyway). */
-static void compact(gr_edmd *s, int32_t i)
-{
-    edmd_ev *v = edmd_slab(s, i);
-    int32_t m = 0;
-    for (int32_t k = 0; k < s->p[i].nev; k++) {
-        if (v[k].partner >= 0 && s->p[v[k].partner].ncol != v[k].pncol) {
-            s->cnt.stale++;
-            continue;
-        }
-        v[m++] = v[k];
-    }
-    s->p[i].nev = (int16_t)m;
-    rescan(s, i);
-}
-
-int edmd_ev_push(gr_edmd *s, int32_t i, double t, int kind, int32_t partner, uint32_t pncol)
-{
-    edmd_p *p = &s->p[i];
-    if (p->nev == s->ecap) {
-        compact(s, i);
-        if (p->nev == s->ecap && grow(s))
-            return GR_ERUN;
-    }
-    int32_t k = p->nev++;
-    edmd_ev *v = edmd_slab(s, i);
-    edmd_ev e = {t, kind == EV_PAIR ? partner : -1 - (partner << 2 | kind), pncol};
-    if (k > 0 && !(t < v[0].t)) { /* an empty slab's slot 0 is INF */
-        v[k] = e;
-        return GR_OK;
-    }
-    if (k > 0)
-        v[k] = v[0];
-    v[0] = e;
-    if (!s->use_cal)
-        s->lf[i] = e;
-    return GR_OK;
-}
-
-void edmd_list_clear(gr_edmd *s, int32_t i)
-{
-    s->p[i].nev = 0;
-    edmd_slab(s, i)->t = EDMD_INF;
-    if (!s->use_cal)
-        s->lf[i].t = EDMD_INF;
-}
-
-/* Remove slot k (the last slot moves into it) and find the new earliest. */
-void edmd_list_remove(gr_edmd *s, int32_t i, int32_t k)
-{
-    edmd_ev *v = edmd_slab(s, i);
-    int32_t last = --s->p[i].nev;
-    v[k] = v[last];
-    rescan(s, i);
 }
 
 /* Nodes hold the winner's time beside its index, so a comparison reads the
@@ -183,7 +34,7 @@ static inline int earlier(double ta, int32_t a, double tb, int32_t b)
     return ta < tb || (ta == tb && a < b);
 }
 
-void edmd_tree_update(gr_edmd *s, int32_t i)
+static void update(gr_edmd *s, int32_t i)
 {
     edmd_node *node = s->node;
     const edmd_ev *lf = s->lf;
@@ -217,7 +68,7 @@ void edmd_tree_update(gr_edmd *s, int32_t i)
 /* The path from grain i's leaf to the root is known before the update:
  * asking for all its lines at once overlaps their misses (the lower levels
  * of a large tree are never cached) with the work done before the update. */
-void edmd_tree_prefetch(const gr_edmd *s, int32_t i)
+static void tree_prefetch(const gr_edmd *s, int32_t i)
 {
     const int b = s->tshift;
     __builtin_prefetch(&s->lf[i], 1);
@@ -225,8 +76,12 @@ void edmd_tree_prefetch(const gr_edmd *s, int32_t i)
         __builtin_prefetch(&s->node[k], 1);
 }
 
-void edmd_tree_build(gr_edmd *s)
+/* The leaves are refreshed from the slabs first: after a schedule, a
+ * re-sort or a load, every grain's slot 0 may be new. */
+static int tree_build(gr_edmd *s)
 {
+    for (size_t i = 0; i < s->n; i++)
+        s->lf[i] = *edmd_slab(s, (int32_t)i);
     int32_t P = s->P;
     const int b = s->tshift, K = 1 << b;
     /* level d holds nodes K^d .. 2 K^d - 1 (for K = 4 the gaps between
@@ -257,4 +112,40 @@ void edmd_tree_build(gr_edmd *s)
             s->node[k].t = tw;
         }
     }
+    return GR_OK;
 }
+
+/* Grain i's slot 0 may have changed: its leaf, then the path to the root. */
+static int tree_update(gr_edmd *s, int32_t i)
+{
+    s->lf[i] = *edmd_slab(s, i);
+    update(s, i);
+    return GR_OK;
+}
+
+/* The root: an event time of INF when no event is left. */
+static int32_t tree_top(gr_edmd *s, double *t)
+{
+    *t = s->node[1].t;
+    return s->node[1].i;
+}
+
+/* The root is read anew at every top: nothing to do. */
+static void tree_pop(gr_edmd *s) { (void)s; }
+
+static void tree_free(gr_edmd *s)
+{
+    free(s->lf);
+    free(s->node);
+}
+
+const edmd_queue edmd_queue_tree = {
+    .init = tree_init,
+    .build = tree_build,
+    .update = tree_update,
+    .top = tree_top,
+    .pop = tree_pop,
+    .prefetch = tree_prefetch,
+    .free = tree_free,
+    .looks_ahead = 0,
+};

@@ -1,0 +1,123 @@
+/* Contact times that are no quadratic: the sinusoidal floor (a
+ * transcendental equation) and a segment end under gravity (a quartic),
+ * both by bounded subdivision, so that no touching is missed. Used by the
+ * prediction (predict.c) and the segments (segment.c). */
+#include <math.h>
+
+#include "edmd_int.h"
+
+/* The sinusoidal floor: h(t) = y(t) - r - A cos(omega t). */
+typedef struct {
+    const edmd_p *p;
+    double g, A, om, M;
+    int nev;
+    int point;       /* 1: h = |r(t) - E|^2 - R^2 for a segment end E */
+    double ex, ey;
+} floor_ctx;
+
+static double fh(floor_ctx *c, double t)
+{
+    c->nev++;
+    if (c->point) {
+        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
+        return qx * qx + qy * qy - c->p->r * c->p->r;
+    }
+    return edmd_y_at(c->p, t, c->g) - c->p->r - c->A * cos(c->om * t);
+}
+static double fdh(const floor_ctx *c, double t)
+{
+    if (c->point) {
+        double qx = edmd_x_at(c->p, t) - c->ex, qy = edmd_y_at(c->p, t, c->g) - c->ey;
+        return 2.0 * (qx * c->p->vx + qy * edmd_vy_at(c->p, t, c->g));
+    }
+    return edmd_vy_at(c->p, t, c->g) + c->A * c->om * sin(c->om * t);
+}
+
+/* First t in (a, b] with h(t) <= 0, given h(a) > 0; |h''| <= M bounds how
+ * deep h can dip between two samples, so a root is never skipped. */
+static double first_root(floor_ctx *c, double a, double ha, double b, double hb, int depth)
+{
+    double L = b - a;
+    double tol = 4e-16 * (fabs(a) + 1.0);
+    if (hb <= 0.0 && L <= tol)
+        return b;
+    if (hb > 0.0) {
+        double lb = (ha < hb ? ha : hb) - c->M * L * L / 8.0;
+        if (lb > 0.0 || L <= tol || depth > 200 || c->nev > 20000)
+            return EDMD_INF;
+        /* concave lower bound from the slope at a: positive at both ends */
+        if (ha + fdh(c, a) * L - 0.5 * c->M * L * L > 0.0)
+            return EDMD_INF;
+    }
+    double m = a + 0.5 * L;
+    if (m <= a || m >= b)
+        return hb <= 0.0 ? b : EDMD_INF;
+    double hm = fh(c, m);
+    if (hm <= 0.0)
+        return first_root(c, a, ha, m, hm, depth + 1);
+    double r = first_root(c, a, ha, m, hm, depth + 1);
+    if (r < EDMD_INF)
+        return r;
+    return first_root(c, m, hm, b, hb, depth + 1);
+}
+
+/* First contact in [a, b] of a grain with a segment end (ex, ey) under
+ * gravity (a quartic): bounded subdivision as for the floor, with the
+ * curvature bound of |r - E|^2 over the interval. */
+double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b)
+{
+    double g = s->g;
+    if (!(b > a))
+        return EDMD_INF;
+    double L = b - a, vya = edmd_vy_at(p, a, g), vyb = edmd_vy_at(p, b, g);
+    double vmax2 = p->vx * p->vx + fmax(vya * vya, vyb * vyb);
+    double qy = fabs(edmd_y_at(p, a, g) - ey) + fabs(vya) * L + 0.5 * g * L * L;
+    floor_ctx c = {p, g, 0, 0, 2.0 * (vmax2 + g * qy) + 1e-300, 0, 1, ex, ey};
+    double ha = fh(&c, a), dha = fdh(&c, a);
+    if (ha <= 0.0) {
+        if (dha <= 0.0)
+            return a;
+        a += dha / c.M;
+        if (a >= b)
+            return EDMD_INF;
+        ha = fh(&c, a);
+        if (ha <= 0.0)
+            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
+    }
+    return first_root(&c, a, ha, b, fh(&c, b), 0);
+}
+
+double edmd_floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
+{
+    double g = s->g, A = s->fA, om = s->fomega;
+    /* enter the band y - r <= A where the floor can be met */
+    if (edmd_y_at(p, a, g) - p->r > A) {
+        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
+        if (!(te < horizon))
+            return EDMD_INF;
+        a = te > a ? te : a;
+    }
+    /* certain contact by the time it falls to the floor's lowest point */
+    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
+    if (!(b < EDMD_INF))
+        b = a + 2.0 * M_PI / om;
+    if (b > horizon)
+        b = horizon;
+    if (!(b > a))
+        return EDMD_INF;
+    floor_ctx c = {p, g, A, om, g + A * om * om, 0, 0, 0, 0};
+    double ha = fh(&c, a), dha = fdh(&c, a);
+    if (ha <= 0.0) {
+        if (dha <= 0.0)
+            return a;
+        /* just left the floor: h >= dha s - M s^2 / 2 > 0 up to s = dha / M */
+        a += dha / c.M;
+        if (a >= b)
+            return EDMD_INF;
+        ha = fh(&c, a);
+        if (ha <= 0.0)
+            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
+    }
+    return first_root(&c, a, ha, b, fh(&c, b), 0);
+}
+
