@@ -326,7 +326,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
         rc = edmd_segments_setup(s, sc, err);
     if (!rc)
         rc = check_start(s, err);
-    if (!rc && !(s->rng = gr_rng_create(sc->seed, 0x65646d64u /* "edmd" */, err)))
+    if (!rc && !(s->rng = gr_rng_create(sc->seed, GR_STREAM_EDMD, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
     if (!rc)
