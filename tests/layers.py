@@ -136,7 +136,9 @@ def file_graph(folder):
     owner = {}
     for f in srcs:
         for name, (static, _, _) in definitions(code[f]).items():
-            if not static:
+            # main is the program's entry: nothing calls it, and a field
+            # of that name elsewhere is no use of it
+            if not static and name != "main":
                 owner.setdefault(name, f)
     # what each header inline function uses, through other inlines too
     inl = {}
