@@ -16,7 +16,7 @@ typedef struct {
     double temperature;     /* granular temperature: <m |v - <v>|^2> / 2 per grain */
     double px, py;          /* total momentum of mobile grains */
     uint64_t outflow;       /* grains that left through the orifice since t = 0 */
-    double wall_pressure;   /* method-defined average since the last observe; NaN if none */
+    double wall_pressure;   /* method-defined average since the last window reset; NaN if none */
     double max_overlap;     /* soft methods, in diameters; NaN otherwise */
 } gr_obs;
 

@@ -201,7 +201,7 @@ struct gr_edmd {
     double a_mom[4], a_virial, a_inj, a_diss;
     uint64_t a_pair0, a_wall0;
     double e_inj, e_diss;    /* since creation */
-    double obs_t0, obs_mom;  /* wall momentum since the last observe */
+    double obs_t0, obs_mom;  /* wall momentum since the last window reset */
     edmd_cellacc *cacc;
 
     gr_edmd_event_fn hook;
