@@ -30,6 +30,9 @@ typedef struct {
     uint64_t value;
 } gr_counter;
 #define GR_MAX_COUNTERS 16
+/* Copy at most cap of the n counters into out; returns how many (for a
+ * backend's counters operation). */
+size_t gr_counters_put(gr_counter *out, size_t cap, const gr_counter *all, size_t n);
 
 /* What create is handed besides the initial particles: the scene, the
  * values of the method's section (checked against its table), and the

@@ -167,6 +167,14 @@ int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err)
     return gr_field_add(f, s->scratch, GR_PF_FIXED | GR_PF_GONE, w, err);
 }
 
+size_t gr_counters_put(gr_counter *out, size_t cap, const gr_counter *all, size_t n)
+{
+    size_t k = n < cap ? n : cap;
+    for (size_t i = 0; i < k; i++)
+        out[i] = all[i];
+    return k;
+}
+
 size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap)
 {
     return s->type->counters ? s->type->counters(s->state, out, cap) : 0;

@@ -35,10 +35,7 @@ static size_t m_counters(const void *s, gr_counter *out, size_t cap)
 {
     const gr_dem *d = s;
     gr_counter c[] = {{"steps", d->step}, {"outflow", d->outflow}};
-    size_t n = 0;
-    for (; n < cap && n < sizeof c / sizeof c[0]; n++)
-        out[n] = c[n];
-    return n;
+    return gr_counters_put(out, cap, c, sizeof c / sizeof c[0]);
 }
 
 static int m_save(const void *s, gr_ckpt *ck, gr_err *err) { return gr_dem_save(s, ck, err); }

@@ -289,6 +289,10 @@ void edmd_cell_insert(gr_edmd *s, int32_t i, int c);
 /* roots.c */
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);
 double edmd_floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon);
+/* Where a grain can meet a floor moving in [-A, A] with the given period:
+ * [*a, *b] from *a, cut at the horizon; 0 if nowhere. */
+int edmd_floor_band(const edmd_p *p, double g, double A, double period, double horizon, double *a,
+                    double *b);
 
 /* lookahead.c: front positions (0: the next event) of the look-ahead's
  * four stages: grain and slab; cell heads and partner; first grains and

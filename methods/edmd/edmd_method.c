@@ -71,10 +71,7 @@ static size_t m_counters(const void *st, gr_counter *out, size_t cap)
                         {"cell_crossings", c.crossing},
                         {"stale_events", c.stale},
                         {"elastic_guard", c.elastic_guard}};
-    size_t n = 0;
-    for (; n < cap && n < sizeof all / sizeof all[0]; n++)
-        out[n] = all[n];
-    return n;
+    return gr_counters_put(out, cap, all, sizeof all / sizeof all[0]);
 }
 
 static int m_save(const void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_save(st, ck, err); }

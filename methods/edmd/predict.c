@@ -107,17 +107,9 @@ static double floor_saw_time(const gr_edmd *s, const edmd_p *p, double a, double
 {
     double g = s->g, A = s->fA, om = s->fomega;
     double V = A * om / M_PI, T = 2.0 * M_PI / om;
-    if (edmd_y_at(p, a, g) - p->r > A) {
-        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
-        if (!(te < horizon))
-            return EDMD_INF;
-        a = te > a ? te : a;
-    }
-    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
-    if (!(b < EDMD_INF))
-        b = a + T;
-    if (b > horizon)
-        b = horizon;
+    double b;
+    if (!edmd_floor_band(p, g, A, T, horizon, &a, &b))
+        return EDMD_INF;
     double k = floor(a / T);
     for (int guard = 0; guard < 100000; guard++, k += 1.0) {
         double t0 = k * T, t1 = (k + 1.0) * T;

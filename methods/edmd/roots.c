@@ -64,6 +64,25 @@ static double first_root(floor_ctx *c, double a, double ha, double b, double hb,
 /* First contact in [a, b] of a grain with a segment end (ex, ey) under
  * gravity (a quartic): bounded subdivision as for the floor, with the
  * curvature bound of |r - E|^2 over the interval. */
+/* The first root of h in [a, b], starting from a point that may be in
+ * contact: a grain in contact and approaching collides at once; one just
+ * leaving has h >= dha s - M s^2 / 2 > 0 up to s = dha / M. */
+static double root_from(floor_ctx *c, double a, double b)
+{
+    double ha = fh(c, a), dha = fdh(c, a);
+    if (ha <= 0.0) {
+        if (dha <= 0.0)
+            return a;
+        a += dha / c->M;
+        if (a >= b)
+            return EDMD_INF;
+        ha = fh(c, a);
+        if (ha <= 0.0)
+            return fdh(c, a) <= 0.0 ? a : EDMD_INF;
+    }
+    return first_root(c, a, ha, b, fh(c, b), 0);
+}
+
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b)
 {
     double g = s->g;
@@ -73,51 +92,35 @@ double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, 
     double vmax2 = p->vx * p->vx + fmax(vya * vya, vyb * vyb);
     double qy = fabs(edmd_y_at(p, a, g) - ey) + fabs(vya) * L + 0.5 * g * L * L;
     floor_ctx c = {p, g, 0, 0, 2.0 * (vmax2 + g * qy) + 1e-300, 0, 1, ex, ey};
-    double ha = fh(&c, a), dha = fdh(&c, a);
-    if (ha <= 0.0) {
-        if (dha <= 0.0)
-            return a;
-        a += dha / c.M;
-        if (a >= b)
-            return EDMD_INF;
-        ha = fh(&c, a);
-        if (ha <= 0.0)
-            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
+    return root_from(&c, a, b);
+}
+
+int edmd_floor_band(const edmd_p *p, double g, double A, double period, double horizon, double *a,
+                    double *b)
+{
+    /* enter the band y - r <= A where the floor can be met */
+    if (edmd_y_at(p, *a, g) - p->r > A) {
+        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
+        if (!(te < horizon))
+            return 0;
+        *a = te > *a ? te : *a;
     }
-    return first_root(&c, a, ha, b, fh(&c, b), 0);
+    /* certain contact by the time it falls to the floor's lowest point */
+    *b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
+    if (!(*b < EDMD_INF))
+        *b = *a + period;
+    if (*b > horizon)
+        *b = horizon;
+    return *b > *a;
 }
 
 double edmd_floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon)
 {
     double g = s->g, A = s->fA, om = s->fomega;
-    /* enter the band y - r <= A where the floor can be met */
-    if (edmd_y_at(p, a, g) - p->r > A) {
-        double te = p->t + edmd_fall_time(p->y - p->r - A, p->vy, g);
-        if (!(te < horizon))
-            return EDMD_INF;
-        a = te > a ? te : a;
-    }
-    /* certain contact by the time it falls to the floor's lowest point */
-    double b = p->t + edmd_fall_time(p->y - p->r + A, p->vy, g);
-    if (!(b < EDMD_INF))
-        b = a + 2.0 * M_PI / om;
-    if (b > horizon)
-        b = horizon;
-    if (!(b > a))
+    double b;
+    if (!edmd_floor_band(p, g, A, 2.0 * M_PI / om, horizon, &a, &b))
         return EDMD_INF;
     floor_ctx c = {p, g, A, om, g + A * om * om, 0, 0, 0, 0};
-    double ha = fh(&c, a), dha = fdh(&c, a);
-    if (ha <= 0.0) {
-        if (dha <= 0.0)
-            return a;
-        /* just left the floor: h >= dha s - M s^2 / 2 > 0 up to s = dha / M */
-        a += dha / c.M;
-        if (a >= b)
-            return EDMD_INF;
-        ha = fh(&c, a);
-        if (ha <= 0.0)
-            return fdh(&c, a) <= 0.0 ? a : EDMD_INF;
-    }
-    return first_root(&c, a, ha, b, fh(&c, b), 0);
+    return root_from(&c, a, b);
 }
 
