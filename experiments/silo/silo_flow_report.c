@@ -7,9 +7,11 @@
 #include <string.h>
 
 #include "h5md.h"
+#include "parts.h"
 #include "plot.h"
 #include "silo_flow.h"
 #include "stats.h"
+#include "table.h"
 
 #define NB 30
 #define UMAX 5.0
@@ -226,9 +228,9 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
     double par[10] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
                       (double)c->discard, (double)c->block, (double)c->nblocks, c->lift, (double)c->seed};
     if (!rc)
-        rc = silo_put_result(h, "config", 10, 0, NULL, "grains, width, height, dt, realisations, discarded steps, block steps, blocks, square lift, seed", par, err);
+        rc = exp_put_result(h, "config", 10, 0, NULL, "grains, width, height, dt, realisations, discarded steps, block steps, blocks, square lift, seed", par, err);
     if (!rc)
-        rc = silo_put_result(h, "orifices", n, 0, NULL, "orifice widths D / d", c->orifice, err);
+        rc = exp_put_result(h, "orifices", n, 0, NULL, "orifice widths D / d", c->orifice, err);
     double bulk_sum = 0;
     size_t bulk_n = 0;
     for (size_t o = 0; o < n && !rc; o++) {
@@ -240,21 +242,21 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
             }
             if (!(rc = gr_ckpt_get_f64(ck, "counts", cnt + r * nb, nb, err)))
                 rc = gr_ckpt_get_f64(ck, "packing", phi + r * nb, nb, err);
-            double meta[4] = {(double)(c->seed + r), silo_get_scalar(ck, "t_settle"), silo_get_scalar(ck, "top0"),
-                              silo_get_scalar(ck, "bulk_packing")};
+            double meta[4] = {(double)(c->seed + r), exp_get_scalar(ck, "t_settle"), exp_get_scalar(ck, "top0"),
+                              exp_get_scalar(ck, "bulk_packing")};
             if (isfinite(meta[3]))
                 bulk_sum += meta[3], bulk_n++;
             tab[o * NCOL + C_BULK] += meta[3] / (double)nr;
             char nm[128];
             snprintf(nm, sizeof nm, "D%g/r%02zu/counts", c->orifice[o], r);
-            if (!rc) rc = silo_put_result(h, nm, nb, 0, NULL, "grains that left in each block", cnt + r * nb, err);
+            if (!rc) rc = exp_put_result(h, nm, nb, 0, NULL, "grains that left in each block", cnt + r * nb, err);
             snprintf(nm, sizeof nm, "D%g/r%02zu/packing", c->orifice[o], r);
-            if (!rc) rc = silo_put_result(h, nm, nb, 0, NULL, "mean packing fraction of the D x D square in each block", phi + r * nb, err);
+            if (!rc) rc = exp_put_result(h, nm, nb, 0, NULL, "mean packing fraction of the D x D square in each block", phi + r * nb, err);
             snprintf(nm, sizeof nm, "D%g/r%02zu/meta", c->orifice[o], r);
-            if (!rc) rc = silo_put_result(h, nm, 4, 0, NULL, "seed, settling time, settled top height, bulk packing fraction", meta, err);
+            if (!rc) rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, settled top height, bulk packing fraction", meta, err);
             double *cr = cost + (o * nr + r) * 7;
             cr[0] = c->orifice[o], cr[1] = (double)r;
-            silo_get_cost(ck, cr + 2);
+            exp_get_cost(ck, cr + 2);
             gr_err ig = {0};
             gr_ckpt_close(ck, &ig);
         }
@@ -360,34 +362,34 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
         }
     }
     const char *fcols = "p0,p0_err,p1,p1_err,p2,p2_err,chi2_dof,n,converged (2: density-law b at a bound of its range)";
-    if (!rc) rc = silo_put_result(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", tab, err);
-    if (!rc) rc = silo_put_result(h, "fits", NFITS, 9, fcols,
+    if (!rc) rc = exp_put_result(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", tab, err);
+    if (!rc) rc = exp_put_result(h, "fits", NFITS, 9, fcols,
                       "rows: beverloo {C,k}; sigma_w A D^p all, D<=split, D>split {A,p}; density law {rho0,a,b}; modified law {C,a,b}", fits, err);
-    if (!rc) rc = silo_put_result(h, "rho_bulk", 1, 0, NULL, "bulk number density used in the flow laws (grains/d^2)", &rho, err);
-    if (!rc) rc = silo_put_result(h, "pdf_fluctuations", NB, 5, "u,p_small,err_small,p_large,err_large", "density of dw/sigma_w", pdf, err);
-    if (!rc) rc = silo_put_result(h, "pdf_fluctuation_stats", 2, 4, "n,ks_eq44,ks_gauss,kappa", "rows: D <= split, D > split", &pstat[0][0], err);
-    if (!rc) rc = silo_put_result(h, "cost", n * nr, 7, "D,realisation,wall_fill,cpu_fill,wall_run,cpu_run,steps_run",
+    if (!rc) rc = exp_put_result(h, "rho_bulk", 1, 0, NULL, "bulk number density used in the flow laws (grains/d^2)", &rho, err);
+    if (!rc) rc = exp_put_result(h, "pdf_fluctuations", NB, 5, "u,p_small,err_small,p_large,err_large", "density of dw/sigma_w", pdf, err);
+    if (!rc) rc = exp_put_result(h, "pdf_fluctuation_stats", 2, 4, "n,ks_eq44,ks_gauss,kappa", "rows: D <= split, D > split", &pstat[0][0], err);
+    if (!rc) rc = exp_put_result(h, "cost", n * nr, 7, "D,realisation,wall_fill,cpu_fill,wall_run,cpu_run,steps_run",
                       "seconds per unit of work: filling and settling, then the run after opening", cost, err);
-    if (!rc) rc = silo_put_result(h, "reduced_flow_r00", nb, n, NULL, "w per block (rows) and orifice (columns), realisation 0", wser, err);
+    if (!rc) rc = exp_put_result(h, "reduced_flow_r00", nb, n, NULL, "w per block (rows) and orifice (columns), realisation 0", wser, err);
     char hdr[600];
     snprintf(hdr, sizeof hdr, "%s", flow_cols);
     for (char *q = hdr; *q; q++)
         *q = *q == ',' ? ' ' : *q;
     snprintf(path, sizeof path, "%s/flow.dat", c->dir);
-    if (!rc) rc = silo_write_dat(path, hdr, tab, n, NCOL, err);
+    if (!rc) rc = exp_write_dat(path, hdr, tab, n, NCOL, err);
     snprintf(path, sizeof path, "%s/fits.dat", c->dir);
-    if (!rc) rc = silo_write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged (2: density-law b at a bound of its range)", fits, NFITS, 9, err);
+    if (!rc) rc = exp_write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged (2: density-law b at a bound of its range)", fits, NFITS, 9, err);
     snprintf(path, sizeof path, "%s/pdf_fluctuations.dat", c->dir);
-    if (!rc) rc = silo_write_dat(path, "u p_small err_small p_large err_large", pdf, NB, 5, err);
+    if (!rc) rc = exp_write_dat(path, "u p_small err_small p_large err_large", pdf, NB, 5, err);
     snprintf(path, sizeof path, "%s/reduced_flow.dat", c->dir);
-    if (!rc) rc = silo_write_dat(path, "w per block (rows) for each orifice (columns, in --orifices order), realisation 0", wser, nb, n, err);
+    if (!rc) rc = exp_write_dat(path, "w per block (rows) for each orifice (columns, in --orifices order), realisation 0", wser, nb, n, err);
     if (!rc)
         rc = figures(c, tab, fits, wser, pdf, rho, err);
     if (!rc) {
         gr_particles *p = gr_particles_create(0, err);
         size_t o = nearest(c, 6.24);
         gr_ckpt *ck = p ? gr_ckpt_open(parts[o * nr], err) : NULL;
-        if (!ck || silo_get_particles(ck, "final", p, err))
+        if (!ck || exp_get_particles(ck, "final", p, err))
             rc = err->code ? err->code : GR_ERUN;
         else {
             char title[128];

@@ -9,9 +9,11 @@
 
 #include "fields.h"
 #include "h5md.h"
+#include "parts.h"
 #include "plot.h"
 #include "silo_start.h"
 #include "stats.h"
+#include "table.h"
 
 
 
@@ -44,15 +46,15 @@ static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h
         size_t n = 0;
         const char *names[] = {"lag", "n", "sx2", "sx4", "sy2", "sy4", "fall_sum"};
         for (int i = 0; i < 7 && !rc; i++)
-            rc = silo_get_array(ck, names[i], &a[i], &n, err);
+            rc = exp_get_array(ck, names[i], &a[i], &n, err);
         double *fn = NULL, *fp = NULL, *fm = NULL, *fw = NULL, *ser = NULL, *grid = NULL;
         size_t fnn = 0, nser = 0, ng = 0, nw = 0;
-        if (!rc) rc = silo_get_array(ck, "field_num", &fn, &fnn, err);
-        if (!rc) rc = silo_get_array(ck, "field_py", &fp, &fnn, err);
-        if (!rc) rc = silo_get_array(ck, "field_mass", &fm, &fnn, err);
-        if (!rc) rc = silo_get_array(ck, "field_wsum", &fw, &nw, err);
-        if (!rc) rc = silo_get_array(ck, "field_grid", &grid, &ng, err);
-        if (!rc) rc = silo_get_array(ck, "series", &ser, &nser, err);
+        if (!rc) rc = exp_get_array(ck, "field_num", &fn, &fnn, err);
+        if (!rc) rc = exp_get_array(ck, "field_py", &fp, &fnn, err);
+        if (!rc) rc = exp_get_array(ck, "field_mass", &fm, &fnn, err);
+        if (!rc) rc = exp_get_array(ck, "field_wsum", &fw, &nw, err);
+        if (!rc) rc = exp_get_array(ck, "field_grid", &grid, &ng, err);
+        if (!rc) rc = exp_get_array(ck, "series", &ser, &nser, err);
         if (!rc && (n != ns || nw != nt))
             rc = gr_fail(err, GR_EINPUT, "%s: part does not match the options", path);
         if (!rc && !num) {
@@ -83,25 +85,25 @@ static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h
                 for (int i = 0; i < 7; i++)
                     raw[s * 7 + (size_t)i] = a[i][s];
             snprintf(nm, sizeof nm, "D%g/r%02d/msd_sums", r->D, k);
-            rc = raw ? silo_put_result(h, nm, ns, 7, "lag,n,sum_dx2,sum_dx4,sum_dy2,sum_dy4,sum_fall",
+            rc = raw ? exp_put_result(h, nm, ns, 7, "lag,n,sum_dx2,sum_dx4,sum_dy2,sum_dy4,sum_fall",
                            "per-slot sums of this discharge", raw, err)
                      : gr_fail(err, GR_ERUN, "out of memory");
             free(raw);
             snprintf(nm, sizeof nm, "D%g/r%02d/series", r->D, k);
             if (!rc && nser >= 3)
-                rc = silo_put_result(h, nm, nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", ser, err);
+                rc = exp_put_result(h, nm, nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", ser, err);
             double cost[5];
-            silo_get_cost(ck, cost);
+            exp_get_cost(ck, cost);
             for (int q = 0; q < 5; q++)
                 r->cost[q] += cost[q] / (double)c->nreal;
             snprintf(nm, sizeof nm, "D%g/r%02d/cost", r->D, k);
             if (!rc)
-                rc = silo_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the filling, of the run, and its steps", cost, err);
-            double meta[4] = {(double)(c->seed + (uint64_t)k), silo_get_scalar(ck, "t_settle"),
-                              silo_get_scalar(ck, "top0"), silo_get_scalar(ck, "steps")};
+                rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the filling, of the run, and its steps", cost, err);
+            double meta[4] = {(double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
+                              exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps")};
             snprintf(nm, sizeof nm, "D%g/r%02d/meta", r->D, k);
             if (!rc)
-                rc = silo_put_result(h, nm, 4, 0, NULL, "seed, settling time, top height, steps run", meta, err);
+                rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, top height, steps run", meta, err);
         }
         for (int i = 0; i < 7; i++)
             free(a[i]);
@@ -158,7 +160,7 @@ static int distributions(const ss_ctx *c, size_t o, char *const *parts, ss_res *
                 double *v;
                 size_t n;
                 snprintf(nm, sizeof nm, "samples_%c_%d", comp ? 'y' : 'x', s);
-                if (silo_get_array(ck, nm, &v, &n, err)) {
+                if (exp_get_array(ck, nm, &v, &n, err)) {
                     gr_ckpt_discard(ck);
                     return err->code;
                 }
@@ -246,10 +248,10 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
                       (double)c->fs, c->window, c->cell, c->fall_stop, (double)c->max_steps,
                       (double)c->min_steps, (double)c->seed};
     if (!rc)
-        rc = silo_put_result(h, "config", 12, 0, NULL,
+        rc = exp_put_result(h, "config", 12, 0, NULL,
                  "grains, width, height, dt, realisations, frame steps, window, cell, fall to stop, max steps, min steps, seed", par, err);
     if (!rc)
-        rc = silo_put_result(h, "orifices", nr, 0, NULL, "orifice widths D / d", c->orifice, err);
+        rc = exp_put_result(h, "orifices", nr, 0, NULL, "orifice widths D / d", c->orifice, err);
     size_t off = 0;
     if (summary && nsum)
         summary[0] = 0;
@@ -276,10 +278,10 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
         }
         const char *mcols = "lag_time,lag_steps,n,fall,msd_x,msd_y,err_x,err_y,kappa_x,kappa_y";
         snprintf(nm, sizeof nm, "D%g/msd", r->D);
-        rc = silo_put_result(h, nm, r->ns, 10, mcols, "mean square displacement and kurtosis per lag, all discharges", &tab[0][0], err);
+        rc = exp_put_result(h, nm, r->ns, 10, mcols, "mean square displacement and kurtosis per lag, all discharges", &tab[0][0], err);
         snprintf(dat, sizeof dat, "%s/msd_D%g.dat", c->dir, r->D);
         if (!rc)
-            rc = silo_write_dat(dat, "lag_time lag_steps n fall msd_x msd_y err_x err_y kappa_x kappa_y", &tab[0][0], r->ns, 10, err);
+            rc = exp_write_dat(dat, "lag_time lag_steps n fall msd_x msd_y err_x err_y kappa_x kappa_y", &tab[0][0], r->ns, 10, err);
         double fit[2][6];
         for (int comp = 0; comp < 2; comp++) {
             const gr_fit *f = &r->fit[comp];
@@ -290,34 +292,34 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
         }
         snprintf(nm, sizeof nm, "D%g/msd_fit", r->D);
         if (!rc)
-            rc = silo_put_result(h, nm, 2, 6, "exponent,exponent_err,prefactor,prefactor_err,t_lo,t_hi",
+            rc = exp_put_result(h, nm, 2, 6, "exponent,exponent_err,prefactor,prefactor_err,t_lo,t_hi",
                      "log-log fit <d^2> = A t^p, rows x then y", &fit[0][0], err);
         for (int w = 0; w < 2 && !rc; w++) {
             snprintf(nm, sizeof nm, "D%g/pdf_%s", r->D, w ? "long" : "short");
-            rc = silo_put_result(h, nm, NB, 5, "u,p_x,err_x,p_y,err_y",
+            rc = exp_put_result(h, nm, NB, 5, "u,p_x,err_x,p_y,err_y",
                      w ? "normalised displacement density, lag of a 2 d fall" : "normalised displacement density, lag of a 0.01 d fall",
                      &r->pdf[w][0][0], err);
             snprintf(dat, sizeof dat, "%s/pdf_%s_D%g.dat", c->dir, w ? "long" : "short", r->D);
             if (!rc)
-                rc = silo_write_dat(dat, "u p_x err_x p_y err_y", &r->pdf[w][0][0], NB, 5, err);
+                rc = exp_write_dat(dat, "u p_x err_x p_y err_y", &r->pdf[w][0][0], NB, 5, err);
         }
         snprintf(nm, sizeof nm, "D%g/pdf_stats", r->D);
         if (!rc)
-            rc = silo_put_result(h, nm, 2, 10, "lag_time,fall,sd_x,sd_y,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,kappa_x,kappa_y",
+            rc = exp_put_result(h, nm, 2, 10, "lag_time,fall,sd_x,sd_y,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,kappa_x,kappa_y",
                      "rows: short lag, long lag", &r->stats[0][0], err);
         size_t nc = (size_t)(r->grid[0] * r->grid[1]);
         snprintf(nm, sizeof nm, "D%g/velocity_y", r->D);
         if (!rc)
-            rc = silo_put_result(h, nm, c->ntimes, nc, NULL, "mean vertical velocity per cell (row-major, y rows) at field_steps", r->vy, err);
+            rc = exp_put_result(h, nm, c->ntimes, nc, NULL, "mean vertical velocity per cell (row-major, y rows) at field_steps", r->vy, err);
         snprintf(nm, sizeof nm, "D%g/field_grid", r->D);
         if (!rc)
-            rc = silo_put_result(h, nm, 6, 0, NULL, "nx, ny, x0, y0, cell width, cell height", r->grid, err);
+            rc = exp_put_result(h, nm, 6, 0, NULL, "nx, ny, x0, y0, cell width, cell height", r->grid, err);
         double ts[SS_MAX_TIMES];
         for (size_t j = 0; j < c->ntimes; j++)
             ts[j] = (double)c->times[j];
         snprintf(nm, sizeof nm, "D%g/field_steps", r->D);
         if (!rc)
-            rc = silo_put_result(h, nm, c->ntimes, 0, NULL, "steps after opening of each velocity field", ts, err);
+            rc = exp_put_result(h, nm, c->ntimes, 0, NULL, "steps after opening of each velocity field", ts, err);
         double *s = summ[o];
         double row[20] = {r->D, (double)c->nreal, r->stats[0][0], r->stats[0][1], r->stats[0][2], r->stats[0][3],
                           fit[0][0], fit[0][1], fit[1][0], fit[1][1], r->stats[0][8], r->stats[0][9],
@@ -333,7 +335,7 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
     }
     const char *scols = "D,realisations,lag_short,fall_short,sd_x,sd_y,exp_x,exp_x_err,exp_y,exp_y_err,kappa_x_short,kappa_y_short,fall_long,kappa_x_long,kappa_y_long,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,lag_long";
     if (!rc)
-        rc = silo_put_result(h, "summary", nr, 20, scols, "one row per orifice", &summ[0][0], err);
+        rc = exp_put_result(h, "summary", nr, 20, scols, "one row per orifice", &summ[0][0], err);
     if (!rc) {
         snprintf(path, sizeof path, "%s/summary.dat", c->dir);
         char hdr[600];
@@ -341,7 +343,7 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
         for (char *q = hdr; *q; q++)
             if (*q == ',')
                 *q = ' ';
-        rc = silo_write_dat(path, hdr, &summ[0][0], nr, 20, err);
+        rc = exp_write_dat(path, hdr, &summ[0][0], nr, 20, err);
     }
     /* figures */
     size_t big = 0;
@@ -360,7 +362,7 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
         rc = ss_fig_stationarity(path, c, res, nr, stab, err);
     }
     if (!rc)
-        rc = silo_put_result(h, "stationarity", nr * c->ntimes, 3, "step,discharges,relative_change",
+        rc = exp_put_result(h, "stationarity", nr * c->ntimes, 3, "step,discharges,relative_change",
                  "velocity field change since the previous field time, rows by orifice then time", stab, err);
     if (!rc) {
         snprintf(path, sizeof path, "%s/fig3_3_displacement_pdf.png", c->dir);

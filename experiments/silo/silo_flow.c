@@ -12,8 +12,11 @@
 #include <time.h>
 
 #include "cmd.h"
+#include "opts.h"
+#include "parts.h"
 #include "progress.h"
 #include "silo_flow.h"
+#include "sweep.h"
 
 void sf_label(size_t unit, void *ctx, char *buf, size_t n)
 {
@@ -104,10 +107,10 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (!rc) rc = gr_ckpt_put_f64(ck, "counts", count, (size_t)c->nblocks, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "packing", phi, (size_t)c->nblocks, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "top", top, (size_t)c->nblocks, err);
-    if (!rc) rc = silo_put_scalar(ck, "bulk_packing", bulk, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_settle", set.t_settle, err);
-    if (!rc) rc = silo_put_scalar(ck, "top0", set.top, err);
-    if (!rc) rc = silo_put_particles(ck, "final", snap, err);
+    if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
+    if (!rc) rc = exp_put_scalar(ck, "top0", set.top, err);
+    if (!rc) rc = exp_put_particles(ck, "final", snap, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (ck) {
         if (rc)
@@ -238,7 +241,7 @@ int cmd_silo_flow(int argc, char **argv)
     if (width > 0)
         c.base.width = width, c.base.height = 2 * width;
     const char *deflist = quick ? "3.56,4.2,6.24,8,10,12,14" : "3.56,4.5,5.3,6.24,7.2,8.2,9.2,10.5,12,13.5,15,16.04";
-    if (silo_parse_list(orif ? orif : deflist, c.orifice, SF_MAX_ORIF, &c.norif))
+    if (exp_parse_list(orif ? orif : deflist, c.orifice, SF_MAX_ORIF, &c.norif))
         return bad("--orifices", orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < c.norif; i++)
         if (c.orifice[i] >= c.base.width - 2)
@@ -257,10 +260,10 @@ int cmd_silo_flow(int argc, char **argv)
     c.dir = dir;
     gr_err e = {0};
     size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    silo_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
+    exp_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
     char summary[4096] = "";
     double t_units = 0;
-    int rc = silo_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, &c, summary,
+    int rc = exp_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, &c, summary,
                                    sizeof summary, &t_units, &reused, &e);
     if (rc)
         fprintf(stderr, "grano silo-flow: %s\n", e.msg);

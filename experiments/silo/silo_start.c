@@ -12,9 +12,12 @@
 
 #include "cmd.h"
 #include "fields.h"
+#include "opts.h"
+#include "parts.h"
 #include "progress.h"
 #include "rng.h"
 #include "silo_start.h"
+#include "sweep.h"
 
 const long ss_fig32_steps[6] = {300, 700, 1100, 1700, 6300, 10000};
 
@@ -215,12 +218,12 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     }
     if (!rc) rc = gr_ckpt_put_f64(ck, "series", ts, nts, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "window", win, 2, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_settle", set->t_settle, err);
-    if (!rc) rc = silo_put_scalar(ck, "top0", set->top, err);
-    if (!rc) rc = silo_put_scalar(ck, "steps", (double)steps, err);
-    if (!rc) rc = silo_put_particles(ck, "final", fin, err);
-    if (!rc && set->filling) rc = silo_put_particles(ck, "filling", set->filling, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_filling", set->t_filling, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
+    if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
+    if (!rc) rc = exp_put_scalar(ck, "steps", (double)steps, err);
+    if (!rc) rc = exp_put_particles(ck, "final", fin, err);
+    if (!rc && set->filling) rc = exp_put_particles(ck, "filling", set->filling, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     free(buf);
     if (rc) {
@@ -482,7 +485,7 @@ int cmd_silo_start(int argc, char **argv)
         c.base.n = grains;
     if (width > 0)
         c.base.width = width, c.base.height = 2 * width;
-    if (silo_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
+    if (exp_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
         return bad("--orifices", orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < c.norif; i++)
         if (c.orifice[i] >= c.base.width - 2)
@@ -504,10 +507,10 @@ int cmd_silo_start(int argc, char **argv)
     c.dir = dir;
     gr_err e = {0};
     size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges", force};
+    exp_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges", force};
     char summary[4096] = "";
     double t_units = 0;
-    int rc = silo_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, &c, summary,
+    int rc = exp_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, &c, summary,
                                    sizeof summary, &t_units, &reused, &e);
     if (rc)
         fprintf(stderr, "grano silo-start: %s\n", e.msg);
