@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include <gsl/gsl_sort_double.h>
 
@@ -14,15 +15,21 @@
 void silo_cfg_thesis(silo_cfg *c, double D)
 {
     *c = (silo_cfg){.n = 5000, .width = 50, .height = 100, .base = 5, .orifice = D,
-                    .hopper = 1, .reinsert = 0, .seed = 1, .dt = 1.25e-4, .ke_tol = 1e-3,
-                    .fill_max = 400};
+                    .hopper = 1, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
+                    .dt = 1.25e-4, .ke_tol = 1e-3, .fill_max = 400};
 }
 
 void silo_cfg_quick(silo_cfg *c, double D)
 {
     *c = (silo_cfg){.n = 800, .width = 20, .height = 48, .base = 3, .orifice = D,
-                    .hopper = 0, .reinsert = 0, .seed = 1, .dt = 1.25e-4, .ke_tol = 1e-3,
-                    .fill_max = 40};
+                    .hopper = 0, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
+                    .dt = 1.25e-4, .ke_tol = 1e-3, .fill_max = 40};
+}
+
+/* Whether the experiments' steps are the method's own: dem's time steps. */
+static int uses_steps(const silo_cfg *c)
+{
+    return !strcmp(c->method->name, "dem");
 }
 
 /* Lattice geometry of [init]: pitch 1.05 d, rows from the bottom. */
@@ -54,6 +61,10 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
     if (c->hopper)
         snprintf(hop, sizeof hop, "hopper = yes\nhopper_outlet = %.17g\nhopper_bottom = %.17g\nhopper_top = %.17g\n",
                  0.6 * W, hop_bot, hop_top);
+    /* the time step is dem's own key; other methods run on their defaults */
+    char own[160] = "";
+    if (uses_steps(c))
+        snprintf(own, sizeof own, "[dem]\ndt = %.17g\nthreads = 1\nmax_overlap = 0.25\n", c->dt);
     size_t cap = 4096;
     char *text = malloc(cap);
     if (!text) {
@@ -71,10 +82,10 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
              "walls = grains\nexit_below = %.17g\n%sreinsert = %s\n%s"
              "[init]\nkind = lattice\nregion = 1 %.17g %.17g %.17g\nspacing = %.17g\n"
              "velocity = gaussian\nv0 = 1\n"
-             "[dem]\ndt = %.17g\nthreads = 1\nmax_overlap = 0.25\n"
+             "%s"
              "[run]\nuntil = 1\n",
              (unsigned long long)c->seed, W + 2, dom_h, c->n, W, H, b, c->orifice, open, b - 1.5, hop,
-             c->reinsert ? "yes" : "no", band, r0, W + 1, r1, SPACING, c->dt);
+             c->reinsert ? "yes" : "no", band, r0, W + 1, r1, SPACING, own);
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
     gr_scene *sc = gr_scene_parse(text, "silo (generated)", names, err);
@@ -122,9 +133,23 @@ double silo_packing(const gr_particles *p, double x0, double y0, double x1, doub
     return a / ((x1 - x0) * (y1 - y0));
 }
 
-int silo_advance(gr_sim *sim, uint64_t steps, gr_err *err)
+int silo_check_method(const silo_cfg *c, const char *who, gr_err *err)
 {
-    return gr_sim_advance(sim, 1e300, steps, err);
+    if (gr_sim_require(c->method, GR_OP_SNAPSHOT, who, err))
+        return err->code;
+    gr_scene *sc = silo_scene(c, 0.0, err);
+    if (!sc)
+        return err->code;
+    int rc = gr_method_require_features(c->method, gr_scene_features(sc), who, err);
+    gr_scene_free(sc);
+    return rc;
+}
+
+int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err)
+{
+    if (uses_steps(c))
+        return gr_sim_advance(sim, 1e300, steps, err);
+    return gr_sim_advance(sim, gr_sim_time(sim) + (double)steps * c->dt, 0, err);
 }
 
 void silo_settled_free(silo_settled *s)
@@ -139,9 +164,9 @@ void silo_settled_free(silo_settled *s)
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err)
 {
     *out = (silo_settled){0};
-    const gr_method_type *m = gr_method_find("dem");
+    const gr_method_type *m = c->method;
     if (!m)
-        return gr_fail(err, GR_ERUN, "the dem backend is not built in");
+        return gr_fail(err, GR_ERUN, "silo filling: no method");
     gr_scene *sc = silo_scene(c, INFINITY, err);
     if (!sc)
         return err->code;
@@ -159,7 +184,7 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
         rc = gr_fail(err, GR_ERUN, "out of memory");
     const uint64_t chunk = (uint64_t)llround(0.5 / c->dt);
     while (!rc) {
-        if ((rc = silo_advance(st, chunk, err)) || (rc = gr_sim_snapshot(st, p, err)))
+        if ((rc = silo_advance(c, st, chunk, err)) || (rc = gr_sim_snapshot(st, p, err)))
             break;
         double t = gr_sim_time(st), ek = 0;
         size_t nm = 0, inside = 0;
@@ -218,7 +243,7 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
 
 int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **scp, gr_sim **state, gr_err *err)
 {
-    const gr_method_type *m = gr_method_find("dem");
+    const gr_method_type *m = c->method;
     silo_cfg co = *c;
     if (co.reinsert)
         co.band_lo = s->top + 1.0, co.band_hi = s->top + 5.0;

@@ -24,7 +24,9 @@ typedef struct {
                             0: lattice inside the container (quick modes) */
     int reinsert;        /* grains that leave come back at the top */
     uint64_t seed;       /* lattice velocities and every stream after them */
-    double dt;           /* DEM time step */
+    const gr_method_type *method; /* dem unless --method says otherwise */
+    double dt;           /* dem's time step; for another method the time one
+                            "step" of the experiments stands for */
     double ke_tol;       /* settled when kinetic energy per grain < ke_tol (m g d) */
     double fill_max;     /* give up settling at this simulated time */
     double band_lo, band_hi; /* reinsertion band; 0: the scene default */
@@ -39,6 +41,10 @@ void silo_cfg_quick(silo_cfg *c, double D);
 /* Scene text for the silo; the orifice opens at open_time (INFINITY:
  * closed). Returns the parsed scene or NULL. */
 gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err);
+
+/* GR_EINPUT, naming the first missing feature or operation and `who`, when
+ * c->method cannot run the silo of c (opened, with c->reinsert). */
+int silo_check_method(const silo_cfg *c, const char *who, gr_err *err);
 
 /* A settled silo: every grain (walls, gate grains closing the orifice and
  * the mobile ones) after the filling. */
@@ -57,7 +63,7 @@ typedef struct {
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err);
 void silo_settled_free(silo_settled *s);
 
-/* A DEM state from the settled grains whose orifice opens at its first step
+/* An instance on the settled grains whose orifice opens at its first step
  * (its clock restarts at 0, so times are times after opening). Grains that
  * leave are reinserted (when c->reinsert) in a band from 1 d to 5 d above
  * the settled packing's highest grain, so that they land on its surface
@@ -65,8 +71,9 @@ void silo_settled_free(silo_settled *s);
 int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, gr_sim **state,
               gr_err *err);
 
-/* Advance exactly `steps` steps. */
-int silo_advance(gr_sim *sim, uint64_t steps, gr_err *err);
+/* Advance exactly `steps` steps of dem, or steps * c->dt in time with
+ * another method. */
+int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err);
 
 /* Highest mobile grain of a snapshot (-INFINITY if none). */
 double silo_top(const gr_particles *p);

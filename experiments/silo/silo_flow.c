@@ -31,10 +31,10 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     snprintf(buf, n,
-             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g ke=%.17g "
+             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g ke=%.17g "
              "discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g",
              b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
-             (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
+             (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
              c->sample_every, c->lift);
 }
 
@@ -72,7 +72,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
                      : silo_packing(set.p, (rc ? 0 : sc->silo.x0) + mg, cfg.base + 2 * mg + 6,
                                     (rc ? 0 : sc->silo.x0) + cfg.width - mg, set.top - 2 * mg);
     long total = c->discard + c->block * (long)c->nblocks;
-    if (!rc && (rc = silo_advance(st, (uint64_t)c->discard, err)) == GR_OK) {
+    if (!rc && (rc = silo_advance(&cfg, st, (uint64_t)c->discard, err)) == GR_OK) {
         gr_obs ob;
         gr_obs_clear(&ob);
         rc = gr_sim_observe(st, &ob, err);
@@ -82,7 +82,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
             int ns = 0;
             while (done < c->block && !rc) {
                 long k = c->sample_every < c->block - done ? c->sample_every : c->block - done;
-                if ((rc = silo_advance(st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
+                if ((rc = silo_advance(&cfg, st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
                     break;
                 done += k;
                 phi[b] += silo_packing(snap, sq[0], sq[1], sq[2], sq[3]);
@@ -150,6 +150,8 @@ static void usage(FILE *f)
         "      --discard N      steps discarded after opening (default 10000)\n"
         "      --grains N       mobile grains (default 5000)\n"
         "      --width W        container width in d (default 50; height 2 W)\n"
+        "      --method M       the method (default dem); one without the silo's features\n"
+        "                       (walls made of fixed grains, an orifice, ...) is refused\n"
         "  -Q, --quick          900 grains in a 24 d x 48 d silo filled without hopper,\n"
         "                       7 orifices, 16 blocks of 2000 steps: a smoke test\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -182,6 +184,9 @@ static int sf_report_any(const void *ctx, char *const *parts, char *summary, siz
     return sf_report(ctx, parts, summary, nsum, err);
 }
 
+/* a long option without a short one */
+#define OPT_METHOD 0x100
+
 int cmd_silo_flow(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -190,10 +195,11 @@ int cmd_silo_flow(int argc, char **argv)
         {"out", required_argument, NULL, 'o'},      {"blocks", required_argument, NULL, 'b'},
         {"block-steps", required_argument, NULL, 'B'}, {"discard", required_argument, NULL, 'X'},
         {"grains", required_argument, NULL, 'G'},   {"width", required_argument, NULL, 'W'},
-        {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
+        {"method", required_argument, NULL, OPT_METHOD}, {"quick", no_argument, NULL, 'Q'},
+        {"force", no_argument, NULL, 'f'},
         {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0}};
-    const char *orif = NULL, *out = NULL;
+    const char *orif = NULL, *out = NULL, *method = "dem";
     long nreal = 1, jobs = 1, seed = 1, grains = -1, blocks = -1, bsteps = -1, discard = -1;
     double width = -1;
     int quick = 0, force = 0, quiet = 0, ch;
@@ -215,6 +221,7 @@ int cmd_silo_flow(int argc, char **argv)
             width = strtod(optarg, &end);
             if (*end || !(width >= 8) || !isfinite(width)) return bad("--width", optarg, "a width >= 8");
             break;
+        case OPT_METHOD: method = optarg; break;
         case 'Q': quick = 1; break;
         case 'f': force = 1; break;
         case 'q': quiet = 1; break;
@@ -246,6 +253,19 @@ int cmd_silo_flow(int argc, char **argv)
     for (size_t i = 0; i < c.norif; i++)
         if (c.orifice[i] >= c.base.width - 2)
             return bad("--orifices", orif, "narrower than the silo");
+    gr_err me = {0};
+    int refused = gr_method_lookup(method, "--method", &c.base.method, &me);
+    if (!refused) {
+        /* the silo as the units will open it */
+        silo_cfg probe = c.base;
+        probe.orifice = c.orifice[0];
+        probe.reinsert = 1;
+        refused = silo_check_method(&probe, "the silo", &me);
+    }
+    if (refused) {
+        fprintf(stderr, "grano silo-flow: %s\n", me.msg);
+        return 2;
+    }
     c.nreal = (int)nreal;
     c.seed = (uint64_t)seed;
     c.discard = discard >= 0 ? discard : quick ? 8000 : 10000;

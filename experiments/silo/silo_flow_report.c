@@ -208,7 +208,7 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
         return err->code;
     char path[1300];
     snprintf(path, sizeof path, "%s/silo-flow.h5", c->dir);
-    gr_h5md_opts ho = {.method = "dem", .seed = c->seed, .force = 1, .no_xdmf = 1};
+    gr_h5md_opts ho = {.method = c->base.method->name, .seed = c->seed, .force = 1, .no_xdmf = 1};
     gr_h5md *h = gr_h5md_create(path, sc, &ho, err);
     double sc_width = sc->width;
     gr_scene_free(sc);
