@@ -197,8 +197,30 @@ static int fit_sigma(const double *D, const double *s, size_t n, double lo, doub
     return m >= 3 && gr_fit_loglog(x, y, NULL, m, f, &e) == GR_OK;
 }
 
-int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, gr_err *err)
+/* What the report gathers from the parts on its way to the tables. */
+typedef struct {
+    const sf_ctx *c;
+    char *const *parts;
+    gr_h5md *h;
+    double sc_width;     /* the domain's width, for the snapshot */
+    size_t n, nb, nr;    /* orifices, blocks, realisations */
+    double *tab;         /* per orifice: flow_cols */
+    double *wser;        /* w per block and orifice, realisation 0 */
+    double *dev[2];      /* dw / sigma_w for D <= split and D > split */
+    size_t ndev[2];
+    double *cnt, *phi;   /* counts and packing of one orifice's blocks */
+    double *cost;        /* D, realisation, then the part's cost record */
+    double bulk_sum;
+    size_t bulk_n;
+    double rho;
+    double fits[NFITS * 9], pdf[NB * 5], pstat[2][4];
+    char fitmsg[1024];
+} sf_rep;
+
+/* silo-flow.h5 with the scene of the first orifice. */
+static int open_result(sf_rep *r, gr_err *err)
 {
+    const sf_ctx *c = r->c;
     silo_cfg cfg = c->base;
     cfg.orifice = c->orifice[0];
     cfg.seed = c->seed;
@@ -209,224 +231,298 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
     char path[1300];
     snprintf(path, sizeof path, "%s/silo-flow.h5", c->dir);
     gr_h5md_opts ho = {.method = c->base.method->name, .seed = c->seed, .force = 1, .no_xdmf = 1};
-    gr_h5md *h = gr_h5md_create(path, sc, &ho, err);
-    double sc_width = sc->width;
+    r->h = gr_h5md_create(path, sc, &ho, err);
+    r->sc_width = sc->width;
     gr_scene_free(sc);
-    if (!h)
-        return err->code;
-    size_t n = c->norif, nb = (size_t)c->nblocks, nr = (size_t)c->nreal;
+    return r->h ? GR_OK : err->code;
+}
+
+/* Orifice o's parts: its blocks into cnt and phi, each realisation's
+ * series to the result file, the costs. */
+static int read_parts(sf_rep *r, size_t o, gr_err *err)
+{
+    const sf_ctx *c = r->c;
+    size_t nb = r->nb, nr = r->nr;
+    int rc = GR_OK;
+    for (size_t q = 0; q < nr && !rc; q++) {
+        gr_ckpt *ck = gr_ckpt_open(r->parts[o * nr + q], err);
+        if (!ck)
+            return err->code;
+        if (!(rc = gr_ckpt_get_f64(ck, "counts", r->cnt + q * nb, nb, err)))
+            rc = gr_ckpt_get_f64(ck, "packing", r->phi + q * nb, nb, err);
+        double meta[4] = {(double)(c->seed + q), exp_get_scalar(ck, "t_settle"), exp_get_scalar(ck, "top0"),
+                          exp_get_scalar(ck, "bulk_packing")};
+        if (isfinite(meta[3]))
+            r->bulk_sum += meta[3], r->bulk_n++;
+        r->tab[o * NCOL + C_BULK] += meta[3] / (double)nr;
+        char nm[128];
+        snprintf(nm, sizeof nm, "D%g/r%02zu/counts", c->orifice[o], q);
+        if (!rc) rc = exp_put_result(r->h, nm, nb, 0, NULL, "grains that left in each block", r->cnt + q * nb, err);
+        snprintf(nm, sizeof nm, "D%g/r%02zu/packing", c->orifice[o], q);
+        if (!rc) rc = exp_put_result(r->h, nm, nb, 0, NULL, "mean packing fraction of the D x D square in each block", r->phi + q * nb, err);
+        snprintf(nm, sizeof nm, "D%g/r%02zu/meta", c->orifice[o], q);
+        if (!rc) rc = exp_put_result(r->h, nm, 4, 0, NULL, "seed, settling time, settled top height, bulk packing fraction", meta, err);
+        double *cr = r->cost + (o * nr + q) * 7;
+        cr[0] = c->orifice[o], cr[1] = (double)q;
+        exp_get_cost(ck, cr + 2);
+        gr_err ig = {0};
+        gr_ckpt_close(ck, &ig);
+    }
+    return rc;
+}
+
+/* Orifice o's row of the table from its blocks: flow rate, packing, and
+ * the reduced flow w = W / <W> per realisation (eq. 4.2) with sigma_w over
+ * every block (eq. 4.3) and the deviations for the histograms. */
+static int orifice_stats(sf_rep *r, size_t o, gr_err *err)
+{
+    const sf_ctx *c = r->c;
+    size_t nb = r->nb, nr = r->nr, n = r->n, m = nb * nr;
     double bt = (double)c->block * c->base.dt;
-    double *tab = calloc(n * NCOL, sizeof *tab);
-    double *wser = calloc(nb * n, sizeof *wser);
-    double *dev[2] = {malloc(n * nb * nr * sizeof(double)), malloc(n * nb * nr * sizeof(double))};
-    size_t ndev[2] = {0, 0};
-    double *cnt = malloc(nb * nr * sizeof *cnt), *phi = malloc(nb * nr * sizeof *phi);
-    double *cost = calloc(n * nr * 7, sizeof *cost);
-    double fits[NFITS * 9], pdf[NB * 5], pstat[2][4];
-    char fitmsg[1024] = "";
-    int rc = tab && wser && dev[0] && dev[1] && cnt && phi && cost ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
-    double par[10] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
-                      (double)c->discard, (double)c->block, (double)c->nblocks, c->lift, (double)c->seed};
-    if (!rc)
-        rc = exp_put_result(h, "config", 10, 0, NULL, "grains, width, height, dt, realisations, discarded steps, block steps, blocks, square lift, seed", par, err);
-    if (!rc)
-        rc = exp_put_result(h, "orifices", n, 0, NULL, "orifice widths D / d", c->orifice, err);
-    double bulk_sum = 0;
-    size_t bulk_n = 0;
-    for (size_t o = 0; o < n && !rc; o++) {
-        for (size_t r = 0; r < nr && !rc; r++) {
-            gr_ckpt *ck = gr_ckpt_open(parts[o * nr + r], err);
-            if (!ck) {
-                rc = err->code;
-                break;
-            }
-            if (!(rc = gr_ckpt_get_f64(ck, "counts", cnt + r * nb, nb, err)))
-                rc = gr_ckpt_get_f64(ck, "packing", phi + r * nb, nb, err);
-            double meta[4] = {(double)(c->seed + r), exp_get_scalar(ck, "t_settle"), exp_get_scalar(ck, "top0"),
-                              exp_get_scalar(ck, "bulk_packing")};
-            if (isfinite(meta[3]))
-                bulk_sum += meta[3], bulk_n++;
-            tab[o * NCOL + C_BULK] += meta[3] / (double)nr;
-            char nm[128];
-            snprintf(nm, sizeof nm, "D%g/r%02zu/counts", c->orifice[o], r);
-            if (!rc) rc = exp_put_result(h, nm, nb, 0, NULL, "grains that left in each block", cnt + r * nb, err);
-            snprintf(nm, sizeof nm, "D%g/r%02zu/packing", c->orifice[o], r);
-            if (!rc) rc = exp_put_result(h, nm, nb, 0, NULL, "mean packing fraction of the D x D square in each block", phi + r * nb, err);
-            snprintf(nm, sizeof nm, "D%g/r%02zu/meta", c->orifice[o], r);
-            if (!rc) rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, settled top height, bulk packing fraction", meta, err);
-            double *cr = cost + (o * nr + r) * 7;
-            cr[0] = c->orifice[o], cr[1] = (double)r;
-            exp_get_cost(ck, cr + 2);
-            gr_err ig = {0};
-            gr_ckpt_close(ck, &ig);
+    double *t = r->tab + o * NCOL, mean, sem;
+    gr_block_average(r->cnt, m, 1, NULL, &mean, &sem);
+    t[C_D] = c->orifice[o];
+    t[C_PERBLOCK] = mean;
+    t[C_W] = mean / bt, t[C_WERR] = sem / bt;
+    gr_block_average(r->phi, m, 1, NULL, &t[C_PHI], &t[C_PHIERR]);
+    t[C_NBLK] = (double)m;
+    double s2 = 0, *wv = malloc(m * sizeof *wv);
+    if (!wv)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    for (size_t q = 0; q < nr; q++) {
+        const double *cq = r->cnt + q * nb;
+        double mr = 0;
+        for (size_t b = 0; b < nb; b++)
+            mr += cq[b] / (double)nb;
+        for (size_t b = 0; b < nb; b++) {
+            double w = mr > 0 ? cq[b] / mr : NAN;
+            wv[q * nb + b] = w - 1;
+            if (q == 0)
+                r->wser[b * n + o] = w;
+            s2 += (w - 1) * (w - 1) / (double)m;
         }
-        if (rc)
-            break;
-        double *t = tab + o * NCOL, mean, sem;
-        size_t m = nb * nr;
-        gr_block_average(cnt, m, 1, NULL, &mean, &sem);
-        t[C_D] = c->orifice[o];
-        t[C_PERBLOCK] = mean;
-        t[C_W] = mean / bt, t[C_WERR] = sem / bt;
-        gr_block_average(phi, m, 1, NULL, &t[C_PHI], &t[C_PHIERR]);
-        t[C_NBLK] = (double)m;
-        /* w = W / <W> per realisation (eq. 4.2), sigma_w over every block (eq. 4.3) */
-        double s2 = 0, *wv = malloc(m * sizeof *wv);
-        if (!wv) {
-            rc = gr_fail(err, GR_ERUN, "out of memory");
-            break;
-        }
-        for (size_t r = 0; r < nr; r++) {
-            double mr = 0;
-            for (size_t b = 0; b < nb; b++)
-                mr += cnt[r * nb + b] / (double)nb;
-            for (size_t b = 0; b < nb; b++) {
-                double w = mr > 0 ? cnt[r * nb + b] / mr : NAN;
-                wv[r * nb + b] = w - 1;
-                if (r == 0)
-                    wser[b * n + o] = w;
-                s2 += (w - 1) * (w - 1) / (double)m;
-            }
-        }
-        t[C_SIGW] = sqrt(s2);
-        t[C_KAPPA] = gr_kappa_zero(wv, m);
-        int big = c->orifice[o] > c->split;
-        for (size_t i = 0; i < m && t[C_SIGW] > 0; i++)
-            if (isfinite(wv[i]))
-                dev[big][ndev[big]++] = wv[i] / t[C_SIGW];
-        free(wv);
     }
-    double rho = bulk_n ? bulk_sum / (double)bulk_n * 4.0 / M_PI : NAN; /* number density */
-    if (!rc) {
-        double D[SF_MAX_ORIF], W[SF_MAX_ORIF], We[SF_MAX_ORIF], S[SF_MAX_ORIF], P[SF_MAX_ORIF], Pe[SF_MAX_ORIF];
-        for (size_t o = 0; o < n; o++) {
-            D[o] = tab[o * NCOL + C_D], W[o] = tab[o * NCOL + C_W], S[o] = tab[o * NCOL + C_SIGW];
-            We[o] = tab[o * NCOL + C_WERR] > 0 ? tab[o * NCOL + C_WERR] : 1e-3;
-            P[o] = tab[o * NCOL + C_PHI], Pe[o] = tab[o * NCOL + C_PHIERR] > 0 ? tab[o * NCOL + C_PHIERR] : 1e-4;
-        }
-        gr_beverloo_par bp = {rho, 1.0, 1.5};
-        gr_fit f;
+    t[C_SIGW] = sqrt(s2);
+    t[C_KAPPA] = gr_kappa_zero(wv, m);
+    int big = c->orifice[o] > c->split;
+    for (size_t i = 0; i < m && t[C_SIGW] > 0; i++)
+        if (isfinite(wv[i]))
+            r->dev[big][r->ndev[big]++] = wv[i] / t[C_SIGW];
+    free(wv);
+    return GR_OK;
+}
+
+/* Eq. 4.7 with its decay rate confined to where the law means what the
+ * thesis says: the plateau rho0 is reached (to a tenth of the dip) within
+ * the largest orifice, b >= ln 10 / D_max, and the dip is still seen at the
+ * smallest, b <= ln 100 / D_min. Outside, rho0 would be an extrapolation or
+ * a would be unpinned; the fit then stops at the bound and says so
+ * (weighted by the block errors). Returns whether it converged. */
+static int fit_density(sf_rep *r, const double *D, const double *P, const double *Pe, gr_fit *f)
+{
+    size_t n = r->n;
+    double dmin = INFINITY, dmax = 0;
+    for (size_t o = 0; o < n; o++)
+        dmin = fmin(dmin, D[o]), dmax = fmax(dmax, D[o]);
+    int edge = 0;
+    gr_err e = {0};
+    int ok = gr_fit_density_law_bounded(D, P, Pe, n, log(10.0) / dmax, log(100.0) / dmin, f, &edge, &e) == GR_OK;
+    if (!ok)
+        snprintf(r->fitmsg, sizeof r->fitmsg, "  density-law fit failed: %.300s\n", e.msg);
+    else if (edge)
+        snprintf(r->fitmsg, sizeof r->fitmsg,
+                 "  density law: the best decay rate is the %s bound b = %.3g of [ln 10 / D_max, ln 100 / D_min]: the packing does not follow a saturating exponential in D\n",
+                 f->p[2] > log(10.0) / dmax * 1.0001 ? "upper" : "lower", f->p[2]);
+    fit_row(f, ok, r->fits + FIT_DENS * 9);
+    if (ok && edge)
+        r->fits[FIT_DENS * 9 + 8] = 2;
+    return ok;
+}
+
+/* The flow laws against D: Beverloo, sigma_w power laws, the density law
+ * and the modified law started from them. */
+static void fit_laws(sf_rep *r)
+{
+    size_t n = r->n;
+    const double *tab = r->tab;
+    double D[SF_MAX_ORIF], W[SF_MAX_ORIF], We[SF_MAX_ORIF], S[SF_MAX_ORIF], P[SF_MAX_ORIF], Pe[SF_MAX_ORIF];
+    for (size_t o = 0; o < n; o++) {
+        D[o] = tab[o * NCOL + C_D], W[o] = tab[o * NCOL + C_W], S[o] = tab[o * NCOL + C_SIGW];
+        We[o] = tab[o * NCOL + C_WERR] > 0 ? tab[o * NCOL + C_WERR] : 1e-3;
+        P[o] = tab[o * NCOL + C_PHI], Pe[o] = tab[o * NCOL + C_PHIERR] > 0 ? tab[o * NCOL + C_PHIERR] : 1e-4;
+    }
+    gr_beverloo_par bp = {r->rho, 1.0, 1.5};
+    gr_fit f;
+    gr_err e = {0};
+    int ok = gr_fit_beverloo(&bp, D, W, We, n, NULL, &f, &e) == GR_OK;
+    fit_row(&f, ok, r->fits + FIT_BEV * 9);
+    double Cb = ok ? f.p[0] : 0.5, split = r->c->split;
+    ok = fit_sigma(D, S, n, 0, INFINITY, &f), fit_row(&f, ok, r->fits + FIT_SIG_ALL * 9);
+    ok = fit_sigma(D, S, n, 0, split, &f), fit_row(&f, ok, r->fits + FIT_SIG_SMALL * 9);
+    ok = fit_sigma(D, S, n, split, INFINITY, &f), fit_row(&f, ok, r->fits + FIT_SIG_LARGE * 9);
+    ok = fit_density(r, D, P, Pe, &f);
+    double a0 = ok && f.p[1] > 0 ? f.p[1] : 0.3, b0 = ok && f.p[2] > 0 ? f.p[2] : 0.3;
+    double p0[3] = {Cb, a0, b0};
+    ok = gr_fit_beverloo_mod(&bp, D, W, We, n, p0, &f, &e) == GR_OK;
+    if (!ok)
+        snprintf(r->fitmsg + strlen(r->fitmsg), sizeof r->fitmsg - strlen(r->fitmsg),
+                 "  modified-law fit failed: %.300s\n", e.msg);
+    fit_row(&f, ok, r->fits + FIT_MOD * 9);
+}
+
+/* Histograms of the fluctuations against eq. 4.4 and a Gaussian. */
+static int fluctuation_pdfs(sf_rep *r, gr_err *err)
+{
+    for (int g = 0; g < 2; g++) {
+        gr_hist *hh = gr_hist_create(NB, -UMAX, UMAX, err);
+        if (!hh)
+            return err->code;
+        gr_hist_add_array(hh, r->dev[g], r->ndev[g]);
+        double cen[NB], den[NB], er[NB];
+        gr_hist_density(hh, cen, den, er);
+        for (int b = 0; b < NB; b++)
+            r->pdf[b * 5] = cen[b], r->pdf[b * 5 + 1 + 2 * g] = den[b], r->pdf[b * 5 + 2 + 2 * g] = er[b];
+        gr_hist_free(hh);
+        double *ps = r->pstat[g];
+        ps[0] = (double)r->ndev[g];
+        ps[1] = ps[2] = NAN;
         gr_err e = {0};
-        int ok = gr_fit_beverloo(&bp, D, W, We, n, NULL, &f, &e) == GR_OK;
-        fit_row(&f, ok, fits + FIT_BEV * 9);
-        double Cb = ok ? f.p[0] : 0.5;
-        ok = fit_sigma(D, S, n, 0, INFINITY, &f), fit_row(&f, ok, fits + FIT_SIG_ALL * 9);
-        ok = fit_sigma(D, S, n, 0, c->split, &f), fit_row(&f, ok, fits + FIT_SIG_SMALL * 9);
-        ok = fit_sigma(D, S, n, c->split, INFINITY, &f), fit_row(&f, ok, fits + FIT_SIG_LARGE * 9);
-        /* eq. 4.7 with its decay rate confined to where the law means what
-         * the thesis says: the plateau rho0 is reached (to a tenth of the
-         * dip) within the largest orifice, b >= ln 10 / D_max, and the dip
-         * is still seen at the smallest, b <= ln 100 / D_min. Outside, rho0
-         * would be an extrapolation or a would be unpinned; the fit then
-         * stops at the bound and says so (weighted by the block errors) */
-        double dmin = INFINITY, dmax = 0;
-        for (size_t o = 0; o < n; o++)
-            dmin = fmin(dmin, D[o]), dmax = fmax(dmax, D[o]);
-        int edge = 0;
-        ok = gr_fit_density_law_bounded(D, P, Pe, n, log(10.0) / dmax, log(100.0) / dmin, &f, &edge, &e) == GR_OK;
-        if (!ok)
-            snprintf(fitmsg, sizeof fitmsg, "  density-law fit failed: %.300s\n", e.msg);
-        else if (edge)
-            snprintf(fitmsg, sizeof fitmsg,
-                     "  density law: the best decay rate is the %s bound b = %.3g of [ln 10 / D_max, ln 100 / D_min]: the packing does not follow a saturating exponential in D\n",
-                     f.p[2] > log(10.0) / dmax * 1.0001 ? "upper" : "lower", f.p[2]);
-        fit_row(&f, ok, fits + FIT_DENS * 9);
-        if (ok && edge)
-            fits[FIT_DENS * 9 + 8] = 2;
-        double a0 = ok && f.p[1] > 0 ? f.p[1] : 0.3, b0 = ok && f.p[2] > 0 ? f.p[2] : 0.3;
-        double p0[3] = {Cb, a0, b0};
-        ok = gr_fit_beverloo_mod(&bp, D, W, We, n, p0, &f, &e) == GR_OK;
-        if (!ok)
-            snprintf(fitmsg + strlen(fitmsg), sizeof fitmsg - strlen(fitmsg), "  modified-law fit failed: %.300s\n", e.msg);
-        fit_row(&f, ok, fits + FIT_MOD * 9);
-        /* fluctuation histograms against eq. 4.4 and a Gaussian */
-        for (int g = 0; g < 2 && !rc; g++) {
-            gr_hist *hh = gr_hist_create(NB, -UMAX, UMAX, err);
-            if (!hh) {
-                rc = err->code;
-                break;
-            }
-            gr_hist_add_array(hh, dev[g], ndev[g]);
-            double cen[NB], den[NB], er[NB];
-            gr_hist_density(hh, cen, den, er);
-            for (int b = 0; b < NB; b++)
-                pdf[b * 5] = cen[b], pdf[b * 5 + 1 + 2 * g] = den[b], pdf[b * 5 + 2 + 2 * g] = er[b];
-            gr_hist_free(hh);
-            pstat[g][0] = (double)ndev[g];
-            pstat[g][1] = pstat[g][2] = NAN;
-            if (ndev[g] >= 2) {
-                gr_ks_distance(dev[g], ndev[g], gr_cdf_eq34_cb, NULL, &pstat[g][1], &e);
-                gr_ks_distance(dev[g], ndev[g], gr_cdf_gauss_cb, NULL, &pstat[g][2], &e);
-            }
-            pstat[g][3] = ndev[g] ? gr_kappa_zero(dev[g], ndev[g]) : NAN;
+        if (r->ndev[g] >= 2) {
+            gr_ks_distance(r->dev[g], r->ndev[g], gr_cdf_eq34_cb, NULL, &ps[1], &e);
+            gr_ks_distance(r->dev[g], r->ndev[g], gr_cdf_gauss_cb, NULL, &ps[2], &e);
         }
+        ps[3] = r->ndev[g] ? gr_kappa_zero(r->dev[g], r->ndev[g]) : NAN;
     }
+    return GR_OK;
+}
+
+static int write_results(const sf_rep *r, gr_err *err)
+{
+    size_t n = r->n, nb = r->nb, nr = r->nr;
+    gr_h5md *h = r->h;
     const char *fcols = "p0,p0_err,p1,p1_err,p2,p2_err,chi2_dof,n,converged (2: density-law b at a bound of its range)";
-    if (!rc) rc = exp_put_result(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", tab, err);
+    int rc = exp_put_result(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", r->tab, err);
     if (!rc) rc = exp_put_result(h, "fits", NFITS, 9, fcols,
-                      "rows: beverloo {C,k}; sigma_w A D^p all, D<=split, D>split {A,p}; density law {rho0,a,b}; modified law {C,a,b}", fits, err);
-    if (!rc) rc = exp_put_result(h, "rho_bulk", 1, 0, NULL, "bulk number density used in the flow laws (grains/d^2)", &rho, err);
-    if (!rc) rc = exp_put_result(h, "pdf_fluctuations", NB, 5, "u,p_small,err_small,p_large,err_large", "density of dw/sigma_w", pdf, err);
-    if (!rc) rc = exp_put_result(h, "pdf_fluctuation_stats", 2, 4, "n,ks_eq44,ks_gauss,kappa", "rows: D <= split, D > split", &pstat[0][0], err);
+                      "rows: beverloo {C,k}; sigma_w A D^p all, D<=split, D>split {A,p}; density law {rho0,a,b}; modified law {C,a,b}", r->fits, err);
+    if (!rc) rc = exp_put_result(h, "rho_bulk", 1, 0, NULL, "bulk number density used in the flow laws (grains/d^2)", &r->rho, err);
+    if (!rc) rc = exp_put_result(h, "pdf_fluctuations", NB, 5, "u,p_small,err_small,p_large,err_large", "density of dw/sigma_w", r->pdf, err);
+    if (!rc) rc = exp_put_result(h, "pdf_fluctuation_stats", 2, 4, "n,ks_eq44,ks_gauss,kappa", "rows: D <= split, D > split", &r->pstat[0][0], err);
     if (!rc) rc = exp_put_result(h, "cost", n * nr, 7, "D,realisation,wall_fill,cpu_fill,wall_run,cpu_run,steps_run",
-                      "seconds per unit of work: filling and settling, then the run after opening", cost, err);
-    if (!rc) rc = exp_put_result(h, "reduced_flow_r00", nb, n, NULL, "w per block (rows) and orifice (columns), realisation 0", wser, err);
-    char hdr[600];
+                      "seconds per unit of work: filling and settling, then the run after opening", r->cost, err);
+    if (!rc) rc = exp_put_result(h, "reduced_flow_r00", nb, n, NULL, "w per block (rows) and orifice (columns), realisation 0", r->wser, err);
+    return rc;
+}
+
+static int write_tables(const sf_rep *r, gr_err *err)
+{
+    const char *dir = r->c->dir;
+    char hdr[600], path[1300];
     snprintf(hdr, sizeof hdr, "%s", flow_cols);
     for (char *q = hdr; *q; q++)
         *q = *q == ',' ? ' ' : *q;
-    snprintf(path, sizeof path, "%s/flow.dat", c->dir);
-    if (!rc) rc = exp_write_dat(path, hdr, tab, n, NCOL, err);
-    snprintf(path, sizeof path, "%s/fits.dat", c->dir);
-    if (!rc) rc = exp_write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged (2: density-law b at a bound of its range)", fits, NFITS, 9, err);
-    snprintf(path, sizeof path, "%s/pdf_fluctuations.dat", c->dir);
-    if (!rc) rc = exp_write_dat(path, "u p_small err_small p_large err_large", pdf, NB, 5, err);
-    snprintf(path, sizeof path, "%s/reduced_flow.dat", c->dir);
-    if (!rc) rc = exp_write_dat(path, "w per block (rows) for each orifice (columns, in --orifices order), realisation 0", wser, nb, n, err);
-    if (!rc)
-        rc = figures(c, tab, fits, wser, pdf, rho, err);
-    if (!rc) {
-        gr_particles *p = gr_particles_create(0, err);
-        size_t o = nearest(c, 6.24);
-        gr_ckpt *ck = p ? gr_ckpt_open(parts[o * nr], err) : NULL;
-        if (!ck || exp_get_particles(ck, "final", p, err))
-            rc = err->code ? err->code : GR_ERUN;
-        else {
-            char title[128];
-            snprintf(path, sizeof path, "%s/silo_snapshot.png", c->dir);
-            snprintf(title, sizeof title, "silo-flow, D = %g d, with reinsertion", c->orifice[o]);
-            rc = gr_plot_snapshot(path, p, sc_width, c->base.base + c->base.height + 2,
-                                  (double)(c->discard + c->block * c->nblocks) * c->base.dt, title, err);
-        }
-        gr_err ig = {0};
-        if (ck)
-            gr_ckpt_close(ck, &ig);
-        gr_particles_free(p);
+    snprintf(path, sizeof path, "%s/flow.dat", dir);
+    int rc = exp_write_dat(path, hdr, r->tab, r->n, NCOL, err);
+    snprintf(path, sizeof path, "%s/fits.dat", dir);
+    if (!rc) rc = exp_write_dat(path, "rows: beverloo(C,k) sigma_all(A,p) sigma_small(A,p) sigma_large(A,p) density(rho0,a,b) modified(C,a,b); p0 p0_err p1 p1_err p2 p2_err chi2_dof n converged (2: density-law b at a bound of its range)", r->fits, NFITS, 9, err);
+    snprintf(path, sizeof path, "%s/pdf_fluctuations.dat", dir);
+    if (!rc) rc = exp_write_dat(path, "u p_small err_small p_large err_large", r->pdf, NB, 5, err);
+    snprintf(path, sizeof path, "%s/reduced_flow.dat", dir);
+    if (!rc) rc = exp_write_dat(path, "w per block (rows) for each orifice (columns, in --orifices order), realisation 0", r->wser, r->nb, r->n, err);
+    return rc;
+}
+
+/* silo_snapshot.png: the end of realisation 0 at the orifice nearest 6.24. */
+static int snapshot_figure(const sf_rep *r, gr_err *err)
+{
+    const sf_ctx *c = r->c;
+    gr_particles *p = gr_particles_create(0, err);
+    size_t o = nearest(c, 6.24);
+    gr_ckpt *ck = p ? gr_ckpt_open(r->parts[o * r->nr], err) : NULL;
+    int rc;
+    if (!ck || exp_get_particles(ck, "final", p, err))
+        rc = err->code ? err->code : GR_ERUN;
+    else {
+        char title[128], path[1300];
+        snprintf(path, sizeof path, "%s/silo_snapshot.png", c->dir);
+        snprintf(title, sizeof title, "silo-flow, D = %g d, with reinsertion", c->orifice[o]);
+        rc = gr_plot_snapshot(path, p, r->sc_width, c->base.base + c->base.height + 2,
+                              (double)(c->discard + c->block * c->nblocks) * c->base.dt, title, err);
     }
+    gr_err ig = {0};
+    if (ck)
+        gr_ckpt_close(ck, &ig);
+    gr_particles_free(p);
+    return rc;
+}
+
+static void summarise(sf_rep *r, char *summary, size_t nsum)
+{
+    const sf_ctx *c = r->c;
+    size_t nu = r->n * r->nr;
     double cs[4] = {0, 0, 0, 0};
-    for (size_t u = 0; u < n * nr; u++)
+    for (size_t u = 0; u < nu; u++)
         for (int k = 0; k < 4; k++)
-            cs[k] += cost[u * 7 + 2 + k] / (double)(n * nr);
-    snprintf(fitmsg + strlen(fitmsg), sizeof fitmsg - strlen(fitmsg),
+            cs[k] += r->cost[u * 7 + 2 + k] / (double)nu;
+    size_t used = strlen(r->fitmsg);
+    snprintf(r->fitmsg + used, sizeof r->fitmsg - used,
              "  per unit: filling %.0f s wall (%.0f s CPU), run %.0f s wall (%.0f s CPU) for %ld steps\n",
              cs[0], cs[1], cs[2], cs[3], c->discard + c->block * (long)c->nblocks);
-    if (summary && nsum) {
-        const double *fb = fits + FIT_BEV * 9, *fa = fits + FIT_SIG_ALL * 9, *fd = fits + FIT_DENS * 9,
-                     *fm = fits + FIT_MOD * 9, *fs = fits + FIT_SIG_SMALL * 9;
-        snprintf(summary, nsum,
-                 "  Beverloo (rho = %.3f /d^2): C = %.3f +- %.3f, k = %.2f +- %.2f (chi2/dof %.3g)\n"
-                 "  sigma_w ~ D^%.2f +- %.2f (all), D^%.2f +- %.2f (D <= %g)\n"
-                 "  packing rho0 = %.3f +- %.3f, a = %.2f +- %.2f, b = %.2f +- %.2f\n"
-                 "  modified law C = %.3f +- %.3f, a = %.2f +- %.2f, b = %.2f +- %.2f (chi2/dof %.3g)\n"
-                 "  fluctuations: KS distance to eq. 4.4 / Gaussian %.3f / %.3f (D <= %g), %.3f / %.3f (D > %g)\n%s",
-                 rho, fb[0], fb[1], fb[2], fb[3], fb[6], fa[2], fa[3], fs[2], fs[3], c->split, fd[0], fd[1], fd[2],
-                 fd[3], fd[4], fd[5], fm[0], fm[1], fm[2], fm[3], fm[4], fm[5], fm[6], pstat[0][1], pstat[0][2],
-                 c->split, pstat[1][1], pstat[1][2], c->split, fitmsg);
-    }
+    if (!summary || !nsum)
+        return;
+    const double *fb = r->fits + FIT_BEV * 9, *fa = r->fits + FIT_SIG_ALL * 9, *fd = r->fits + FIT_DENS * 9,
+                 *fm = r->fits + FIT_MOD * 9, *fs = r->fits + FIT_SIG_SMALL * 9;
+    snprintf(summary, nsum,
+             "  Beverloo (rho = %.3f /d^2): C = %.3f +- %.3f, k = %.2f +- %.2f (chi2/dof %.3g)\n"
+             "  sigma_w ~ D^%.2f +- %.2f (all), D^%.2f +- %.2f (D <= %g)\n"
+             "  packing rho0 = %.3f +- %.3f, a = %.2f +- %.2f, b = %.2f +- %.2f\n"
+             "  modified law C = %.3f +- %.3f, a = %.2f +- %.2f, b = %.2f +- %.2f (chi2/dof %.3g)\n"
+             "  fluctuations: KS distance to eq. 4.4 / Gaussian %.3f / %.3f (D <= %g), %.3f / %.3f (D > %g)\n%s",
+             r->rho, fb[0], fb[1], fb[2], fb[3], fb[6], fa[2], fa[3], fs[2], fs[3], c->split, fd[0], fd[1], fd[2],
+             fd[3], fd[4], fd[5], fm[0], fm[1], fm[2], fm[3], fm[4], fm[5], fm[6], r->pstat[0][1], r->pstat[0][2],
+             c->split, r->pstat[1][1], r->pstat[1][2], c->split, r->fitmsg);
+}
+
+/* Every orifice's parts, the fits, then the tables and figures. */
+static int gather(sf_rep *r, gr_err *err)
+{
+    const sf_ctx *c = r->c;
+    double par[10] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
+                      (double)c->discard, (double)c->block, (double)c->nblocks, c->lift, (double)c->seed};
+    int rc = exp_put_result(r->h, "config", 10, 0, NULL, "grains, width, height, dt, realisations, discarded steps, block steps, blocks, square lift, seed", par, err);
+    if (!rc)
+        rc = exp_put_result(r->h, "orifices", r->n, 0, NULL, "orifice widths D / d", c->orifice, err);
+    for (size_t o = 0; o < r->n && !rc; o++)
+        rc = read_parts(r, o, err) || orifice_stats(r, o, err);
     if (rc)
-        gr_h5md_free(h);
+        return err->code ? err->code : GR_ERUN;
+    r->rho = r->bulk_n ? r->bulk_sum / (double)r->bulk_n * 4.0 / M_PI : NAN; /* number density */
+    fit_laws(r);
+    rc = fluctuation_pdfs(r, err) || write_results(r, err) || write_tables(r, err) ||
+         figures(c, r->tab, r->fits, r->wser, r->pdf, r->rho, err) || snapshot_figure(r, err);
+    return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
+}
+
+int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, gr_err *err)
+{
+    sf_rep r = {.c = c, .parts = parts, .n = c->norif, .nb = (size_t)c->nblocks, .nr = (size_t)c->nreal};
+    if (open_result(&r, err))
+        return err->code;
+    size_t n = r.n, nb = r.nb, nr = r.nr;
+    r.tab = calloc(n * NCOL, sizeof *r.tab);
+    r.wser = calloc(nb * n, sizeof *r.wser);
+    r.dev[0] = malloc(n * nb * nr * sizeof(double));
+    r.dev[1] = malloc(n * nb * nr * sizeof(double));
+    r.cnt = malloc(nb * nr * sizeof *r.cnt);
+    r.phi = malloc(nb * nr * sizeof *r.phi);
+    r.cost = calloc(n * nr * 7, sizeof *r.cost);
+    int rc = r.tab && r.wser && r.dev[0] && r.dev[1] && r.cnt && r.phi && r.cost
+                 ? gather(&r, err)
+                 : gr_fail(err, GR_ERUN, "out of memory");
+    summarise(&r, summary, nsum);
+    if (rc)
+        gr_h5md_free(r.h);
     else
-        rc = gr_h5md_close(h, err);
-    free(tab), free(wser), free(dev[0]), free(dev[1]), free(cnt), free(phi), free(cost);
+        rc = gr_h5md_close(r.h, err);
+    free(r.tab), free(r.wser), free(r.dev[0]), free(r.dev[1]), free(r.cnt), free(r.phi), free(r.cost);
     return rc;
 }

@@ -15,8 +15,6 @@
 #include "stats.h"
 #include "table.h"
 
-
-
 static void orif_free(ss_res *o)
 {
     gr_msd_free(o->msd);
@@ -224,132 +222,161 @@ static void fit_msd(ss_res *r)
     }
 }
 
-int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, gr_err *err)
+/* silo-start.h5 with the scene of the first orifice, and the run's
+ * configuration. */
+static gr_h5md *open_result(const ss_ctx *c, gr_err *err)
 {
     silo_cfg cfg = c->base;
     cfg.orifice = c->orifice[0];
     cfg.seed = c->seed;
     gr_scene *sc = silo_scene(&cfg, 0, err);
     if (!sc)
-        return err->code;
+        return NULL;
     char path[1300];
     snprintf(path, sizeof path, "%s/silo-start.h5", c->dir);
     gr_h5md_opts ho = {.method = c->base.method->name, .seed = c->seed, .force = 1, .no_xdmf = 1};
     gr_h5md *h = gr_h5md_create(path, sc, &ho, err);
     gr_scene_free(sc);
     if (!h)
-        return err->code;
-    size_t nr = c->norif;
-    ss_res *res = calloc(nr, sizeof *res);
-    double *stab = malloc(nr * c->ntimes * 3 * sizeof *stab);
-    double summ[SS_MAX_ORIF][20];
-    int rc = res && stab ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
+        return NULL;
     double par[12] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
                       (double)c->fs, c->window, c->cell, c->fall_stop, (double)c->max_steps,
                       (double)c->min_steps, (double)c->seed};
-    if (!rc)
-        rc = exp_put_result(h, "config", 12, 0, NULL,
-                 "grains, width, height, dt, realisations, frame steps, window, cell, fall to stop, max steps, min steps, seed", par, err);
-    if (!rc)
-        rc = exp_put_result(h, "orifices", nr, 0, NULL, "orifice widths D / d", c->orifice, err);
-    size_t off = 0;
-    if (summary && nsum)
-        summary[0] = 0;
-    for (size_t o = 0; o < nr && !rc; o++) {
-        ss_res *r = &res[o];
-        if ((rc = gather(c, o, parts, r, h, err)))
-            break;
-        gr_msd_result(r->msd, r->mx, r->my, r->ex, r->ey, r->kx, r->ky);
-        for (size_t s = 0; s < r->ns; s++) {
-            r->lag[s] = r->msd->lag[s];
-            r->fall[s] = r->msd->n[s] > 0 ? r->fall[s] / r->msd->n[s] : NAN;
-        }
-        r->sel[0] = nearest_slot(r, 0.01);
-        r->sel[1] = nearest_slot(r, c->fall_stop);
-        if ((rc = distributions(c, o, parts, r, err)))
-            break;
-        fit_msd(r);
-        char nm[128], dat[1400];
-        double tab[SS_MAX_SLOTS][10];
-        for (size_t s = 0; s < r->ns; s++) {
-            double row[10] = {r->lag[s], r->lag[s] / c->base.dt, r->msd->n[s], r->fall[s], r->mx[s],
-                              r->my[s], r->ex[s], r->ey[s], r->kx[s], r->ky[s]};
-            memcpy(tab[s], row, sizeof row);
-        }
-        const char *mcols = "lag_time,lag_steps,n,fall,msd_x,msd_y,err_x,err_y,kappa_x,kappa_y";
-        snprintf(nm, sizeof nm, "D%g/msd", r->D);
-        rc = exp_put_result(h, nm, r->ns, 10, mcols, "mean square displacement and kurtosis per lag, all discharges", &tab[0][0], err);
-        snprintf(dat, sizeof dat, "%s/msd_D%g.dat", c->dir, r->D);
-        if (!rc)
-            rc = exp_write_dat(dat, "lag_time lag_steps n fall msd_x msd_y err_x err_y kappa_x kappa_y", &tab[0][0], r->ns, 10, err);
-        double fit[2][6];
-        for (int comp = 0; comp < 2; comp++) {
-            const gr_fit *f = &r->fit[comp];
-            double row[6] = {r->fit_ok[comp] ? f->p[1] : NAN, r->fit_ok[comp] ? f->err[1] : NAN,
-                             r->fit_ok[comp] ? f->p[0] : NAN, r->fit_ok[comp] ? f->err[0] : NAN,
-                             r->fit_range[0], r->fit_range[1]};
-            memcpy(fit[comp], row, sizeof row);
-        }
-        snprintf(nm, sizeof nm, "D%g/msd_fit", r->D);
-        if (!rc)
-            rc = exp_put_result(h, nm, 2, 6, "exponent,exponent_err,prefactor,prefactor_err,t_lo,t_hi",
-                     "log-log fit <d^2> = A t^p, rows x then y", &fit[0][0], err);
-        for (int w = 0; w < 2 && !rc; w++) {
-            snprintf(nm, sizeof nm, "D%g/pdf_%s", r->D, w ? "long" : "short");
-            rc = exp_put_result(h, nm, NB, 5, "u,p_x,err_x,p_y,err_y",
-                     w ? "normalised displacement density, lag of a 2 d fall" : "normalised displacement density, lag of a 0.01 d fall",
-                     &r->pdf[w][0][0], err);
-            snprintf(dat, sizeof dat, "%s/pdf_%s_D%g.dat", c->dir, w ? "long" : "short", r->D);
-            if (!rc)
-                rc = exp_write_dat(dat, "u p_x err_x p_y err_y", &r->pdf[w][0][0], NB, 5, err);
-        }
-        snprintf(nm, sizeof nm, "D%g/pdf_stats", r->D);
-        if (!rc)
-            rc = exp_put_result(h, nm, 2, 10, "lag_time,fall,sd_x,sd_y,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,kappa_x,kappa_y",
-                     "rows: short lag, long lag", &r->stats[0][0], err);
-        size_t nc = (size_t)(r->grid[0] * r->grid[1]);
-        snprintf(nm, sizeof nm, "D%g/velocity_y", r->D);
-        if (!rc)
-            rc = exp_put_result(h, nm, c->ntimes, nc, NULL, "mean vertical velocity per cell (row-major, y rows) at field_steps", r->vy, err);
-        snprintf(nm, sizeof nm, "D%g/field_grid", r->D);
-        if (!rc)
-            rc = exp_put_result(h, nm, 6, 0, NULL, "nx, ny, x0, y0, cell width, cell height", r->grid, err);
-        double ts[SS_MAX_TIMES];
-        for (size_t j = 0; j < c->ntimes; j++)
-            ts[j] = (double)c->times[j];
-        snprintf(nm, sizeof nm, "D%g/field_steps", r->D);
-        if (!rc)
-            rc = exp_put_result(h, nm, c->ntimes, 0, NULL, "steps after opening of each velocity field", ts, err);
-        double *s = summ[o];
-        double row[20] = {r->D, (double)c->nreal, r->stats[0][0], r->stats[0][1], r->stats[0][2], r->stats[0][3],
-                          fit[0][0], fit[0][1], fit[1][0], fit[1][1], r->stats[0][8], r->stats[0][9],
-                          r->stats[1][1], r->stats[1][8], r->stats[1][9], r->stats[0][4], r->stats[0][5],
-                          r->stats[0][6], r->stats[0][7], r->stats[1][0]};
-        memcpy(s, row, sizeof row);
-        if (summary && off < nsum)
-            off += (size_t)snprintf(summary + off, nsum - off,
-                                    "  D = %g d: MSD exponents x %.3f +- %.3f, y %.3f +- %.3f; kappa (x, y) %.2f, %.2f at a %.3g d fall, %.2f, %.2f at %.3g d\n"
-                                    "    per discharge: filling %.0f s wall (%.0f s CPU), run %.0f s wall (%.0f s CPU) for %.0f steps\n",
-                                    r->D, fit[0][0], fit[0][1], fit[1][0], fit[1][1], s[10], s[11], s[3], s[13], s[14], s[12],
-                                    r->cost[0], r->cost[1], r->cost[2], r->cost[3], r->cost[4]);
+    if (exp_put_result(h, "config", 12, 0, NULL,
+                       "grains, width, height, dt, realisations, frame steps, window, cell, fall to stop, max steps, min steps, seed", par, err) ||
+        exp_put_result(h, "orifices", c->norif, 0, NULL, "orifice widths D / d", c->orifice, err)) {
+        gr_h5md_free(h);
+        return NULL;
     }
+    return h;
+}
+
+/* Orifice o from its parts: the MSD and its kurtosis per lag, the two
+ * displacement distributions, the MSD fits. */
+static int analyse(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h5md *h, gr_err *err)
+{
+    if (gather(c, o, parts, r, h, err))
+        return err->code;
+    gr_msd_result(r->msd, r->mx, r->my, r->ex, r->ey, r->kx, r->ky);
+    for (size_t s = 0; s < r->ns; s++) {
+        r->lag[s] = r->msd->lag[s];
+        r->fall[s] = r->msd->n[s] > 0 ? r->fall[s] / r->msd->n[s] : NAN;
+    }
+    r->sel[0] = nearest_slot(r, 0.01);
+    r->sel[1] = nearest_slot(r, c->fall_stop);
+    if (distributions(c, o, parts, r, err))
+        return err->code;
+    fit_msd(r);
+    return GR_OK;
+}
+
+/* The MSD table (file and .dat) and its fits: exponent, error, prefactor,
+ * error and range for x then y, into fit. */
+static int write_msd(const ss_ctx *c, const ss_res *r, gr_h5md *h, double fit[2][6], gr_err *err)
+{
+    char nm[128], dat[1400];
+    double tab[SS_MAX_SLOTS][10];
+    for (size_t s = 0; s < r->ns; s++) {
+        double row[10] = {r->lag[s], r->lag[s] / c->base.dt, r->msd->n[s], r->fall[s], r->mx[s],
+                          r->my[s], r->ex[s], r->ey[s], r->kx[s], r->ky[s]};
+        memcpy(tab[s], row, sizeof row);
+    }
+    const char *mcols = "lag_time,lag_steps,n,fall,msd_x,msd_y,err_x,err_y,kappa_x,kappa_y";
+    snprintf(nm, sizeof nm, "D%g/msd", r->D);
+    int rc = exp_put_result(h, nm, r->ns, 10, mcols, "mean square displacement and kurtosis per lag, all discharges", &tab[0][0], err);
+    snprintf(dat, sizeof dat, "%s/msd_D%g.dat", c->dir, r->D);
+    if (!rc)
+        rc = exp_write_dat(dat, "lag_time lag_steps n fall msd_x msd_y err_x err_y kappa_x kappa_y", &tab[0][0], r->ns, 10, err);
+    for (int comp = 0; comp < 2; comp++) {
+        const gr_fit *f = &r->fit[comp];
+        double row[6] = {r->fit_ok[comp] ? f->p[1] : NAN, r->fit_ok[comp] ? f->err[1] : NAN,
+                         r->fit_ok[comp] ? f->p[0] : NAN, r->fit_ok[comp] ? f->err[0] : NAN,
+                         r->fit_range[0], r->fit_range[1]};
+        memcpy(fit[comp], row, sizeof row);
+    }
+    snprintf(nm, sizeof nm, "D%g/msd_fit", r->D);
+    if (!rc)
+        rc = exp_put_result(h, nm, 2, 6, "exponent,exponent_err,prefactor,prefactor_err,t_lo,t_hi",
+                 "log-log fit <d^2> = A t^p, rows x then y", &fit[0][0], err);
+    return rc;
+}
+
+/* The displacement distributions and their statistics, and the velocity
+ * fields with their grid and times. */
+static int write_pdfs_fields(const ss_ctx *c, const ss_res *r, gr_h5md *h, gr_err *err)
+{
+    char nm[128], dat[1400];
+    int rc = GR_OK;
+    for (int w = 0; w < 2 && !rc; w++) {
+        snprintf(nm, sizeof nm, "D%g/pdf_%s", r->D, w ? "long" : "short");
+        rc = exp_put_result(h, nm, NB, 5, "u,p_x,err_x,p_y,err_y",
+                 w ? "normalised displacement density, lag of a 2 d fall" : "normalised displacement density, lag of a 0.01 d fall",
+                 &r->pdf[w][0][0], err);
+        snprintf(dat, sizeof dat, "%s/pdf_%s_D%g.dat", c->dir, w ? "long" : "short", r->D);
+        if (!rc)
+            rc = exp_write_dat(dat, "u p_x err_x p_y err_y", &r->pdf[w][0][0], NB, 5, err);
+    }
+    snprintf(nm, sizeof nm, "D%g/pdf_stats", r->D);
+    if (!rc)
+        rc = exp_put_result(h, nm, 2, 10, "lag_time,fall,sd_x,sd_y,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,kappa_x,kappa_y",
+                 "rows: short lag, long lag", &r->stats[0][0], err);
+    size_t nc = (size_t)(r->grid[0] * r->grid[1]);
+    snprintf(nm, sizeof nm, "D%g/velocity_y", r->D);
+    if (!rc)
+        rc = exp_put_result(h, nm, c->ntimes, nc, NULL, "mean vertical velocity per cell (row-major, y rows) at field_steps", r->vy, err);
+    snprintf(nm, sizeof nm, "D%g/field_grid", r->D);
+    if (!rc)
+        rc = exp_put_result(h, nm, 6, 0, NULL, "nx, ny, x0, y0, cell width, cell height", r->grid, err);
+    double ts[SS_MAX_TIMES];
+    for (size_t j = 0; j < c->ntimes; j++)
+        ts[j] = (double)c->times[j];
+    snprintf(nm, sizeof nm, "D%g/field_steps", r->D);
+    if (!rc)
+        rc = exp_put_result(h, nm, c->ntimes, 0, NULL, "steps after opening of each velocity field", ts, err);
+    return rc;
+}
+
+/* Orifice r's row of the summary table, and its lines of the printed
+ * summary appended at *off. */
+static void summary_row(const ss_ctx *c, const ss_res *r, double fit[2][6], double *s, char *summary, size_t nsum,
+                        size_t *off)
+{
+    double row[20] = {r->D, (double)c->nreal, r->stats[0][0], r->stats[0][1], r->stats[0][2], r->stats[0][3],
+                      fit[0][0], fit[0][1], fit[1][0], fit[1][1], r->stats[0][8], r->stats[0][9],
+                      r->stats[1][1], r->stats[1][8], r->stats[1][9], r->stats[0][4], r->stats[0][5],
+                      r->stats[0][6], r->stats[0][7], r->stats[1][0]};
+    memcpy(s, row, sizeof row);
+    if (summary && *off < nsum)
+        *off += (size_t)snprintf(summary + *off, nsum - *off,
+                                 "  D = %g d: MSD exponents x %.3f +- %.3f, y %.3f +- %.3f; kappa (x, y) %.2f, %.2f at a %.3g d fall, %.2f, %.2f at %.3g d\n"
+                                 "    per discharge: filling %.0f s wall (%.0f s CPU), run %.0f s wall (%.0f s CPU) for %.0f steps\n",
+                                 r->D, fit[0][0], fit[0][1], fit[1][0], fit[1][1], s[10], s[11], s[3], s[13], s[14], s[12],
+                                 r->cost[0], r->cost[1], r->cost[2], r->cost[3], r->cost[4]);
+}
+
+static int write_summary(const ss_ctx *c, gr_h5md *h, const double *summ, gr_err *err)
+{
     const char *scols = "D,realisations,lag_short,fall_short,sd_x,sd_y,exp_x,exp_x_err,exp_y,exp_y_err,kappa_x_short,kappa_y_short,fall_long,kappa_x_long,kappa_y_long,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,lag_long";
-    if (!rc)
-        rc = exp_put_result(h, "summary", nr, 20, scols, "one row per orifice", &summ[0][0], err);
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/summary.dat", c->dir);
-        char hdr[600];
-        snprintf(hdr, sizeof hdr, "%s", scols);
-        for (char *q = hdr; *q; q++)
-            if (*q == ',')
-                *q = ' ';
-        rc = exp_write_dat(path, hdr, &summ[0][0], nr, 20, err);
-    }
-    /* figures */
-    size_t big = 0;
+    if (exp_put_result(h, "summary", c->norif, 20, scols, "one row per orifice", summ, err))
+        return err->code;
+    char path[1300], hdr[600];
+    snprintf(path, sizeof path, "%s/summary.dat", c->dir);
+    snprintf(hdr, sizeof hdr, "%s", scols);
+    for (char *q = hdr; *q; q++)
+        if (*q == ',')
+            *q = ' ';
+    return exp_write_dat(path, hdr, summ, c->norif, 20, err);
+}
+
+/* Figs. 3.1-3.6 and the stationarity table (which the figure computes). */
+static int figures(const ss_ctx *c, char *const *parts, ss_res *res, double *stab, gr_h5md *h, gr_err *err)
+{
+    size_t nr = c->norif, big = 0;
+    char path[1300];
     for (size_t o = 1; o < nr; o++)
         if (c->orifice[o] > c->orifice[big])
             big = o;
+    int rc = GR_OK;
     for (size_t o = 0; o < nr && !rc; o++) {
         if (o == big)
             snprintf(path, sizeof path, "%s/fig3_2_velocity_profiles.png", c->dir);
@@ -357,34 +384,53 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
             snprintf(path, sizeof path, "%s/fig3_2_velocity_profiles_D%g.png", c->dir, c->orifice[o]);
         rc = ss_fig_velocity(path, c, &res[o], ss_fig32_steps, 6, err);
     }
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/fig3_2_stationarity.png", c->dir);
+    snprintf(path, sizeof path, "%s/fig3_2_stationarity.png", c->dir);
+    if (!rc)
         rc = ss_fig_stationarity(path, c, res, nr, stab, err);
-    }
     if (!rc)
         rc = exp_put_result(h, "stationarity", nr * c->ntimes, 3, "step,discharges,relative_change",
                  "velocity field change since the previous field time, rows by orifice then time", stab, err);
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/fig3_3_displacement_pdf.png", c->dir);
+    snprintf(path, sizeof path, "%s/fig3_3_displacement_pdf.png", c->dir);
+    if (!rc)
         rc = ss_fig_pdf(path, res, nr, 0, 1, "Displacements over a 0.01 d fall (thesis fig. 3.3)", err);
-    }
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/fig3_4_msd.png", c->dir);
+    snprintf(path, sizeof path, "%s/fig3_4_msd.png", c->dir);
+    if (!rc)
         rc = ss_fig_msd(path, res, nr, err);
-    }
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/fig3_5_displacement_pdf_long.png", c->dir);
+    snprintf(path, sizeof path, "%s/fig3_5_displacement_pdf_long.png", c->dir);
+    if (!rc)
         rc = ss_fig_pdf(path, res, nr, 1, 0, "Displacements at long times: a 2 d fall (thesis fig. 3.5)", err);
-    }
-    if (!rc) {
-        snprintf(path, sizeof path, "%s/fig3_6_kurtosis.png", c->dir);
+    snprintf(path, sizeof path, "%s/fig3_6_kurtosis.png", c->dir);
+    if (!rc)
         rc = ss_fig_kurtosis(path, res, nr, err);
-    }
     if (!rc)
         rc = ss_pictures(c, parts, big, err);
-    if (rc)
+    return rc;
+}
+
+int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, gr_err *err)
+{
+    gr_h5md *h = open_result(c, err);
+    if (!h)
+        return err->code;
+    size_t nr = c->norif, off = 0;
+    ss_res *res = calloc(nr, sizeof *res);
+    double *stab = malloc(nr * c->ntimes * 3 * sizeof *stab);
+    double summ[SS_MAX_ORIF][20];
+    int rc = res && stab ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
+    if (summary && nsum)
+        summary[0] = 0;
+    for (size_t o = 0; o < nr && !rc; o++) {
+        double fit[2][6];
+        rc = analyse(c, o, parts, &res[o], h, err) || write_msd(c, &res[o], h, fit, err) ||
+             write_pdfs_fields(c, &res[o], h, err);
+        if (!rc)
+            summary_row(c, &res[o], fit, summ[o], summary, nsum, &off);
+    }
+    rc = rc || write_summary(c, h, &summ[0][0], err) || figures(c, parts, res, stab, h, err);
+    if (rc) {
         gr_h5md_free(h);
-    else
+        rc = err->code ? err->code : GR_ERUN;
+    } else
         rc = gr_h5md_close(h, err);
     for (size_t o = 0; res && o < nr; o++)
         orif_free(&res[o]);
