@@ -133,14 +133,15 @@ double silo_packing(const gr_particles *p, double x0, double y0, double x1, doub
     return a / ((x1 - x0) * (y1 - y0));
 }
 
-int silo_check_method(const silo_cfg *c, const char *who, gr_err *err)
+int silo_choose_method(silo_cfg *c, const char *name, gr_err *err)
 {
-    if (gr_sim_require(c->method, GR_OP_SNAPSHOT, who, err))
+    if (gr_method_lookup(name, "--method", &c->method, err) ||
+        gr_sim_require(c->method, GR_OP_SNAPSHOT, "the silo", err))
         return err->code;
     gr_scene *sc = silo_scene(c, 0.0, err);
     if (!sc)
         return err->code;
-    int rc = gr_method_require_features(c->method, gr_scene_features(sc), who, err);
+    int rc = gr_method_require_features(c->method, gr_scene_features(sc), "the silo", err);
     gr_scene_free(sc);
     return rc;
 }

@@ -42,9 +42,10 @@ void silo_cfg_quick(silo_cfg *c, double D);
  * closed). Returns the parsed scene or NULL. */
 gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err);
 
-/* GR_EINPUT, naming the first missing feature or operation and `who`, when
- * c->method cannot run the silo of c (opened, with c->reinsert). */
-int silo_check_method(const silo_cfg *c, const char *who, gr_err *err);
+/* The method named `name` (--method) into c->method; GR_EINPUT naming the
+ * nearest method, or the first missing feature or operation, when it
+ * cannot run the silo of c opened at its orifice. */
+int silo_choose_method(silo_cfg *c, const char *name, gr_err *err);
 
 /* A settled silo: every grain (walls, gate grains closing the orifice and
  * the mobile ones) after the filling. */

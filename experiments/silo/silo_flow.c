@@ -184,6 +184,26 @@ static int sf_report_any(const void *ctx, char *const *parts, char *summary, siz
     return sf_report(ctx, parts, summary, nsum, err);
 }
 
+/* Run (or reuse) every unit, then the report; the exit code. */
+static int run_sweep(sf_ctx *c, int jobs, int force, int quiet)
+{
+    char pdir[1100];
+    snprintf(pdir, sizeof pdir, "%s/parts", c->dir);
+    gr_err e = {0};
+    size_t nu = c->norif * (size_t)c->nreal, reused = 0;
+    exp_sweep sw = {nu, jobs, pdir, "flow", !quiet, "orifices", force};
+    char summary[4096] = "";
+    double t_units = 0;
+    int rc = exp_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, c, summary,
+                                   sizeof summary, &t_units, &reused, &e);
+    if (rc)
+        fprintf(stderr, "grano silo-flow: %s\n", e.msg);
+    else if (!quiet)
+        fprintf(stderr, "grano silo-flow: %zu units (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s",
+                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", c->dir, summary);
+    return rc;
+}
+
 /* a long option without a short one */
 #define OPT_METHOD 0x100
 
@@ -254,18 +274,15 @@ int cmd_silo_flow(int argc, char **argv)
         if (c.orifice[i] >= c.base.width - 2)
             return bad("--orifices", orif, "narrower than the silo");
     gr_err me = {0};
-    int refused = gr_method_lookup(method, "--method", &c.base.method, &me);
-    if (!refused) {
-        /* the silo as the units will open it */
-        silo_cfg probe = c.base;
-        probe.orifice = c.orifice[0];
-        probe.reinsert = 1;
-        refused = silo_check_method(&probe, "the silo", &me);
-    }
-    if (refused) {
+    /* the silo as the units will open it */
+    silo_cfg probe = c.base;
+    probe.orifice = c.orifice[0];
+    probe.reinsert = 1;
+    if (silo_choose_method(&probe, method, &me)) {
         fprintf(stderr, "grano silo-flow: %s\n", me.msg);
         return 2;
     }
+    c.base.method = probe.method;
     c.nreal = (int)nreal;
     c.seed = (uint64_t)seed;
     c.discard = discard >= 0 ? discard : quick ? 8000 : 10000;
@@ -274,21 +291,8 @@ int cmd_silo_flow(int argc, char **argv)
     c.sample_every = c.block >= 500 ? c.block / 20 : c.block;
     c.lift = 6;
     c.split = 9;
-    char dir[1024], pdir[1100];
+    char dir[1024];
     snprintf(dir, sizeof dir, "%s", out ? out : quick ? "results/silo-flow-quick" : "results/silo-flow");
-    snprintf(pdir, sizeof pdir, "%s/parts", dir);
     c.dir = dir;
-    gr_err e = {0};
-    size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    exp_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
-    char summary[4096] = "";
-    double t_units = 0;
-    int rc = exp_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, &c, summary,
-                                   sizeof summary, &t_units, &reused, &e);
-    if (rc)
-        fprintf(stderr, "grano silo-flow: %s\n", e.msg);
-    else if (!quiet)
-        fprintf(stderr, "grano silo-flow: %zu units (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
-                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
-    return rc;
+    return run_sweep(&c, (int)jobs, force, quiet);
 }
