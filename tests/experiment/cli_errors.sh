@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Bad input to `grano run`: exit code 2, a message naming the file, line and
-# key (or the flag), and no output file written. TAP output.
+# Bad input to `grano run` (and the other subcommands' refusals of a
+# method): exit code 2, a message naming the file, line and key (or the
+# flag, the feature or the counter), and no output file written. TAP output.
 set -u
 GRANO=$1
 tmp=$(mktemp -d)
@@ -8,23 +9,23 @@ trap 'rm -rf "$tmp"' EXIT
 n=0
 fails=0
 
-# check NAME EXPECTED_CODE PATTERN... -- ARGS...
-check() {
-    local name=$1 code=$2
-    shift 2
+# check_cmd SUBCOMMAND NAME EXPECTED_CODE PATTERN... -- ARGS...
+check_cmd() {
+    local sub=$1 name=$2 code=$3
+    shift 3
     local pats=()
     while [ "$1" != "--" ]; do pats+=("$1"); shift; done
     shift
     n=$((n + 1))
-    rm -f "$tmp/out.h5" "$tmp/out.ckpt" "$tmp/out.h5.xdmf"
-    "$GRANO" run "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+    rm -rf "$tmp/out.h5" "$tmp/out.ckpt" "$tmp/out.h5.xdmf" "$tmp/never"
+    "$GRANO" "$sub" "$@" >"$tmp/stdout" 2>"$tmp/stderr"
     local rc=$?
     local ok=1 why=""
     [ "$rc" = "$code" ] || { ok=0; why="exit code $rc, expected $code"; }
     for p in "${pats[@]}"; do
         grep -qF -- "$p" "$tmp/stderr" || { ok=0; why="$why; message lacks '$p'"; }
     done
-    if [ "$code" = 2 ] && { [ -e "$tmp/out.h5" ] || [ -e "$tmp/out.ckpt" ]; }; then
+    if [ "$code" = 2 ] && { [ -e "$tmp/out.h5" ] || [ -e "$tmp/out.ckpt" ] || [ -e "$tmp/never" ]; }; then
         ok=0; why="$why; an output file was written"
     fi
     if [ $ok = 1 ]; then
@@ -35,6 +36,8 @@ check() {
         fails=$((fails + 1))
     fi
 }
+# check NAME EXPECTED_CODE PATTERN... -- ARGS...: grano run
+check() { check_cmd run "$@"; }
 
 scene() { # write a scene file from stdin
     cat >"$tmp/$1"
@@ -131,5 +134,22 @@ dt = 0.01
 INI
     check "dem: time step beyond the contact-time limit" 2 "bigdt.ini:9:" "'dt'" -- "$tmp/bigdt.ini" --method dem --out "$tmp/out.h5"
 fi
+
+# A method is refused by name when it lacks what an experiment needs.
+if "$GRANO" methods | grep -q "edmd"; then
+    check_cmd silo-flow "silo-flow: edmd lacks grain walls" 2 "walls made of fixed grains" "'edmd'" -- \
+        --method edmd --quick -o "$tmp/never"
+    check_cmd silo-start "silo-start: edmd lacks grain walls" 2 "walls made of fixed grains" "'edmd'" -- \
+        --method edmd --quick -o "$tmp/never"
+    check_cmd course "course: --naive is edmd's" 2 "--naive" "'dem'" -- maxwell --method dem --naive --quick \
+        --out "$tmp/never"
+fi
+check_cmd course "course pressure: dem gives no pair collisions" 2 "'pair_collisions'" "'dem'" -- \
+    pressure --method dem --quick --out "$tmp/never"
+check_cmd silo-flow "silo-flow: unknown method, nearest suggested" 2 "--method" "'demm'" "did you mean 'dem'" -- \
+    --method demm --quick -o "$tmp/never"
+check_cmd course "course: unknown method, nearest suggested" 2 "--method" "'edmm'" "did you mean 'edmd'" -- \
+    cooling --method edmm --quick --out "$tmp/never"
+
 echo "1..$n"
 exit $((fails > 0))

@@ -8,6 +8,7 @@
 
 #include "cmd.h"
 #include "edmd/edmd.h"
+#include "order.h"
 #include "init.h"
 #include "scene.h"
 
@@ -112,12 +113,6 @@ static int bench_round(gr_edmd *s, double want, double *rate, gr_err *err)
     return rc;
 }
 
-static int cmp_dbl(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 /* The two systems timed in turns: the ratio of their rates within each
  * round is immune to the host's speed drifting over minutes. */
 static int bench_ratio(long n1, long n2, const double *etas, int ne, int rounds, int arity, double cell,
@@ -152,7 +147,7 @@ static int bench_ratio(long n1, long n2, const double *etas, int ne, int rounds,
         }
         gr_edmd_free(a);
         gr_edmd_free(b);
-        qsort(r, (size_t)rounds, sizeof *r, cmp_dbl);
+        qsort(r, (size_t)rounds, sizeof *r, exp_cmp_double);
         /* equal collisions per round: the overall rates are harmonic means */
         printf("RATIO method=edmd eta=%g n_small=%ld n_large=%ld rounds=%d ratio=%.3f median=%.3f min=%.3f "
                "max=%.3f\n",

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "parts.h"
 #include "plot.h"
 #include "silo_start.h"
 
@@ -200,17 +201,17 @@ int ss_pictures(const ss_ctx *c, char *const *parts, size_t last_orif, gr_err *e
     gr_ckpt *ck = rc ? NULL : gr_ckpt_open(parts[last_orif * (size_t)c->nreal], err);
     if (!rc && !ck)
         rc = err->code;
-    if (!rc && !(rc = silo_get_particles(ck, "final", p, err))) {
+    if (!rc && !(rc = exp_get_particles(ck, "final", p, err))) {
         snprintf(png, sizeof png, "%s/silo_snapshot.png", c->dir);
         snprintf(title, sizeof title, "silo-start, D = %g d, end of the start of the discharge", cfg.orifice);
         rc = gr_plot_snapshot(png, p, sc->width, cfg.base + cfg.height + 2,
-                              silo_get_scalar(ck, "steps") * cfg.dt, title, err);
+                              exp_get_scalar(ck, "steps") * cfg.dt, title, err);
     }
     size_t nf = 0;
     gr_err ig = {0};
-    if (!rc && !gr_ckpt_len(ck, "filling", &nf, &ig) && !(rc = silo_get_particles(ck, "filling", p, err))) {
+    if (!rc && !gr_ckpt_len(ck, "filling", &nf, &ig) && !(rc = exp_get_particles(ck, "filling", p, err))) {
         snprintf(png, sizeof png, "%s/fig3_1_filling.png", c->dir);
-        rc = gr_plot_snapshot(png, p, sc->width, sc->height, silo_get_scalar(ck, "t_filling"),
+        rc = gr_plot_snapshot(png, p, sc->width, sc->height, exp_get_scalar(ck, "t_filling"),
                               cfg.hopper ? "filling through the hopper (thesis fig. 3.1)"
                                          : "filling (quick mode: from a lattice in the silo, no hopper)", err);
     }

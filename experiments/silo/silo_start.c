@@ -12,9 +12,12 @@
 
 #include "cmd.h"
 #include "fields.h"
+#include "opts.h"
+#include "parts.h"
 #include "progress.h"
 #include "rng.h"
 #include "silo_start.h"
+#include "sweep.h"
 
 const long ss_fig32_steps[6] = {300, 700, 1100, 1700, 6300, 10000};
 
@@ -31,10 +34,10 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
-                     "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g "
+                     "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
                      "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu lags=",
                      b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
-                     (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->fs, c->min_steps,
+                     (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->fs, c->min_steps,
                      c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap);
     for (size_t s = 0; s < c->nslots && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "%ld,", c->lag[s]);
@@ -91,7 +94,7 @@ static int ustate_init(ustate *u, const ss_ctx *c, uint64_t seed, gr_err *err)
     u->c = c;
     u->wcap = (size_t)((c->window + 2) * (c->window + 2) * 1.3) + 16;
     u->msd = gr_msd_create(c->nslots, err);
-    u->rng = gr_rng_create(seed, 77, err);
+    u->rng = gr_rng_create(seed, GR_STREAM_SILO_START, err);
     u->dx = malloc(u->wcap * sizeof *u->dx), u->dy = malloc(u->wcap * sizeof *u->dy);
     u->widx = malloc(u->wcap * sizeof *u->widx);
     u->wx = malloc(u->wcap * sizeof *u->wx), u->wy = malloc(u->wcap * sizeof *u->wy);
@@ -215,12 +218,12 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     }
     if (!rc) rc = gr_ckpt_put_f64(ck, "series", ts, nts, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "window", win, 2, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_settle", set->t_settle, err);
-    if (!rc) rc = silo_put_scalar(ck, "top0", set->top, err);
-    if (!rc) rc = silo_put_scalar(ck, "steps", (double)steps, err);
-    if (!rc) rc = silo_put_particles(ck, "final", fin, err);
-    if (!rc && set->filling) rc = silo_put_particles(ck, "filling", set->filling, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_filling", set->t_filling, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
+    if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
+    if (!rc) rc = exp_put_scalar(ck, "steps", (double)steps, err);
+    if (!rc) rc = exp_put_particles(ck, "final", fin, err);
+    if (!rc && set->filling) rc = exp_put_particles(ck, "filling", set->filling, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     free(buf);
     if (rc) {
@@ -322,7 +325,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
                              step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
         if ((step >= c->min_steps && top0 - top >= c->fall_stop) || step >= c->max_steps)
             break;
-        if ((rc = silo_advance(st, (uint64_t)c->fs, err)))
+        if ((rc = silo_advance(&cfg, st, (uint64_t)c->fs, err)))
             break;
         f++, step += c->fs;
     }
@@ -362,6 +365,8 @@ static void usage(FILE *f)
         "      --grains N       mobile grains (default 5000)\n"
         "      --width W        container width in d (default 50; height 2 W)\n"
         "      --max-steps N    stop a discharge after N steps at most\n"
+        "      --method M       the method (default dem); one without the silo's features\n"
+        "                       (walls made of fixed grains, an orifice, ...) is refused\n"
         "  -Q, --quick          800 grains in a 20 d x 48 d silo filled without hopper,\n"
         "                       2 realisations, shorter runs: a smoke test in seconds\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -428,6 +433,29 @@ static int ss_report_any(const void *ctx, char *const *parts, char *summary, siz
     return ss_report(ctx, parts, summary, nsum, err);
 }
 
+/* Run (or reuse) every unit, then the report; the exit code. */
+static int run_sweep(ss_ctx *c, int jobs, int force, int quiet)
+{
+    char pdir[1100];
+    snprintf(pdir, sizeof pdir, "%s/parts", c->dir);
+    gr_err e = {0};
+    size_t nu = c->norif * (size_t)c->nreal, reused = 0;
+    exp_sweep sw = {nu, jobs, pdir, "start", !quiet, "discharges", force};
+    char summary[4096] = "";
+    double t_units = 0;
+    int rc = exp_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, c, summary,
+                                   sizeof summary, &t_units, &reused, &e);
+    if (rc)
+        fprintf(stderr, "grano silo-start: %s\n", e.msg);
+    else if (!quiet)
+        fprintf(stderr, "grano silo-start: %zu discharges (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s",
+                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", c->dir, summary);
+    return rc;
+}
+
+/* a long option without a short one */
+#define OPT_METHOD 0x100
+
 int cmd_silo_start(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -435,10 +463,11 @@ int cmd_silo_start(int argc, char **argv)
         {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
         {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
         {"width", required_argument, NULL, 'W'},    {"max-steps", required_argument, NULL, 'M'},
-        {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
+        {"method", required_argument, NULL, OPT_METHOD}, {"quick", no_argument, NULL, 'Q'},
+        {"force", no_argument, NULL, 'f'},
         {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0}};
-    const char *orif = NULL, *out = NULL;
+    const char *orif = NULL, *out = NULL, *method = "dem";
     long nreal = -1, jobs = 1, seed = 1, grains = -1, maxsteps = -1;
     double width = -1;
     int quick = 0, force = 0, quiet = 0, ch;
@@ -458,6 +487,7 @@ int cmd_silo_start(int argc, char **argv)
             if (*end || !(width >= 8) || !isfinite(width)) return bad("--width", optarg, "a width >= 8");
             break;
         case 'M': if (parse_long(optarg, 100, &maxsteps)) return bad("--max-steps", optarg, "an integer >= 100"); break;
+        case OPT_METHOD: method = optarg; break;
         case 'Q': quick = 1; break;
         case 'f': force = 1; break;
         case 'q': quiet = 1; break;
@@ -482,11 +512,20 @@ int cmd_silo_start(int argc, char **argv)
         c.base.n = grains;
     if (width > 0)
         c.base.width = width, c.base.height = 2 * width;
-    if (silo_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
+    if (exp_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
         return bad("--orifices", orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < c.norif; i++)
         if (c.orifice[i] >= c.base.width - 2)
             return bad("--orifices", orif, "narrower than the silo");
+    gr_err me = {0};
+    /* the silo as the units will open it */
+    silo_cfg probe = c.base;
+    probe.orifice = c.orifice[0];
+    if (silo_choose_method(&probe, method, &me)) {
+        fprintf(stderr, "grano silo-start: %s\n", me.msg);
+        return 2;
+    }
+    c.base.method = probe.method;
     c.nreal = (int)(nreal > 0 ? nreal : quick ? 2 : 20);
     c.seed = (uint64_t)seed;
     c.fs = 20;
@@ -498,21 +537,8 @@ int cmd_silo_start(int argc, char **argv)
     c.sample_cap = quick ? 4000 : 20000;
     make_lags(&c);
     make_times(&c);
-    char dir[1024], pdir[1100];
+    char dir[1024];
     snprintf(dir, sizeof dir, "%s", out ? out : quick ? "results/silo-start-quick" : "results/silo-start");
-    snprintf(pdir, sizeof pdir, "%s/parts", dir);
     c.dir = dir;
-    gr_err e = {0};
-    size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    silo_sweep sw = {nu, (int)jobs, pdir, "start", !quiet, "discharges", force};
-    char summary[4096] = "";
-    double t_units = 0;
-    int rc = silo_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, &c, summary,
-                                   sizeof summary, &t_units, &reused, &e);
-    if (rc)
-        fprintf(stderr, "grano silo-start: %s\n", e.msg);
-    else if (!quiet)
-        fprintf(stderr, "grano silo-start: %zu discharges (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
-                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
-    return rc;
+    return run_sweep(&c, (int)jobs, force, quiet);
 }

@@ -12,8 +12,11 @@
 #include <time.h>
 
 #include "cmd.h"
+#include "opts.h"
+#include "parts.h"
 #include "progress.h"
 #include "silo_flow.h"
+#include "sweep.h"
 
 void sf_label(size_t unit, void *ctx, char *buf, size_t n)
 {
@@ -28,10 +31,10 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     snprintf(buf, n,
-             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu dt=%.17g ke=%.17g "
+             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g ke=%.17g "
              "discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g",
              b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
-             (unsigned long long)(c->seed + r), b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
+             (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
              c->sample_every, c->lift);
 }
 
@@ -69,7 +72,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
                      : silo_packing(set.p, (rc ? 0 : sc->silo.x0) + mg, cfg.base + 2 * mg + 6,
                                     (rc ? 0 : sc->silo.x0) + cfg.width - mg, set.top - 2 * mg);
     long total = c->discard + c->block * (long)c->nblocks;
-    if (!rc && (rc = silo_advance(st, (uint64_t)c->discard, err)) == GR_OK) {
+    if (!rc && (rc = silo_advance(&cfg, st, (uint64_t)c->discard, err)) == GR_OK) {
         gr_obs ob;
         gr_obs_clear(&ob);
         rc = gr_sim_observe(st, &ob, err);
@@ -79,7 +82,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
             int ns = 0;
             while (done < c->block && !rc) {
                 long k = c->sample_every < c->block - done ? c->sample_every : c->block - done;
-                if ((rc = silo_advance(st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
+                if ((rc = silo_advance(&cfg, st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
                     break;
                 done += k;
                 phi[b] += silo_packing(snap, sq[0], sq[1], sq[2], sq[3]);
@@ -104,10 +107,10 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (!rc) rc = gr_ckpt_put_f64(ck, "counts", count, (size_t)c->nblocks, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "packing", phi, (size_t)c->nblocks, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "top", top, (size_t)c->nblocks, err);
-    if (!rc) rc = silo_put_scalar(ck, "bulk_packing", bulk, err);
-    if (!rc) rc = silo_put_scalar(ck, "t_settle", set.t_settle, err);
-    if (!rc) rc = silo_put_scalar(ck, "top0", set.top, err);
-    if (!rc) rc = silo_put_particles(ck, "final", snap, err);
+    if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
+    if (!rc) rc = exp_put_scalar(ck, "top0", set.top, err);
+    if (!rc) rc = exp_put_particles(ck, "final", snap, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (ck) {
         if (rc)
@@ -147,6 +150,8 @@ static void usage(FILE *f)
         "      --discard N      steps discarded after opening (default 10000)\n"
         "      --grains N       mobile grains (default 5000)\n"
         "      --width W        container width in d (default 50; height 2 W)\n"
+        "      --method M       the method (default dem); one without the silo's features\n"
+        "                       (walls made of fixed grains, an orifice, ...) is refused\n"
         "  -Q, --quick          900 grains in a 24 d x 48 d silo filled without hopper,\n"
         "                       7 orifices, 16 blocks of 2000 steps: a smoke test\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -179,6 +184,29 @@ static int sf_report_any(const void *ctx, char *const *parts, char *summary, siz
     return sf_report(ctx, parts, summary, nsum, err);
 }
 
+/* Run (or reuse) every unit, then the report; the exit code. */
+static int run_sweep(sf_ctx *c, int jobs, int force, int quiet)
+{
+    char pdir[1100];
+    snprintf(pdir, sizeof pdir, "%s/parts", c->dir);
+    gr_err e = {0};
+    size_t nu = c->norif * (size_t)c->nreal, reused = 0;
+    exp_sweep sw = {nu, jobs, pdir, "flow", !quiet, "orifices", force};
+    char summary[4096] = "";
+    double t_units = 0;
+    int rc = exp_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, c, summary,
+                                   sizeof summary, &t_units, &reused, &e);
+    if (rc)
+        fprintf(stderr, "grano silo-flow: %s\n", e.msg);
+    else if (!quiet)
+        fprintf(stderr, "grano silo-flow: %zu units (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s",
+                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", c->dir, summary);
+    return rc;
+}
+
+/* a long option without a short one */
+#define OPT_METHOD 0x100
+
 int cmd_silo_flow(int argc, char **argv)
 {
     static const struct option opts[] = {
@@ -187,10 +215,11 @@ int cmd_silo_flow(int argc, char **argv)
         {"out", required_argument, NULL, 'o'},      {"blocks", required_argument, NULL, 'b'},
         {"block-steps", required_argument, NULL, 'B'}, {"discard", required_argument, NULL, 'X'},
         {"grains", required_argument, NULL, 'G'},   {"width", required_argument, NULL, 'W'},
-        {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
+        {"method", required_argument, NULL, OPT_METHOD}, {"quick", no_argument, NULL, 'Q'},
+        {"force", no_argument, NULL, 'f'},
         {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
         {NULL, 0, NULL, 0}};
-    const char *orif = NULL, *out = NULL;
+    const char *orif = NULL, *out = NULL, *method = "dem";
     long nreal = 1, jobs = 1, seed = 1, grains = -1, blocks = -1, bsteps = -1, discard = -1;
     double width = -1;
     int quick = 0, force = 0, quiet = 0, ch;
@@ -212,6 +241,7 @@ int cmd_silo_flow(int argc, char **argv)
             width = strtod(optarg, &end);
             if (*end || !(width >= 8) || !isfinite(width)) return bad("--width", optarg, "a width >= 8");
             break;
+        case OPT_METHOD: method = optarg; break;
         case 'Q': quick = 1; break;
         case 'f': force = 1; break;
         case 'q': quiet = 1; break;
@@ -238,11 +268,21 @@ int cmd_silo_flow(int argc, char **argv)
     if (width > 0)
         c.base.width = width, c.base.height = 2 * width;
     const char *deflist = quick ? "3.56,4.2,6.24,8,10,12,14" : "3.56,4.5,5.3,6.24,7.2,8.2,9.2,10.5,12,13.5,15,16.04";
-    if (silo_parse_list(orif ? orif : deflist, c.orifice, SF_MAX_ORIF, &c.norif))
+    if (exp_parse_list(orif ? orif : deflist, c.orifice, SF_MAX_ORIF, &c.norif))
         return bad("--orifices", orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < c.norif; i++)
         if (c.orifice[i] >= c.base.width - 2)
             return bad("--orifices", orif, "narrower than the silo");
+    gr_err me = {0};
+    /* the silo as the units will open it */
+    silo_cfg probe = c.base;
+    probe.orifice = c.orifice[0];
+    probe.reinsert = 1;
+    if (silo_choose_method(&probe, method, &me)) {
+        fprintf(stderr, "grano silo-flow: %s\n", me.msg);
+        return 2;
+    }
+    c.base.method = probe.method;
     c.nreal = (int)nreal;
     c.seed = (uint64_t)seed;
     c.discard = discard >= 0 ? discard : quick ? 8000 : 10000;
@@ -251,21 +291,8 @@ int cmd_silo_flow(int argc, char **argv)
     c.sample_every = c.block >= 500 ? c.block / 20 : c.block;
     c.lift = 6;
     c.split = 9;
-    char dir[1024], pdir[1100];
+    char dir[1024];
     snprintf(dir, sizeof dir, "%s", out ? out : quick ? "results/silo-flow-quick" : "results/silo-flow");
-    snprintf(pdir, sizeof pdir, "%s/parts", dir);
     c.dir = dir;
-    gr_err e = {0};
-    size_t nu = c.norif * (size_t)c.nreal, reused = 0;
-    silo_sweep sw = {nu, (int)jobs, pdir, "flow", !quiet, "orifices", force};
-    char summary[4096] = "";
-    double t_units = 0;
-    int rc = silo_sweep_and_report(&sw, sf_unit, sf_label, sf_key, sf_report_any, &c, summary,
-                                   sizeof summary, &t_units, &reused, &e);
-    if (rc)
-        fprintf(stderr, "grano silo-flow: %s\n", e.msg);
-    else if (!quiet)
-        fprintf(stderr, "grano silo-flow: %zu units (%zu reused) in %.1f s wall with %ld job%s; wrote %s/\n%s",
-                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
-    return rc;
+    return run_sweep(&c, (int)jobs, force, quiet);
 }

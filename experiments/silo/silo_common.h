@@ -1,0 +1,89 @@
+/* Shared by `grano silo-start` and `grano silo-flow` (thesis chapters 3
+ * and 4): the thesis silo built from a scene text for a given size,
+ * orifice and seed; filling through a hopper and settling until the
+ * kinetic energy has decayed; opening. Everything is deterministic from
+ * seeds. The sweep over units of work is lib/sweep.h. */
+#ifndef GR_SILO_COMMON_H
+#define GR_SILO_COMMON_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "method.h"
+#include "particles.h"
+#include "scene.h"
+
+/* One silo. Lengths in grain diameters, times in tau = sqrt(d/g). */
+typedef struct {
+    long n;              /* mobile grains */
+    double width, height; /* container inner size */
+    double base;         /* y of the base's inner surface */
+    double orifice;      /* D */
+    int hopper;          /* fill through a hopper from a lattice above it;
+                            0: lattice inside the container (quick modes) */
+    int reinsert;        /* grains that leave come back at the top */
+    uint64_t seed;       /* lattice velocities and every stream after them */
+    const gr_method_type *method; /* dem unless --method says otherwise */
+    double dt;           /* dem's time step; for another method the time one
+                            "step" of the experiments stands for */
+    double ke_tol;       /* settled when kinetic energy per grain < ke_tol (m g d) */
+    double fill_max;     /* give up settling at this simulated time */
+    double band_lo, band_hi; /* reinsertion band; 0: the scene default */
+} silo_cfg;
+
+/* The thesis silo (section 3.1) at full size, orifice D. */
+void silo_cfg_thesis(silo_cfg *c, double D);
+/* The small silo of the quick modes: n grains, a narrower container,
+ * filled from a lattice inside it. */
+void silo_cfg_quick(silo_cfg *c, double D);
+
+/* Scene text for the silo; the orifice opens at open_time (INFINITY:
+ * closed). Returns the parsed scene or NULL. */
+gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err);
+
+/* The method named `name` (--method) into c->method; GR_EINPUT naming the
+ * nearest method, or the first missing feature or operation, when it
+ * cannot run the silo of c opened at its orifice. */
+int silo_choose_method(silo_cfg *c, const char *name, gr_err *err);
+
+/* A settled silo: every grain (walls, gate grains closing the orifice and
+ * the mobile ones) after the filling. */
+typedef struct {
+    gr_particles *p;
+    double t_settle;     /* simulated time of the filling and settling */
+    double top;          /* height of the highest mobile grain */
+    double ekin;         /* kinetic energy per grain at the end */
+    gr_particles *filling; /* a picture of the filling (thesis fig. 3.1), may be NULL */
+    double t_filling;
+} silo_settled;
+
+/* Fill and settle: run with the orifice closed until every grain is inside
+ * the container and the kinetic energy per grain is below ke_tol (checked
+ * every 0.5 tau). progress (may be NULL) receives the fraction done. */
+int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err);
+void silo_settled_free(silo_settled *s);
+
+/* An instance on the settled grains whose orifice opens at its first step
+ * (its clock restarts at 0, so times are times after opening). Grains that
+ * leave are reinserted (when c->reinsert) in a band from 1 d to 5 d above
+ * the settled packing's highest grain, so that they land on its surface
+ * and the height stays constant. */
+int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, gr_sim **state,
+              gr_err *err);
+
+/* Advance exactly `steps` steps of dem, or steps * c->dt in time with
+ * another method. */
+int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err);
+
+/* Highest mobile grain of a snapshot (-INFINITY if none). */
+double silo_top(const gr_particles *p);
+/* Height of the free surface: the mean height of the k highest mobile
+ * grains (one layer for k = the silo width), robust to a loose grain perched
+ * on top. */
+double silo_surface(const gr_particles *p, size_t k, double *buf);
+/* Mean packing fraction of the mobile grains over a rectangle (exact disk
+ * areas). */
+double silo_packing(const gr_particles *p, double x0, double y0, double x1, double y1);
+
+#endif
