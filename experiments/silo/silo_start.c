@@ -19,8 +19,6 @@
 #include "silo_start.h"
 #include "sweep.h"
 
-const long ss_fig32_steps[6] = {300, 700, 1100, 1700, 6300, 10000};
-
 void ss_label(size_t unit, void *ctx, char *buf, size_t n)
 {
     const ss_ctx *c = ctx;

@@ -7,6 +7,8 @@
 #include "plot.h"
 #include "silo_start.h"
 
+const long ss_fig32_steps[6] = {300, 700, 1100, 1700, 6300, 10000};
+
 
 static void datablock(FILE *gp, const char *name, const double *v, size_t rows, size_t cols,
                       int skip_nonpos_col)
