@@ -38,12 +38,6 @@ void gr_dem_free(gr_dem *d)
     free(d);
 }
 
-static int cmp_id(const void *a, const void *b)
-{
-    const int64_t *x = a, *y = b;
-    return (x[0] > y[0]) - (x[0] < y[0]);
-}
-
 static int add_seg(gr_dem *d, double x0, double y0, double x1, double y1, double open_time,
                    int vibrating, gr_err *err)
 {
@@ -90,15 +84,10 @@ int gr_dem_prepare(gr_dem *d, gr_err *err)
     return GR_OK;
 }
 
-int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
-                  gr_dem **out, gr_err *err)
+/* The contact law and the domain from the scene; refuses the combinations
+ * the backend cannot run (GR_EINPUT naming the key). */
+static int set_law(gr_dem *d, const gr_scene *sc, gr_err *err)
 {
-    *out = NULL;
-    gr_dem *d = calloc(1, sizeof *d);
-    if (!d)
-        return gr_fail(err, GR_ERUN, "out of memory");
-    d->sc = *sc;
-    d->par = *par;
     const gr_material *m = &sc->mat;
     d->normal = m->normal;
     d->tang = m->tangential;
@@ -109,143 +98,141 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->g = sc->gravity;
     d->Lx = sc->side[GR_LEFT] == GR_BC_PERIODIC ? sc->width : 0.0;
     d->Ly = sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? sc->height : 0.0;
-    int rc = GR_OK;
     if (d->tang == GR_TANG_NONE && !isnan(m->tangential_restitution) && m->tangential_restitution != -1.0) {
         char where[1200];
         gr_scene_where(sc, "material", "tangential_restitution", where, sizeof where);
-        rc = gr_fail(err, GR_EINPUT,
-                     "%s: the soft DEM takes friction from [material] tangential (coulomb, viscous, regularised or spring), not from a tangential restitution",
-                     where);
-        goto fail;
+        return gr_fail(err, GR_EINPUT,
+                       "%s: the soft DEM takes friction from [material] tangential (coulomb, viscous, regularised or spring), not from a tangential restitution",
+                       where);
     }
-    if (d->hist_on && d->par.integrator == GR_DEM_CVODE) {
-        rc = gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
-        goto fail;
-    }
-    if (d->hist_on && !(d->kt > 0)) {
-        rc = gr_fail(err, GR_EINPUT, "[material] tangential = spring needs kt > 0");
-        goto fail;
-    }
+    if (d->hist_on && d->par.integrator == GR_DEM_CVODE)
+        return gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
+    if (d->hist_on && !(d->kt > 0))
+        return gr_fail(err, GR_EINPUT, "[material] tangential = spring needs kt > 0");
+    return GR_OK;
+}
 
-    /* tags: rank of each grain's id */
+/* Tags are the ranks of the ids: the grains sorted by id in ix (entry t
+ * holds the index in init of tag t), which the caller frees. */
+static int tag_order(gr_dem *d, const gr_particles *init, gr_id_index **ix, gr_err *err)
+{
     size_t nt = init->n;
     d->ntag = nt;
-    int64_t *order = malloc((nt + 1) * 2 * sizeof *order);
+    *ix = malloc((nt + 1) * sizeof **ix);
     d->tag_id = malloc((nt + 1) * sizeof *d->tag_id);
     d->gone = gr_particles_create(nt + 1, err);
-    if (!order || !d->tag_id || !d->gone) {
-        free(order);
-        rc = d->gone ? gr_fail(err, GR_ERUN, "out of memory") : err->code;
-        goto fail;
-    }
-    for (size_t i = 0; i < nt; i++) {
-        order[2 * i] = init->id[i];
-        order[2 * i + 1] = (int64_t)i;
-    }
-    qsort(order, nt, 2 * sizeof *order, cmp_id);
-    for (size_t t = 1; t < nt; t++) {
-        if (order[2 * t] == order[2 * t - 2]) {
-            rc = gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)order[2 * t]);
-            free(order);
-            goto fail;
-        }
-    }
-    d->gone->n = nt;
-    size_t live = 0;
+    if (!*ix || !d->tag_id || !d->gone)
+        return d->gone ? gr_fail(err, GR_ERUN, "out of memory") : err->code;
+    gr_id_index_sort(init->id, nt, *ix);
+    int64_t dup = gr_id_index_duplicate(*ix, nt);
+    if (dup >= 0)
+        return gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)dup);
+    return GR_OK;
+}
+
+/* Every grain, live or gone, goes to the tag-indexed record; the live ones
+ * must have a positive radius and (unless fixed) mass. Sets the diameter
+ * range and the history's slots, and returns the live count in *live. */
+static int record_grains(gr_dem *d, const gr_particles *init, const gr_id_index *ix, size_t *live,
+                         gr_err *err)
+{
+    size_t nt = d->ntag;
     double rmin = INFINITY;
+    d->gone->n = nt;
+    *live = 0;
     for (size_t t = 0; t < nt; t++) {
-        size_t i = (size_t)order[2 * t + 1];
+        size_t i = ix[t].i;
         d->tag_id[t] = init->id[i];
         gr_particles_copy_one(d->gone, t, init, i);
         if (init->flags[i] & GR_PF_GONE)
             continue;
-        live++;
+        ++*live;
         d->rmax = fmax(d->rmax, init->radius[i]);
         rmin = fmin(rmin, init->radius[i]);
-        if (!(init->radius[i] > 0) || (!(init->flags[i] & GR_PF_FIXED) && !(init->mass[i] > 0))) {
-            free(order);
-            rc = gr_fail(err, GR_EINPUT, "grain id %lld has radius %g and mass %g; both must be positive",
-                         (long long)init->id[i], init->radius[i], init->mass[i]);
-            goto fail;
-        }
+        if (!(init->radius[i] > 0) || (!(init->flags[i] & GR_PF_FIXED) && !(init->mass[i] > 0)))
+            return gr_fail(err, GR_EINPUT, "grain id %lld has radius %g and mass %g; both must be positive",
+                           (long long)init->id[i], init->radius[i], init->mass[i]);
     }
-    if (live == 0) {
-        free(order);
-        rc = gr_fail(err, GR_EINPUT, "the scene has no grains");
-        goto fail;
-    }
+    if (*live == 0)
+        return gr_fail(err, GR_EINPUT, "the scene has no grains");
     d->dmax = 2 * d->rmax;
     d->dmin = 2 * rmin;
     if (d->hist_on) {
         double a = asin(rmin / (rmin + d->rmax));
         d->hist.cap = (int)floor(M_PI / a + 1e-9) + 4;
     }
-    if (gr_dem_grow(d, live + 16, err)) {
-        free(order);
-        rc = err->code;
-        goto fail;
-    }
-    int p = d->cur = 0;
-    for (size_t t = 0; t < nt; t++) {
-        size_t i = (size_t)order[2 * t + 1];
-        if (init->flags[i] & GR_PF_GONE)
-            continue;
-        size_t k = d->n++;
-        int fixed = (init->flags[i] & GR_PF_FIXED) != 0;
-        d->f[F_X][p][k] = init->x[i];
-        d->f[F_Y][p][k] = init->y[i];
-        d->f[F_VX][p][k] = fixed ? 0.0 : init->vx[i];
-        d->f[F_VY][p][k] = fixed ? 0.0 : init->vy[i];
-        if (d->rot)
-            d->f[F_W][p][k] = fixed ? 0.0 : init->omega[i];
-        d->rad[k] = init->radius[i];
-        d->mass[k] = init->mass[i];
-        d->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
-        d->im[k] = fixed ? 0.0 : 1.0 / init->mass[i];
-        d->iI[k] = fixed ? 0.0 : 1.0 / d->inertia[k];
-        d->gf[k] = fixed ? 0.0 : d->g;
-        d->tag[k] = (int32_t)t;
-        d->flags[k] = init->flags[i];
-        d->species[k] = init->species[i];
-        d->nmobile += !fixed;
-        /* periodic positions live in [0, L) */
-        if (d->Lx > 0)
-            d->f[F_X][p][k] -= d->Lx * floor(d->f[F_X][p][k] / d->Lx);
-        if (d->Ly > 0)
-            d->f[F_Y][p][k] -= d->Ly * floor(d->f[F_Y][p][k] / d->Ly);
-    }
-    free(order);
-    if (make_segments(d, err)) {
-        rc = err->code;
-        goto fail;
-    }
-    d->scratch = gr_particles_create(nt + 1, err);
-    if (!d->scratch) {
-        rc = err->code;
-        goto fail;
-    }
+    return GR_OK;
+}
+
+/* Live grain i of init into slot k of buffer 0, as tag t. */
+static void load_grain(gr_dem *d, size_t k, const gr_particles *init, size_t i, size_t t)
+{
+    int fixed = (init->flags[i] & GR_PF_FIXED) != 0;
+    d->f[F_X][0][k] = init->x[i];
+    d->f[F_Y][0][k] = init->y[i];
+    d->f[F_VX][0][k] = fixed ? 0.0 : init->vx[i];
+    d->f[F_VY][0][k] = fixed ? 0.0 : init->vy[i];
+    if (d->rot)
+        d->f[F_W][0][k] = fixed ? 0.0 : init->omega[i];
+    d->rad[k] = init->radius[i];
+    d->mass[k] = init->mass[i];
+    d->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
+    d->im[k] = fixed ? 0.0 : 1.0 / init->mass[i];
+    d->iI[k] = fixed ? 0.0 : 1.0 / d->inertia[k];
+    d->gf[k] = fixed ? 0.0 : d->g;
+    d->tag[k] = (int32_t)t;
+    d->flags[k] = init->flags[i];
+    d->species[k] = init->species[i];
+    d->nmobile += !fixed;
+    /* periodic positions live in [0, L) */
+    if (d->Lx > 0)
+        d->f[F_X][0][k] -= d->Lx * floor(d->f[F_X][0][k] / d->Lx);
+    if (d->Ly > 0)
+        d->f[F_Y][0][k] -= d->Ly * floor(d->f[F_Y][0][k] / d->Ly);
+}
+
+/* The live grains, in id order, into the arrays (buffer 0 current). */
+static int load_grains(gr_dem *d, const gr_particles *init, const gr_id_index *ix, size_t live,
+                       gr_err *err)
+{
+    if (gr_dem_grow(d, live + 16, err))
+        return err->code;
+    d->cur = 0;
+    for (size_t t = 0; t < d->ntag; t++)
+        if (!(init->flags[ix[t].i] & GR_PF_GONE))
+            load_grain(d, d->n++, init, ix[t].i, t);
+    return GR_OK;
+}
+
+/* Walls, scratch, the reinsertion generator, gates, cells and lists. */
+static int set_scene(gr_dem *d, gr_err *err)
+{
+    const gr_scene *sc = &d->sc;
+    if (make_segments(d, err))
+        return err->code;
+    d->scratch = gr_particles_create(d->ntag + 1, err);
+    if (!d->scratch)
+        return err->code;
     if (sc->silo.present && sc->silo.reinsert) {
         d->rng = gr_rng_create(sc->seed, STREAM_DEM_REINSERT, err);
-        if (!d->rng) {
-            rc = err->code;
-            goto fail;
-        }
+        if (!d->rng)
+            return err->code;
     }
     d->gates_open = !(sc->silo.present && isfinite(sc->silo.open_time));
-    if (gr_dem_prepare(d, err)) {
-        rc = err->code;
-        goto fail;
-    }
+    return gr_dem_prepare(d, err);
+}
+
+/* Forces of the initial state (Gear's second derivative from them), its
+ * energy, and the floor under which energy jumps are not checked. */
+static int first_forces(gr_dem *d, gr_err *err)
+{
+    int p = d->cur;
     if (d->par.integrator == GR_DEM_CVODE) {
-        if (gr_dem_cv_create(d, err)) {
-            rc = err->code;
-            goto fail;
-        }
+        if (gr_dem_cv_create(d, err))
+            return err->code;
     } else {
-        if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err)) {
-            rc = err->code;
-            goto fail;
-        }
+        if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err))
+            return err->code;
         if (d->par.integrator == GR_DEM_GEAR) {
             double h2 = 0.5 * d->par.dt * d->par.dt;
             for (size_t i = 0; i < d->n; i++) {
@@ -261,11 +248,30 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
     gr_dem_energy(d, &ek, NULL);
     d->ekin_last = ek + d->eel_eval;
+    return GR_OK;
+}
+
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+                  gr_dem **out, gr_err *err)
+{
+    *out = NULL;
+    gr_dem *d = calloc(1, sizeof *d);
+    if (!d)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    d->sc = *sc;
+    d->par = *par;
+    gr_id_index *ix = NULL;
+    size_t live = 0;
+    int rc = set_law(d, sc, err) || tag_order(d, init, &ix, err) ||
+             record_grains(d, init, ix, &live, err) || load_grains(d, init, ix, live, err);
+    free(ix);
+    if (rc || set_scene(d, err) || first_forces(d, err)) {
+        rc = err->code;
+        gr_dem_free(d);
+        return rc;
+    }
     *out = d;
     return GR_OK;
-fail:
-    gr_dem_free(d);
-    return rc;
 }
 
 void gr_dem_energy(gr_dem *d, double *ekin, double *eel)
