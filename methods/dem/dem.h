@@ -298,16 +298,4 @@ int gr_dem_step(gr_dem *d, gr_err *err);
  * gr_dem_energy, gr_dem_observe and the test hooks). */
 int gr_dem_prepare(gr_dem *d, gr_err *err);
 
-/* Periodic minimum image along a period L (0: none). */
-static inline double gr_dem_image(double dx, double L)
-{
-    if (L > 0.0) {
-        if (dx > 0.5 * L)
-            dx -= L;
-        else if (dx < -0.5 * L)
-            dx += L;
-    }
-    return dx;
-}
-
 #endif

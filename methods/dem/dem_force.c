@@ -173,8 +173,8 @@ DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
         for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
             int32_t j = nbj[k];
             double dx = c->x[j] - xi, dy = c->y[j] - yi;
-            if (c->Lx > 0) dx = gr_dem_image(dx, c->Lx);
-            if (c->Ly > 0) dy = gr_dem_image(dy, c->Ly);
+            if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
+            if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
             pair(c, NL, TL, &acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
         }
         for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
@@ -225,8 +225,8 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                     size_t j = (size_t)g->idx[b];
                     if (fi && (c->flags[j] & GR_PF_FIXED))
                         continue;
-                    double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-                    double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                    double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+                    double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
                     pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                 }
                 for (int q = 0; q < m; q++) {
@@ -234,8 +234,8 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                         size_t j = (size_t)g->idx[b];
                         if (fi && (c->flags[j] & GR_PF_FIXED))
                             continue;
-                        double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-                        double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                        double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+                        double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
                         pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                     }
                 }
@@ -260,8 +260,8 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
         for (size_t j = i + 1; j < d->n; j++) {
             if (fi && (c->flags[j] & GR_PF_FIXED))
                 continue;
-            double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-            double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+            double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+            double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
             pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
         }
         if (!fi)

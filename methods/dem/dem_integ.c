@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "dem.h"
+#include "geom.h"
 
 /* Per-particle loops run over fixed blocks, threads taking whole blocks;
  * block results are combined in block order, so sums do not depend on the
@@ -66,7 +67,7 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
             tqn[i] = 0.0;
         }
         if (track) {
-            double dx = gr_dem_image(nx - xr[i], Lx), dy = gr_dem_image(ny - yr[i], Ly);
+            double dx = gr_min_image(nx - xr[i], Lx), dy = gr_min_image(ny - yr[i], Ly);
             double s2 = dx * dx + dy * dy;
             if (s2 > m2) {
                 if (s2 > m1) {

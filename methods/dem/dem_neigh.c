@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "geom.h"
 
 static void cells_free(gr_dem_cells *g)
 {
@@ -306,7 +307,7 @@ int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
                     int32_t j = g->idx[a];
                     if ((size_t)j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
                         continue;
-                    double dx = gr_dem_image(x[j] - xi, d->Lx), dy = gr_dem_image(y[j] - yi, d->Ly);
+                    double dx = gr_min_image(x[j] - xi, d->Lx), dy = gr_min_image(y[j] - yi, d->Ly);
                     double rc = ri + d->rad[j] + skin;
                     if (dx * dx + dy * dy < rc * rc) {
                         if (grow_i32(&d->nb_j, &d->nb_cap, cnt + 1, err))

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "geom.h"
 #include "rng.h"
 
 enum { STREAM_DEM_REINSERT = 0xD3E1 };
@@ -298,7 +299,7 @@ void gr_dem_energy(gr_dem *d, double *ekin, double *eel)
     double a = d->normal == GR_NORMAL_HERTZ ? 2.5 : 2.0;
     for (size_t i = 0; i < d->n; i++) {
         for (size_t j = i + 1; j < d->n; j++) {
-            double dx = gr_dem_image(x[j] - x[i], d->Lx), dy = gr_dem_image(y[j] - y[i], d->Ly);
+            double dx = gr_min_image(x[j] - x[i], d->Lx), dy = gr_min_image(y[j] - y[i], d->Ly);
             double rs = d->rad[i] + d->rad[j];
             if (dx * dx + dy * dy < rs * rs) {
                 double xi = rs - sqrt(dx * dx + dy * dy);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "geom.h"
 #include "init.h"
 #include "rng.h"
 
@@ -220,8 +221,8 @@ int gr_dem_step(gr_dem *d, gr_err *err)
         }
         if (mode == GR_DEM_NB_VERLET && d->par.integrator != GR_DEM_VERLET && !d->need_build) {
             for (size_t i = 0; i < d->n; i++) {
-                double dx = gr_dem_image(d->f[F_X][q][i] - d->xref[i], d->Lx);
-                double dy = gr_dem_image(d->f[F_Y][q][i] - d->yref[i], d->Ly);
+                double dx = gr_min_image(d->f[F_X][q][i] - d->xref[i], d->Lx);
+                double dy = gr_min_image(d->f[F_Y][q][i] - d->yref[i], d->Ly);
                 /* twice the largest displacement bounds the sum of the two
                  * largest; Verlet's fused loop has the exact rule */
                 moved = fmax(moved, 2 * sqrt(dx * dx + dy * dy));
