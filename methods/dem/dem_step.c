@@ -295,18 +295,77 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
     return GR_OK;
 }
 
+/* A step's drift over blocks, its colours of strips and (linked cells)
+ * its kick over blocks, run by every thread of the region, with a barrier
+ * after each; linked cells, or a list rebuild outside the look-ahead rule,
+ * add a serial section after the drift. Returns 1 when that section
+ * failed (*rc, *stop set). */
+static int vt_colours(gr_dem *d, vt_step *v, int *rc, int *stop, gr_err *err)
+{
+    const int p = v->p, q = v->q, mode = d->par.neighbour;
+    const size_t nb = v->nb;
+#pragma omp for schedule(static)
+    for (size_t b = 0; b < nb; b++)
+        gr_dem_predict_block(d, p, q, v->track, b);
+    /* every thread reads the same maxima: the same decision */
+    double moved = v->track ? gr_dem_moved_blocks(d) : 0.0;
+    if (!v->track || (!v->early && moved > d->par.skin)) {
+#pragma omp single
+        {
+            d->f_zeroed = 1;
+            if (maybe_rebuild(d, p, q, mode, moved, err) ||
+                gr_dem_eval_begin(d, q, v->tn, v->E, d->par.dt, mode, err))
+                *rc = err->code, *stop = 1;
+            else
+                v->fused = gr_dem_eval_fuse_kick(d, p);
+        }
+        if (*stop)
+            return 1;
+    }
+    /* read before the colours' barriers: past them, the end of the step
+     * may already be setting up the next */
+    const int fused = v->fused, ncol = gr_dem_eval_ncolours(d);
+    for (int col = 0; col < ncol; col++)
+        gr_dem_eval_colour(d, col);
+    /* the kick writes only the new buffer: harmless if the step is
+     * refused; with Verlet lists the colours did it */
+    if (!fused) {
+#pragma omp for schedule(static)
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_kick_block(d, p, q, b);
+    }
+    return 0;
+}
+
+/* The serial end of a step (one thread): sums and checks, the commit, and
+ * the start of the next step. */
+static void vt_end(gr_dem *d, vt_step *v, int *rc, double t_end, uint64_t max_steps, gr_err *err)
+{
+    double ek = v->fused ? gr_dem_eval_kinetic(d) : gr_dem_kinetic_blocks(d, v->nb);
+    if (gr_dem_eval_end(d, d->seg_force, err)) {
+        gr_dem_hist_undo_at(d, v->E);
+        *rc = err->code, v->stop = 1;
+    } else if (commit(d, v->q, v->E, v->tn, ek, err)) {
+        *rc = err->code, v->stop = 1;
+    } else {
+        /* the drift's maxima: per strip in the one-barrier step, per block
+         * otherwise (no kick over blocks has overwritten them when the kick
+         * was fused) */
+        if (v->early)
+            plan_rebuild(d, v->fused, !v->fused ? 0.0 : v->flow ? gr_dem_eval_moved(d) : gr_dem_moved_blocks(d));
+        v->done++;
+        *rc = vt_start(d, v, t_end, max_steps, err);
+    }
+}
+
 /* Velocity Verlet on several threads, many steps in one parallel region.
  * With Verlet lists and two colours a step is the one-barrier step of
- * dem_flow.c, then the serial end, which also starts the next step. Else
- * a step waits at the drift (over blocks), each colour of strips (two or
- * three; with Verlet lists the colours also kick), the kick over blocks
- * (linked cells), and the serial end; linked cells, or a list rebuild
- * outside the look-ahead rule (decided by every thread from the same block
- * maxima), add a serial section after the drift. The work and every sum are
- * split exactly as in gr_dem_step, so the runs are the same bits. */
+ * dem_flow.c, else that of vt_colours; then the serial end, which also
+ * starts the next step. The work and every sum are split exactly as in
+ * gr_dem_step, so the runs are the same bits. */
 static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
-    const int mode = d->par.neighbour, nth = gr_dem_threads(d);
+    const int nth = gr_dem_threads(d);
     int rc = GR_OK, stop_b = 0;
     vt_step v = {0};
     size_t per = (size_t)d->strips.n + 1;
@@ -318,61 +377,14 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
 #pragma omp single
         rc = vt_start(d, &v, t_end, max_steps, err);
         while (!v.stop) {
-            const int p = v.p, q = v.q;
-            const size_t nb = v.nb;
             if (v.flow) {
-                gr_dem_eval_flow(d, p, q, order, per);
+                gr_dem_eval_flow(d, v.p, v.q, order, per);
 #pragma omp barrier
-            } else {
-#pragma omp for schedule(static)
-                for (size_t b = 0; b < nb; b++)
-                    gr_dem_predict_block(d, p, q, v.track, b);
-                /* every thread reads the same maxima: the same decision */
-                double moved = v.track ? gr_dem_moved_blocks(d) : 0.0;
-                if (!v.track || (!v.early && moved > d->par.skin)) {
-#pragma omp single
-                    {
-                        d->f_zeroed = 1;
-                        if (maybe_rebuild(d, p, q, mode, moved, err) ||
-                            gr_dem_eval_begin(d, q, v.tn, v.E, d->par.dt, mode, err))
-                            rc = err->code, stop_b = 1;
-                        else
-                            v.fused = gr_dem_eval_fuse_kick(d, p);
-                    }
-                    if (stop_b)
-                        break;
-                }
-                /* read before the colours' barriers: past them, the end of
-                 * the step may already be setting up the next */
-                const int fused = v.fused, ncol = gr_dem_eval_ncolours(d);
-                for (int col = 0; col < ncol; col++)
-                    gr_dem_eval_colour(d, col);
-                /* the kick writes only the new buffer: harmless if the step
-                 * is refused; with Verlet lists the colours did it */
-                if (!fused) {
-#pragma omp for schedule(static)
-                    for (size_t b = 0; b < nb; b++)
-                        gr_dem_kick_block(d, p, q, b);
-                }
+            } else if (vt_colours(d, &v, &rc, &stop_b, err)) {
+                break;
             }
 #pragma omp single
-            {
-                double ek = v.fused ? gr_dem_eval_kinetic(d) : gr_dem_kinetic_blocks(d, nb);
-                if (gr_dem_eval_end(d, d->seg_force, err)) {
-                    gr_dem_hist_undo_at(d, v.E);
-                    rc = err->code, v.stop = 1;
-                } else if (commit(d, q, v.E, v.tn, ek, err)) {
-                    rc = err->code, v.stop = 1;
-                } else {
-                    /* the drift's maxima: per strip in the one-barrier step, per
-                     * block otherwise (no kick over blocks has overwritten them
-                     * when the kick was fused) */
-                    if (v.early)
-                        plan_rebuild(d, v.fused, !v.fused ? 0.0 : v.flow ? gr_dem_eval_moved(d) : gr_dem_moved_blocks(d));
-                    v.done++;
-                    rc = vt_start(d, &v, t_end, max_steps, err);
-                }
-            }
+            vt_end(d, &v, &rc, t_end, max_steps, err);
         }
     }
     free(order);
