@@ -6,7 +6,11 @@ function that the other defines without `static`. Calls made in the
 static inline functions of a header of the same folder count for every
 .c file that includes that header; the header itself is no file of the
 graph. Exits 1 printing a cycle if the graph has one, else 0 printing the
-files bottom-up, each with the files it calls.
+files bottom-up (layer number, file, the files it calls).
+
+Names are matched, C is not parsed: a local variable or a field named like
+another file's function counts as a call to it (rename one of them).
+Standard library only, so that any checkout can run it.
 
 usage: layers.py FOLDER
 """
