@@ -290,9 +290,9 @@ static inline void kick_after(dem_ctx *c, int s)
 
 /* One colour's strips, shared among the threads of the enclosing parallel
  * region (run by one thread outside any region, in the same order). Each
- * thread takes the colour's strips in its run (split_strips): the contacts,
- * not the grains, set a strip's cost, and in a bed under gravity the deep
- * strips have the most (a split by strip count left one thread idle a
+ * thread takes the colour's strips in its run (dem_balance.c): the
+ * contacts, not the grains, set a strip's cost, and in a bed under gravity
+ * the deep strips have the most (a split by strip count left one thread idle a
  * third of the time). Which thread runs a strip changes no bit of the
  * result. */
 DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, int col)

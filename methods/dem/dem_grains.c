@@ -73,7 +73,7 @@ long gr_dem_index(const gr_dem *d, long tag)
     return -1;
 }
 
-/* Record the current state of the grains in `which` (tags) into d->gone. */
+/* Grain i's current state, with extra flags, into the record of its tag. */
 static void record(gr_dem *d, size_t i, uint32_t extra_flags)
 {
     int p = d->cur;

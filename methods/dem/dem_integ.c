@@ -90,7 +90,7 @@ void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b)
 }
 
 /* Sum of the two largest displacements from the per-block maxima that
- * predict_block left (the same whatever the thread count: a maximum). */
+ * gr_dem_predict_block left (the same whatever the thread count: a maximum). */
 double gr_dem_moved_blocks(const gr_dem *d)
 {
     return gr_dem_top2_sum(d->blk, 2 * ((d->n + DEM_BLOCK - 1) / DEM_BLOCK));
