@@ -218,6 +218,8 @@ void gr_dem_make_strips(gr_dem *d);
 int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
 /* Drop the grains with gone[i] != 0 (recorded in d->gone), keeping order. */
 int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err);
+/* The external force arrays, zero, if not there yet. */
+int gr_dem_external_arrays(gr_dem *d, gr_err *err);
 
 /* dem_integ.c: the integrators' passes over grains, old buffer p, new q. */
 /* Drift and first kick of grains [i0, i1) (two largest squared moves in

@@ -2,7 +2,6 @@
  * the positions of the last list build (so the reloaded list, and with it
  * every floating-point sum, is the same), contact history, the record of
  * grains that left, and the reinsertion generator. */
-#include <stdlib.h>
 #include <string.h>
 
 #include "dem.h"
@@ -95,13 +94,7 @@ static int load_check(gr_dem *d, const int64_t *meta, const double *real, gr_err
         return gr_fail(err, GR_EINPUT, "dem checkpoint: %zu live grains for %zu in the scene", n, d->ntag);
     if (gr_dem_grow(d, n + 16, err))
         return err->code;
-    if (meta[META_EXT] && !d->ext_fx) {
-        d->ext_fx = calloc(d->cap, sizeof(double));
-        d->ext_fy = calloc(d->cap, sizeof(double));
-        if (!d->ext_fx || !d->ext_fy)
-            return gr_fail(err, GR_ERUN, "out of memory");
-    }
-    return GR_OK;
+    return meta[META_EXT] ? gr_dem_external_arrays(d, err) : GR_OK;
 }
 
 /* The n live grains' arrays into buffer 0, with their contact history. */

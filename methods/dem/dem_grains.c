@@ -138,3 +138,16 @@ int gr_dem_snapshot(gr_dem *d, gr_particles *out, gr_err *err)
     }
     return GR_OK;
 }
+
+/* The external force arrays (tests), zero, once a force is set or a
+ * checkpoint that had them is loaded; they then move with the grains. */
+int gr_dem_external_arrays(gr_dem *d, gr_err *err)
+{
+    if (d->ext_fx)
+        return GR_OK;
+    d->ext_fx = calloc(d->cap, sizeof(double));
+    d->ext_fy = calloc(d->cap, sizeof(double));
+    if (!d->ext_fx || !d->ext_fy)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    return GR_OK;
+}

@@ -345,12 +345,8 @@ int gr_dem_observe(gr_dem *d, gr_obs *o, gr_err *err)
 
 int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err)
 {
-    if (!d->ext_fx) {
-        d->ext_fx = calloc(d->cap, sizeof(double));
-        d->ext_fy = calloc(d->cap, sizeof(double));
-        if (!d->ext_fx || !d->ext_fy)
-            return gr_fail(err, GR_ERUN, "out of memory");
-    }
+    if (gr_dem_external_arrays(d, err))
+        return err->code;
     long i = gr_dem_index(d, tag);
     if (i < 0)
         return gr_fail(err, GR_EINPUT, "no live grain with tag %ld", tag);
