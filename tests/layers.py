@@ -1,51 +1,33 @@
 #!/usr/bin/env python3
-"""Files of one folder must stand in layers (issue 12): no two .c files may
-call each other, directly or around a loop.
+"""Check that the .c files of one folder stand in layers (issue 12).
 
-usage: layers.py FOLDER [-v]
+A file depends on another when it calls (or takes the address of) a
+function that the other defines without `static`. Calls made in the
+static inline functions of a header of the same folder count for every
+.c file that includes that header; the header itself is no file of the
+graph. Exits 1 printing a cycle if the graph has one, else 0 printing the
+files bottom-up (layer number, file, the files it calls).
 
-For each .c file of FOLDER, the functions (and objects) it defines without
-`static`; then, in every other .c file of the folder, the uses of those
-names, calls or not (a function handed over as a pointer is still leaned
-on). A use inside a static inline function of a header of the folder
-counts for the .c files that use that inline function: the header is no
-file of its own, but what it calls is. Comments, strings and character
-constants are blanked first. The file graph is printed bottom-up (each
-file after those it uses); exit 1 with a cycle if there is one, else 0.
-Standard library only.
+Names are matched, C is not parsed: a local variable or a field named like
+another file's function counts as a call to it (rename one of them).
+Standard library only, so that any checkout can run it.
+
+usage: layers.py FOLDER
 """
 import os
 import re
 import sys
 
 IDENT = re.compile(r"[A-Za-z_]\w*")
-KEYWORDS = {
-    "if", "for", "while", "switch", "return", "sizeof", "_Alignof", "_Generic",
-    "_Static_assert", "do", "else", "case", "default", "goto", "break", "continue",
-}
-QUALIFIERS = {"static", "const", "volatile", "extern", "struct", "union", "enum", "_Thread_local"}
+INCLUDE = re.compile(r'^[ \t]*#[ \t]*include[ \t]*"([^"]+)"', re.M)
 
 
 def strip(text):
-    """Blank comments, strings, character constants and preprocessor lines,
-    keeping line structure."""
+    """The text with comments, string and character literals blanked
+    (newlines kept), so that braces and names in them do not count."""
     out, i, n = [], 0, len(text)
-    at_line_start = True
     while i < n:
         c = text[i]
-        if at_line_start and c == "#":
-            # a directive, with its continuation lines
-            j = i
-            while j < n and text[j] != "\n":
-                j += 2 if text[j] == "\\" and j + 1 < n else 1
-            out.append(re.sub(r"[^\n]", " ", text[i:j]))
-            i = j
-            continue
-        if c in " \t":
-            out.append(c)
-            i += 1
-            continue
-        at_line_start = c == "\n"
         if text.startswith("/*", i):
             j = text.find("*/", i + 2)
             j = n if j < 0 else j + 2
@@ -58,174 +40,169 @@ def strip(text):
             i = j
         elif c in "\"'":
             j = i + 1
-            while j < n and text[j] != c:
+            while j < n and text[j] != c and text[j] != "\n":
                 j += 2 if text[j] == "\\" else 1
-            out.append(" " * (j + 1 - i))
-            i = j + 1
+            j = min(j + 1, n)
+            out.append(c + " " * (j - i - 2) + c if j - i >= 2 else " ")
+            i = j
         else:
             out.append(c)
             i += 1
     return "".join(out)
 
 
-def top_level(code):
-    """Split code into top-level declarations: (head, body) where head is
-    the text before a top-level `{` or `;` and body the braced text (or
-    '')."""
-    items, depth, start, i, n = [], 0, 0, 0, len(code)
-    head = None
-    while i < n:
-        c = code[i]
-        if c == "{":
-            if depth == 0:
-                head = code[start:i]
-                body_start = i
-            depth += 1
-        elif c == "}":
-            depth -= 1
-            if depth == 0:
-                # a function body ends the declaration; an initialiser or a
-                # struct body goes on to its `;`
-                if re.search(r"\)\s*$", head):
-                    items.append((head, code[body_start:i + 1]))
-                    start = i + 1
-                    head = None
-        elif c == ";" and depth == 0:
-            items.append((code[start:i] if head is None else head, code[start:i]))
-            start = i + 1
-            head = None
-        i += 1
-    return items
+PREPRO = re.compile(r"^[ \t]*#(?:[^\n\\]|\\.)*", re.M | re.S)
 
 
-def definitions(code):
-    """Names defined in code: {name: (static, inline, body)} for functions
-    with a body and objects defined at top level."""
-    out = {}
-    for head, body in top_level(code):
-        words = IDENT.findall(head)
-        if not words or words[0] in ("typedef", "extern"):
-            continue
-        static = "static" in words
-        inline = "inline" in words
-        m = re.search(r"(\w+)\s*\([^()]*(\([^()]*\)[^()]*)*\)\s*$", head)
-        if m and body.startswith("{"):
-            out[m.group(1)] = (static, inline, body)
-            continue
-        if head is not body and "(" not in head.split("=")[0]:
-            # an object: the declarator before `=` (or the last name)
-            # (a type and a name: not a bare struct, union or enum)
-            decl = head.split("=")[0]
-            names = [w for w in IDENT.findall(decl) if w not in QUALIFIERS]
-            if len(names) >= 2:
-                out[names[-1]] = (static, inline, body)
+DEFINE = re.compile(r"^[ \t]*#[ \t]*define[ \t]+([A-Za-z_]\w*)(?!\()(.*)$", re.M)
+
+
+def macros(code):
+    """Object-like macros: name -> the words of its body."""
+    return {m.group(1): IDENT.findall(m.group(2)) for m in DEFINE.finditer(code)}
+
+
+def expand(words, macro, seen=()):
+    """Words with the folder's object-like macros expanded (DEM_INLINE is
+    `static inline ...`)."""
+    out = []
+    for w in words:
+        if w in macro and w not in seen:
+            out += expand(macro[w], macro, seen + (w,))
+        else:
+            out.append(w)
     return out
 
 
-def uses(code):
-    return set(w for w in IDENT.findall(code) if w not in KEYWORDS)
+def scan(code, macro):
+    """Top-level function definitions as (name, is_static), and the names
+    used inside braces (bodies and initialisers) or in macro definitions."""
+    defs, used = [], set()
+    for m in PREPRO.finditer(code):
+        used.update(IDENT.findall(m.group(0)))
+    code = PREPRO.sub(lambda m: re.sub(r"[^\n]", " ", m.group(0)), code)
+    depth, paren, start = 0, 0, 0
+    for m in re.finditer(r"[A-Za-z_]\w*|[{}();]", code):
+        t = m.group(0)
+        if t == "{":
+            if depth == 0 and paren == 0:
+                head = code[start:m.start()]
+                f = re.search(r"([A-Za-z_]\w*)\s*\([^;{}]*\)\s*$", head)
+                if f and "=" not in head:
+                    words = expand(IDENT.findall(head[:f.start(1)]), macro)
+                    if words and words[-1] not in ("struct", "union", "enum"):
+                        defs.append((f.group(1), "static" in words))
+            depth += 1
+        elif t == "}":
+            depth -= 1
+            if depth == 0:
+                start = m.end()
+        elif t == "(":
+            paren += 1
+        elif t == ")":
+            paren -= 1
+        elif t == ";":
+            if depth == 0:
+                start = m.end()
+        elif depth > 0:
+            used.add(t)
+    return defs, used
 
 
-def file_graph(folder):
-    srcs = sorted(f for f in os.listdir(folder) if f.endswith(".c"))
-    hdrs = sorted(f for f in os.listdir(folder) if f.endswith(".h"))
+def headers_of(folder, name, seen):
+    """Headers of the folder that file `name` includes, transitively."""
+    path = os.path.join(folder, name)
+    with open(path, encoding="utf-8", errors="replace") as f:
+        text = f.read()
+    for h in INCLUDE.findall(text):
+        if h not in seen and os.path.isfile(os.path.join(folder, h)):
+            seen.add(h)
+            headers_of(folder, h, seen)
+    return seen
+
+
+def graph(folder):
+    sources = sorted(f for f in os.listdir(folder) if f.endswith(".c"))
     code = {}
-    for f in srcs + hdrs:
-        with open(os.path.join(folder, f), encoding="utf-8") as fh:
-            code[f] = strip(fh.read())
+    for f in os.listdir(folder):
+        if f.endswith((".c", ".h")):
+            with open(os.path.join(folder, f), encoding="utf-8", errors="replace") as fh:
+                code[f] = strip(fh.read())
+    macro = {}
+    for f in sorted(code):
+        macro.update(macros(code[f]))
+    scanned = {f: scan(code[f], macro) for f in code}
     owner = {}
-    for f in srcs:
-        for name, (static, _, _) in definitions(code[f]).items():
-            # main is the program's entry: nothing calls it, and a field
-            # of that name elsewhere is no use of it
-            if not static and name != "main":
-                owner.setdefault(name, f)
-    # what each header inline function uses, through other inlines too
-    inl = {}
-    for h in hdrs:
-        for name, (static, inline, body) in definitions(code[h]).items():
-            if static and inline:
-                inl[name] = uses(body)
-    changed = True
-    while changed:
-        changed = False
-        for name, u in inl.items():
-            more = set().union(*(inl[v] for v in u if v in inl and v != name)) - u
-            if more:
-                u |= more
-                changed = True
-    graph = {f: {} for f in srcs}
-    for f in srcs:
-        mine = definitions(code[f])
-        used = uses(code[f])
-        for v in list(used):
-            if v in inl and v not in mine:
-                used |= inl[v]
-        for v in used:
-            g = owner.get(v)
-            if g and g != f and not (v in mine and mine[v][0]):
-                graph[f].setdefault(g, set()).add(v)
-    return graph
+    for f in sources:
+        for name, static in scanned[f][0]:
+            if not static:
+                owner[name] = f
+    edges = {f: {} for f in sources}
+    for f in sources:
+        used = set(scanned[f][1])
+        for h in headers_of(folder, f, set()):
+            used |= scanned[h][1]
+        for name in used:
+            g = owner.get(name)
+            if g and g != f:
+                edges[f].setdefault(g, set()).add(name)
+    return sources, edges
 
 
-def find_cycle(graph):
-    colour, stack = {}, []
+def find_cycle(sources, edges):
+    state, stack = {}, []
 
     def visit(f):
-        colour[f] = 1
+        state[f] = 1
         stack.append(f)
-        for g in sorted(graph[f]):
-            if colour.get(g) == 1:
+        for g in sorted(edges[f]):
+            if state.get(g) == 1:
                 return stack[stack.index(g):] + [g]
-            if g not in colour:
+            if g not in state:
                 c = visit(g)
                 if c:
                     return c
         stack.pop()
-        colour[f] = 2
+        state[f] = 2
         return None
 
-    for f in sorted(graph):
-        if f not in colour:
+    for f in sources:
+        if f not in state:
             c = visit(f)
             if c:
                 return c
     return None
 
 
-def layers(graph):
-    """Bottom-up: level 0 uses no other file, level k uses files below k."""
-    level = {}
+def bottom_up(sources, edges):
+    """Files by layer: a file's layer is one above the highest it calls."""
+    layer = {}
 
-    def lev(f):
-        if f not in level:
-            level[f] = 0
-            level[f] = 1 + max((lev(g) for g in graph[f]), default=-1)
-        return level[f]
+    def level(f):
+        if f not in layer:
+            layer[f] = 1 + max((level(g) for g in edges[f]), default=-1)
+        return layer[f]
 
-    for f in graph:
-        lev(f)
-    return level
+    for f in sources:
+        level(f)
+    return sorted(sources, key=lambda f: (layer[f], f)), layer
 
 
 def main(argv):
-    if len(argv) < 2 or not os.path.isdir(argv[1]):
-        print(__doc__.strip(), file=sys.stderr)
+    if len(argv) != 2 or not os.path.isdir(argv[1]):
+        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
         return 2
-    verbose = "-v" in argv[2:]
-    graph = file_graph(argv[1])
-    cycle = find_cycle(graph)
+    sources, edges = graph(argv[1])
+    cycle = find_cycle(sources, edges)
     if cycle:
-        print("cycle: " + " -> ".join(cycle))
+        print("cycle:")
         for a, b in zip(cycle, cycle[1:]):
-            print("  %s -> %s: %s" % (a, b, ", ".join(sorted(graph[a][b]))))
+            print(f"  {a} -> {b} ({', '.join(sorted(edges[a][b]))})")
         return 1
-    level = layers(graph)
-    for f in sorted(graph, key=lambda f: (level[f], f)):
-        deps = sorted(graph[f])
-        if verbose:
-            deps = ["%s (%s)" % (g, ", ".join(sorted(graph[f][g]))) for g in deps]
-        print("%d %s -> %s" % (level[f], f, ", ".join(deps) if deps else "-"))
+    order, layer = bottom_up(sources, edges)
+    for f in order:
+        calls = ", ".join(sorted(edges[f])) or "-"
+        print(f"{layer[f]} {f}: {calls}")
     return 0
 
 

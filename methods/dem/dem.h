@@ -201,13 +201,52 @@ double gr_dem_memory(const gr_dem *d);
 /* Force exerted by the grains on segment s during the last evaluation. */
 void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy);
 
-/* Internals shared by the backend's files. */
+/* Internals shared by the backend's files, by file from the bottom
+ * layer up: a file calls only files of the groups above its own here
+ * (tests/layers.py checks it; docs/methods/dem.md, "Files and layers"). */
+
+/* Threads of the parallel loops ([dem] threads, at least 1). */
+static inline int gr_dem_threads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
+static inline int gr_dem_colours(const gr_dem *d) { return d->cells.py ? 3 : 2; }
+
+/* dem_neigh.c: cells, spatial sort, Verlet lists, strips. */
 int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err);
 int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err);
 int gr_dem_sort(gr_dem *d, gr_err *err);
 int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
 void gr_dem_make_strips(gr_dem *d);
-static inline int gr_dem_colours(const gr_dem *d) { return d->cells.py ? 3 : 2; }
+
+/* dem_grains.c: per-grain arrays (also gr_dem_snapshot, gr_dem_index). */
+int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
+/* Drop the grains with gone[i] != 0 (recorded in d->gone), keeping order. */
+int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err);
+/* The external force arrays, zero, if not there yet. */
+int gr_dem_external_arrays(gr_dem *d, gr_err *err);
+
+/* dem_integ.c: the integrators' passes over grains, old buffer p, new q. */
+/* Drift and first kick of grains [i0, i1) (two largest squared moves in
+ * top2 when track); second kick, returning their kinetic energy, and in
+ * *v2max (if not NULL) the largest squared speed of the next drift. */
+void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max);
+/* The same over block b of DEM_BLOCK grains, results in d->blk. */
+void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b);
+void gr_dem_kick_block(gr_dem *d, int p, int q, size_t b);
+/* From the blocks' results: the two largest moves summed, kinetic energy. */
+double gr_dem_moved_blocks(const gr_dem *d);
+double gr_dem_kinetic_blocks(const gr_dem *d, size_t nb);
+/* All blocks, on the threads when there are several: drift (returns the
+ * moves summed when track, else 0) and kick (returns kinetic energy). */
+double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track);
+double gr_dem_correct_verlet(gr_dem *d, int p, int q);
+double gr_dem_kinetic(gr_dem *d, int q);
+void gr_dem_predict_euler(gr_dem *d, int p, int q);
+void gr_dem_predict_gear(gr_dem *d, int p, int q);
+void gr_dem_correct_gear(gr_dem *d, int q);
+
+/* dem_balance.c (dem_eval.h): runs of strips per thread. */
+
+/* dem_force.c: the force evaluation. */
 /* Forces on the positions and velocities of parity q at time
  * t_eval; E numbers the evaluation for the contact history, integ is the
  * spring's time step (0: do not stretch). Fills seg_force. */
@@ -222,6 +261,12 @@ void gr_dem_eval_colour(gr_dem *d, int col);
 /* All colours: on the threads of the scene when called outside a parallel
  * region with more than one. */
 void gr_dem_eval_run(gr_dem *d);
+/* One strip's pushes (Verlet lists), and the kicks that fall after it. */
+void gr_dem_eval_strip(gr_dem *d, int s);
+int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);
+void gr_dem_eval_free(struct gr_dem_eval *ev);
+
+/* dem_flow.c: the fused kick and the one-barrier step. */
 /* With Verlet lists and grains in strip order, have the colours also give
  * the second kick of velocity Verlet (gr_dem_kick, old buffer p) to each
  * strip once its last push is in; returns 1 if so. Kinetic energy of the
@@ -240,39 +285,21 @@ double gr_dem_eval_moved(const gr_dem *d);
  * the caller's barrier ends the step. */
 int gr_dem_eval_flow_begin(gr_dem *d);
 void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride);
-/* One strip's pushes (Verlet lists), and the kicks that fall after it. */
-void gr_dem_eval_strip(gr_dem *d, int s);
 /* Largest squared half-kick speed v + (dt/2) a of the next drift, from the
  * fused kick: with the displacements so far it bounds the next step's. */
 double gr_dem_eval_vmax2(const gr_dem *d);
-/* Second kick of grains [i0, i1); returns their kinetic energy, and in
- * *v2max (if not NULL) the largest squared speed of the next drift. */
-double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max);
-void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
-int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);
-void gr_dem_eval_free(struct gr_dem_eval *ev);
-int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
-/* Drop the grains with gone[i] != 0 (recorded in d->gone), keeping order. */
-int gr_dem_prepare(gr_dem *d, gr_err *err);
-int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err);
-void gr_dem_hist_undo_at(gr_dem *d, uint64_t E);
-int gr_dem_step(gr_dem *d, gr_err *err);
 
-/* CVODE reference integrator (dem_cvode.c). */
+/* dem_cvode.c: CVODE reference integrator. */
 int gr_dem_cv_create(gr_dem *d, gr_err *err);
 int gr_dem_cv_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);
 void gr_dem_cv_free(gr_dem *d);
 
-/* Periodic minimum image along a period L (0: none). */
-static inline double gr_dem_image(double dx, double L)
-{
-    if (L > 0.0) {
-        if (dx > 0.5 * L)
-            dx -= L;
-        else if (dx < -0.5 * L)
-            dx += L;
-    }
-    return dx;
-}
+/* dem_step.c: a step (also gr_dem_step, gr_dem_advance, gr_dem_forces). */
+void gr_dem_hist_undo_at(gr_dem *d, uint64_t E);
+int gr_dem_step(gr_dem *d, gr_err *err);
+
+/* dem_state.c: creation and freeing (also gr_dem_create, gr_dem_free,
+ * gr_dem_energy, gr_dem_observe and the test hooks). */
+int gr_dem_prepare(gr_dem *d, gr_err *err);
 
 #endif

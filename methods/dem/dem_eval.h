@@ -1,5 +1,6 @@
 /* The force evaluation's private state, shared by dem_force.c (contacts,
- * strips, colours) and dem_flow.c (how the threads share a step). */
+ * strips, colours), dem_balance.c (runs of strips per thread) and
+ * dem_flow.c (how the threads share a step). */
 #ifndef GR_DEM_EVAL_H
 #define GR_DEM_EVAL_H
 
@@ -65,6 +66,11 @@ struct gr_dem_eval {
     uint64_t epoch;
 };
 
+/* dem_balance.c: cut the m strips first, first + step, ... into nth runs
+ * of about equal cost (b[t] the first of run t, b[nth] = m); split every
+ * colour so (ev->split). */
+void gr_dem_cut_runs(const gr_dem *d, const struct gr_dem_eval *ev, int first, int step, int m,
+                     int nth, int *b);
 void gr_dem_split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth);
 
 #endif

@@ -1,6 +1,6 @@
-/* How the threads share a velocity Verlet step: cost-balanced runs of
- * strips, the kick fused into the colours, and the one-barrier step
- * (gr_dem_eval_flow). */
+/* How the threads share a velocity Verlet step: the kick fused into the
+ * colours of the force evaluation, and the one-barrier step
+ * (gr_dem_eval_flow). Above the evaluation, below the step. */
 #include <math.h>
 #include <time.h>
 #include <string.h>
@@ -11,44 +11,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-/* Cut the m strips first, first + step, ... into nth contiguous runs of
- * about equal cost (the measured times once every one of them has one,
- * the grain counts before): b[t] is the index, in that sequence, of the
- * first strip of run t, b[nth] = m. */
-static void cut_runs(const gr_dem *d, const struct gr_dem_eval *ev, int first, int step, int m, int nth,
-                     int *b)
-{
-    const int32_t *i0 = d->strips.i0;
-    int timed = 1;
-    double total = 0.0, acc = 0.0;
-    for (int k = 0; k < m; k++)
-        timed &= ev->stime[first + k * step] > 0;
-#define WEIGHT(s) (timed ? ev->stime[s] : (double)(i0[(s) + 1] - i0[s]) + 1.0)
-    for (int k = 0; k < m; k++)
-        total += WEIGHT(first + k * step);
-    int t = 1;
-    b[0] = 0;
-    for (int k = 0; k < m && t < nth; k++) {
-        double w = WEIGHT(first + k * step);
-        /* cut before strip k when that lands nearer the target */
-        while (t < nth && acc + 0.5 * w >= total * t / nth)
-            b[t++] = k;
-        acc += w;
-    }
-#undef WEIGHT
-    while (t <= nth)
-        b[t++] = m;
-}
-
-/* Each colour ends at a barrier, so each is balanced on its own (one cut
- * for all colours left a thread idle at every colour). */
-void gr_dem_split_strips(const gr_dem *d, struct gr_dem_eval *ev, int nth)
-{
-    int ns = ev->ns, ncol = ev->c.ncol;
-    for (int col = 0; col < ncol; col++)
-        cut_runs(d, ev, col, ncol, (ns - col + ncol - 1) / ncol, nth, ev->split + col * (nth + 1));
-}
 
 int gr_dem_eval_fuse_kick(gr_dem *d, int p)
 {
@@ -130,7 +92,7 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     ev->epoch++;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
-    cut_runs(d, ev, 0, 1, ns, nth, ev->split + 3 * (nth + 1));
+    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, ev->split + 3 * (nth + 1));
     return 1;
 }
 

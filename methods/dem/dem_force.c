@@ -173,8 +173,8 @@ DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
         for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
             int32_t j = nbj[k];
             double dx = c->x[j] - xi, dy = c->y[j] - yi;
-            if (c->Lx > 0) dx = gr_dem_image(dx, c->Lx);
-            if (c->Ly > 0) dy = gr_dem_image(dy, c->Ly);
+            if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
+            if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
             pair(c, NL, TL, &acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
         }
         for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
@@ -225,8 +225,8 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                     size_t j = (size_t)g->idx[b];
                     if (fi && (c->flags[j] & GR_PF_FIXED))
                         continue;
-                    double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-                    double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                    double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+                    double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
                     pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                 }
                 for (int q = 0; q < m; q++) {
@@ -234,8 +234,8 @@ DEM_INLINE void strip_cells(dem_ctx *c, const int NL, const int TL, int s)
                         size_t j = (size_t)g->idx[b];
                         if (fi && (c->flags[j] & GR_PF_FIXED))
                             continue;
-                        double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-                        double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+                        double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+                        double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
                         pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
                     }
                 }
@@ -260,8 +260,8 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
         for (size_t j = i + 1; j < d->n; j++) {
             if (fi && (c->flags[j] & GR_PF_FIXED))
                 continue;
-            double dx = gr_dem_image(c->x[j] - c->x[i], c->Lx);
-            double dy = gr_dem_image(c->y[j] - c->y[i], c->Ly);
+            double dx = gr_min_image(c->x[j] - c->x[i], c->Lx);
+            double dy = gr_min_image(c->y[j] - c->y[i], c->Ly);
             pair(c, NL, TL, &acc, i, j, dx, dy, &fxi, &fyi, &tqi);
         }
         if (!fi)
@@ -290,9 +290,9 @@ static inline void kick_after(dem_ctx *c, int s)
 
 /* One colour's strips, shared among the threads of the enclosing parallel
  * region (run by one thread outside any region, in the same order). Each
- * thread takes the colour's strips in its run (split_strips): the contacts,
- * not the grains, set a strip's cost, and in a bed under gravity the deep
- * strips have the most (a split by strip count left one thread idle a
+ * thread takes the colour's strips in its run (dem_balance.c): the
+ * contacts, not the grains, set a strip's cost, and in a bed under gravity
+ * the deep strips have the most (a split by strip count left one thread idle a
  * third of the time). Which thread runs a strip changes no bit of the
  * result. */
 DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, int col)
@@ -507,11 +507,51 @@ int gr_dem_eval_ncolours(const gr_dem *d) { return d->ev ? d->ev->c.ncol : 1; }
 
 void gr_dem_eval_colour(gr_dem *d, int col) { dispatch(&d->ev->c, d->ev->mode, col); }
 
+/* The evaluation's error, if any: a grain out of history slots, or the
+ * largest overlap past the bound (pair bi, bj; bj = -1 - s a segment). */
+static int eval_error(const gr_dem *d, const dem_ctx *c, double best, long bi, long bj, gr_err *err)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    if (c->hist_full)
+        return gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",
+                       ev->t_eval, (long long)d->tag_id[d->tag[c->full_i]], d->hist.cap);
+    if (!(best > d->par.max_overlap))
+        return GR_OK;
+    char other[96];
+    if (bj >= 0)
+        snprintf(other, sizeof other, "grain id %lld", (long long)d->tag_id[d->tag[bj]]);
+    else
+        snprintf(other, sizeof other, "wall segment %ld", -1 - bj);
+    if (ev->E == 0)
+        return gr_fail(err, GR_EINPUT,
+                       "initial state: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); place the grains apart",
+                       (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+    return gr_fail(err, GR_ERUN,
+                   "unstable at t = %.9g: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); lower dt or check the scene",
+                   ev->t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+}
+
+/* Per segment, the strips' forces summed in strip order. */
+static void segment_sums(const struct gr_dem_eval *ev, double *seg_out)
+{
+    for (int k = 0; k < ev->nseg; k++) {
+        double a = 0, b = 0, cfn = 0;
+        for (int s = 0; s < ev->ns; s++) {
+            const double *sf = ev->sseg + (size_t)s * ev->c.sstride + (size_t)k * 3;
+            a += sf[0];
+            b += sf[1];
+            cfn += sf[2];
+        }
+        seg_out[3 * k] = a;
+        seg_out[3 * k + 1] = b;
+        seg_out[3 * k + 2] = cfn;
+    }
+}
+
 int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
 {
     struct gr_dem_eval *ev = d->ev;
     dem_ctx *c = &ev->c;
-    int ns = ev->ns, nseg = ev->nseg;
     size_t n = d->n;
     if (d->ext_fx) {
         for (size_t i = 0; i < n; i++) {
@@ -521,7 +561,7 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
     }
     double best = 0.0, eel = 0.0;
     long bi = -1, bj = -1;
-    for (int s = 0; s < ns; s++) {
+    for (int s = 0; s < ev->ns; s++) {
         eel += ev->sel[s];
         if (ev->smax[s] > best) {
             best = ev->smax[s];
@@ -529,44 +569,11 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
             bj = ev->sj[s];
         }
     }
-    if (seg_out) {
-        for (int k = 0; k < nseg; k++) {
-            double a = 0, b = 0, cfn = 0;
-            for (int s = 0; s < ns; s++) {
-                const double *sf = ev->sseg + (size_t)s * c->sstride + (size_t)k * 3;
-                a += sf[0];
-                b += sf[1];
-                cfn += sf[2];
-            }
-            seg_out[3 * k] = a;
-            seg_out[3 * k + 1] = b;
-            seg_out[3 * k + 2] = cfn;
-        }
-    }
+    if (seg_out)
+        segment_sums(ev, seg_out);
     d->max_ovl = best;
     d->eel_eval = eel;
-    double t_eval = ev->t_eval;
-    uint64_t E = ev->E;
-    int rc = GR_OK;
-    if (c->hist_full) {
-        rc = gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",
-                     t_eval, (long long)d->tag_id[d->tag[c->full_i]], d->hist.cap);
-    } else if (best > d->par.max_overlap) {
-        char other[96];
-        if (bj >= 0)
-            snprintf(other, sizeof other, "grain id %lld", (long long)d->tag_id[d->tag[bj]]);
-        else
-            snprintf(other, sizeof other, "wall segment %ld", -1 - bj);
-        if (E == 0)
-            rc = gr_fail(err, GR_EINPUT,
-                         "initial state: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); place the grains apart",
-                         (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
-        else
-            rc = gr_fail(err, GR_ERUN,
-                         "unstable at t = %.9g: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); lower dt or check the scene",
-                         t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
-    }
-    return rc;
+    return eval_error(d, c, best, bi, bj, err);
 }
 
 void gr_dem_eval_run(gr_dem *d)

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "geom.h"
 
 static void cells_free(gr_dem_cells *g)
 {
@@ -33,10 +34,11 @@ static double seg_margin(const gr_dem *d)
     return 2.0 * fabs(d->sc.floor.amplitude);
 }
 
-int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
+/* The grid's box (grains, walls, a margin; the period when periodic) and
+ * cell counts for cells no smaller than cutoff. */
+static int grid_size(gr_dem *d, double cutoff, gr_err *err)
 {
     gr_dem_cells *g = &d->cells;
-    cells_free(g);
     double xmin = 0, xmax = d->sc.width, ymin = 0, ymax = d->sc.height;
     double *x = d->f[F_X][d->cur], *y = d->f[F_Y][d->cur];
     for (size_t i = 0; i < d->n; i++) {
@@ -79,19 +81,23 @@ int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
     g->cy = ly / (double)ny;
     g->icx = 1.0 / g->cx;
     g->icy = 1.0 / g->cy;
-    size_t nc = (size_t)nx * (size_t)ny;
-    g->start = calloc(nc + 1, sizeof *g->start);
-    g->cell_seg_start = calloc(nc + 1, sizeof *g->cell_seg_start);
-    if (!g->start || !g->cell_seg_start)
-        return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
-    /* segments near each cell: centre distance below half diagonal + reach */
+    return GR_OK;
+}
+
+/* Segments near each cell (CSR): centre distance below half the diagonal
+ * plus the reach of a grain. Counts on the first pass, fills on the
+ * second. */
+static int cell_segments(gr_dem *d, gr_err *err)
+{
+    gr_dem_cells *g = &d->cells;
+    size_t nc = (size_t)g->nx * (size_t)g->ny;
     double reach = 0.5 * hypot(g->cx, g->cy) + d->rmax + d->par.skin + seg_margin(d);
     size_t cnt = 0;
     for (int pass = 0; pass < 2; pass++) {
         cnt = 0;
         for (size_t c = 0; c < nc; c++) {
-            double ccx = xmin + ((double)(c % (size_t)nx) + 0.5) * g->cx;
-            double ccy = ymin + ((double)(c / (size_t)nx) + 0.5) * g->cy;
+            double ccx = g->x0 + ((double)(c % (size_t)g->nx) + 0.5) * g->cx;
+            double ccy = g->y0 + ((double)(c / (size_t)g->nx) + 0.5) * g->cy;
             if (pass)
                 g->cell_seg_start[c] = (int32_t)cnt;
             for (int k = 0; k < d->nseg; k++) {
@@ -110,6 +116,22 @@ int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
         }
     }
     g->cell_seg_start[nc] = (int32_t)cnt;
+    return GR_OK;
+}
+
+int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
+{
+    gr_dem_cells *g = &d->cells;
+    cells_free(g);
+    if (grid_size(d, cutoff, err))
+        return err->code;
+    size_t nc = (size_t)g->nx * (size_t)g->ny;
+    g->start = calloc(nc + 1, sizeof *g->start);
+    g->cell_seg_start = calloc(nc + 1, sizeof *g->cell_seg_start);
+    if (!g->start || !g->cell_seg_start)
+        return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
+    if (cell_segments(d, err))
+        return err->code;
     gr_dem_make_strips(d);
     return GR_OK;
 }
@@ -262,13 +284,81 @@ static int grow_i32(int32_t **a, size_t *cap, size_t need, gr_err *err)
     return GR_OK;
 }
 
+/* Grain i's partners j > i within reach (radii plus skin) in the 3 x 3
+ * cells around its own, appended to nb_j at *cnt and sorted by index. */
+static int list_pairs(gr_dem *d, const double *x, const double *y, size_t i, size_t *cnt, gr_err *err)
+{
+    const gr_dem_cells *g = &d->cells;
+    int32_t c = g->cell[i];
+    int cx = c % g->nx, cy = c / g->nx;
+    int fi = (d->flags[i] & GR_PF_FIXED) != 0;
+    double xi = x[i], yi = y[i], ri = d->rad[i], skin = d->par.skin;
+    for (int oy = -1; oy <= 1; oy++) {
+        int yy = cy + oy;
+        if (yy < 0 || yy >= g->ny) {
+            if (!g->py)
+                continue;
+            yy = (yy + g->ny) % g->ny;
+        }
+        for (int ox = -1; ox <= 1; ox++) {
+            int xx = cx + ox;
+            if (xx < 0 || xx >= g->nx) {
+                if (!g->px)
+                    continue;
+                xx = (xx + g->nx) % g->nx;
+            }
+            int32_t cc = yy * g->nx + xx;
+            for (int32_t a = g->start[cc]; a < g->start[cc + 1]; a++) {
+                int32_t j = g->idx[a];
+                if ((size_t)j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
+                    continue;
+                double dx = gr_min_image(x[j] - xi, d->Lx), dy = gr_min_image(y[j] - yi, d->Ly);
+                double rc = ri + d->rad[j] + skin;
+                if (dx * dx + dy * dy < rc * rc) {
+                    if (grow_i32(&d->nb_j, &d->nb_cap, *cnt + 1, err))
+                        return err->code;
+                    d->nb_j[(*cnt)++] = j;
+                }
+            }
+        }
+    }
+    /* neighbours in cell order are not sorted by index: sort the row so
+     * that the list does not depend on how cells were scanned */
+    for (size_t a = d->nb_start[i] + 1; a < *cnt; a++) {
+        int32_t v = d->nb_j[a];
+        size_t b = a;
+        while (b > (size_t)d->nb_start[i] && d->nb_j[b - 1] > v) {
+            d->nb_j[b] = d->nb_j[b - 1];
+            b--;
+        }
+        d->nb_j[b] = v;
+    }
+    return GR_OK;
+}
+
+/* Mobile grain i's candidate segments, appended to sg_j at *scnt. */
+static int list_segments(gr_dem *d, const double *x, const double *y, size_t i, size_t *scnt, gr_err *err)
+{
+    const gr_dem_cells *g = &d->cells;
+    int32_t c = g->cell[i];
+    double reach = d->rad[i] + d->par.skin + seg_margin(d);
+    for (int32_t k = g->cell_seg_start[c]; k < g->cell_seg_start[c + 1]; k++) {
+        const gr_dem_seg *s = &d->seg[g->cell_seg[k]];
+        if (seg_dist(s->x0, s->y0, s->x1, s->y1, x[i], y[i]) < reach) {
+            if (grow_i32(&d->sg_j, &d->sg_cap, *scnt + 1, err))
+                return err->code;
+            d->sg_j[(*scnt)++] = g->cell_seg[k];
+        }
+    }
+    return GR_OK;
+}
+
 /* Build the half list from the grains' current order and positions (the
  * caller sorted them first, or restored a saved order). */
 int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
 {
     if (gr_dem_bin(d, x, y, err))
         return err->code;
-    gr_dem_cells *g = &d->cells;
     size_t n = d->n;
     int32_t *ns = realloc(d->nb_start, (n + 1) * sizeof *ns);
     if (!ns)
@@ -278,67 +368,16 @@ int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
     if (!ns)
         return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
     d->sg_start = ns;
-    double skin = d->par.skin, sm = seg_margin(d);
     size_t cnt = 0, scnt = 0;
     for (size_t i = 0; i < n; i++) {
         d->nb_start[i] = (int32_t)cnt;
         d->sg_start[i] = (int32_t)scnt;
-        int32_t c = g->cell[i];
-        int cx = c % g->nx, cy = c / g->nx;
-        int fi = (d->flags[i] & GR_PF_FIXED) != 0;
-        double xi = x[i], yi = y[i], ri = d->rad[i];
-        for (int oy = -1; oy <= 1; oy++) {
-            int yy = cy + oy;
-            if (yy < 0 || yy >= g->ny) {
-                if (!g->py)
-                    continue;
-                yy = (yy + g->ny) % g->ny;
-            }
-            for (int ox = -1; ox <= 1; ox++) {
-                int xx = cx + ox;
-                if (xx < 0 || xx >= g->nx) {
-                    if (!g->px)
-                        continue;
-                    xx = (xx + g->nx) % g->nx;
-                }
-                int32_t cc = yy * g->nx + xx;
-                for (int32_t a = g->start[cc]; a < g->start[cc + 1]; a++) {
-                    int32_t j = g->idx[a];
-                    if ((size_t)j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
-                        continue;
-                    double dx = gr_dem_image(x[j] - xi, d->Lx), dy = gr_dem_image(y[j] - yi, d->Ly);
-                    double rc = ri + d->rad[j] + skin;
-                    if (dx * dx + dy * dy < rc * rc) {
-                        if (grow_i32(&d->nb_j, &d->nb_cap, cnt + 1, err))
-                            return err->code;
-                        d->nb_j[cnt++] = j;
-                    }
-                }
-            }
-        }
-        /* neighbours in cell order are not sorted by index: sort the row so
-         * that the list does not depend on how cells were scanned */
-        for (size_t a = d->nb_start[i] + 1; a < cnt; a++) {
-            int32_t v = d->nb_j[a];
-            size_t b = a;
-            while (b > (size_t)d->nb_start[i] && d->nb_j[b - 1] > v) {
-                d->nb_j[b] = d->nb_j[b - 1];
-                b--;
-            }
-            d->nb_j[b] = v;
-        }
-        if (!fi) {
-            for (int32_t k = g->cell_seg_start[c]; k < g->cell_seg_start[c + 1]; k++) {
-                const gr_dem_seg *s = &d->seg[g->cell_seg[k]];
-                if (seg_dist(s->x0, s->y0, s->x1, s->y1, xi, yi) < ri + skin + sm) {
-                    if (grow_i32(&d->sg_j, &d->sg_cap, scnt + 1, err))
-                        return err->code;
-                    d->sg_j[scnt++] = g->cell_seg[k];
-                }
-            }
-        }
-        d->xref[i] = xi;
-        d->yref[i] = yi;
+        if (list_pairs(d, x, y, i, &cnt, err))
+            return err->code;
+        if (!(d->flags[i] & GR_PF_FIXED) && list_segments(d, x, y, i, &scnt, err))
+            return err->code;
+        d->xref[i] = x[i];
+        d->yref[i] = y[i];
     }
     d->nb_start[n] = (int32_t)cnt;
     d->sg_start[n] = (int32_t)scnt;

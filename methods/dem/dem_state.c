@@ -1,72 +1,15 @@
-/* State of the DEM backend: creation from a scene and its particles,
- * per-grain arrays, grains leaving, snapshots and observables. */
+/* State of the DEM backend: creation from a scene and its particles and
+ * freeing, energies, observables and the tests' hooks. Above the step's
+ * layers (it evaluates the first forces, starts CVODE). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "dem.h"
+#include "geom.h"
 #include "rng.h"
 
 enum { STREAM_DEM_REINSERT = 0xD3E1 };
-
-static int field_used(const gr_dem *d, int f)
-{
-    if (f == F_W || f == F_TQ)
-        return d->rot;
-    if (f >= F_TH)
-        return d->par.integrator == GR_DEM_GEAR;
-    return 1;
-}
-
-int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
-{
-    if (cap <= d->cap)
-        return GR_OK;
-    size_t old = d->cap;
-#define GROW(T, a)                                                                 \
-    {                                                                              \
-        T *p_ = realloc((a), cap * sizeof(T));                                     \
-        if (!p_)                                                                   \
-            return gr_fail(err, GR_ERUN, "out of memory for %zu grains", cap);     \
-        memset(p_ + old, 0, (cap - old) * sizeof(T));                              \
-        (a) = p_;                                                                  \
-    }
-    for (int f = 0; f < F_NFIELDS; f++)
-        if (field_used(d, f))
-            for (int p = 0; p < 2; p++)
-                GROW(double, d->f[f][p]);
-    GROW(double, d->rad) GROW(double, d->im) GROW(double, d->iI) GROW(double, d->gf)
-    GROW(double, d->mass) GROW(double, d->inertia) GROW(double, d->xref) GROW(double, d->yref)
-    GROW(int32_t, d->tag) GROW(uint32_t, d->flags) GROW(int32_t, d->species)
-    if (d->ext_fx) {
-        GROW(double, d->ext_fx) GROW(double, d->ext_fy)
-    }
-    if (d->hist_on) {
-        size_t hc = (size_t)d->hist.cap, oc = old * hc, nc = cap * hc;
-        gr_dem_hist *h = &d->hist;
-#define GROWH(T, a, fillv)                                                         \
-        {                                                                          \
-            T *p_ = realloc((a), nc * sizeof(T));                                  \
-            if (!p_)                                                               \
-                return gr_fail(err, GR_ERUN, "out of memory for contact history"); \
-            for (size_t k = oc; k < nc; k++)                                       \
-                p_[k] = fillv;                                                     \
-            (a) = p_;                                                              \
-        }
-        GROWH(int32_t, h->partner, -1) GROWH(int32_t, h->partner_old, -1)
-        GROWH(double, h->z, 0.0) GROWH(double, h->z_old, 0.0)
-        GROWH(uint64_t, h->stamp, 0) GROWH(uint64_t, h->stamp_old, 0)
-#undef GROWH
-    }
-#undef GROW
-    size_t nb = 2 * (cap / DEM_BLOCK + 1);
-    double *blk = realloc(d->blk, nb * sizeof *blk);
-    if (!blk)
-        return gr_fail(err, GR_ERUN, "out of memory");
-    d->blk = blk;
-    d->cap = cap;
-    return GR_OK;
-}
 
 void gr_dem_free(gr_dem *d)
 {
@@ -94,12 +37,6 @@ void gr_dem_free(gr_dem *d)
     free(h->partner), free(h->partner_old), free(h->z), free(h->z_old), free(h->stamp), free(h->stamp_old);
     gr_rng_free(d->rng);
     free(d);
-}
-
-static int cmp_id(const void *a, const void *b)
-{
-    const int64_t *x = a, *y = b;
-    return (x[0] > y[0]) - (x[0] < y[0]);
 }
 
 static int add_seg(gr_dem *d, double x0, double y0, double x1, double y1, double open_time,
@@ -148,15 +85,10 @@ int gr_dem_prepare(gr_dem *d, gr_err *err)
     return GR_OK;
 }
 
-int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
-                  gr_dem **out, gr_err *err)
+/* The contact law and the domain from the scene; refuses the combinations
+ * the backend cannot run (GR_EINPUT naming the key). */
+static int set_law(gr_dem *d, const gr_scene *sc, gr_err *err)
 {
-    *out = NULL;
-    gr_dem *d = calloc(1, sizeof *d);
-    if (!d)
-        return gr_fail(err, GR_ERUN, "out of memory");
-    d->sc = *sc;
-    d->par = *par;
     const gr_material *m = &sc->mat;
     d->normal = m->normal;
     d->tang = m->tangential;
@@ -167,143 +99,141 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->g = sc->gravity;
     d->Lx = sc->side[GR_LEFT] == GR_BC_PERIODIC ? sc->width : 0.0;
     d->Ly = sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? sc->height : 0.0;
-    int rc = GR_OK;
     if (d->tang == GR_TANG_NONE && !isnan(m->tangential_restitution) && m->tangential_restitution != -1.0) {
         char where[1200];
         gr_scene_where(sc, "material", "tangential_restitution", where, sizeof where);
-        rc = gr_fail(err, GR_EINPUT,
-                     "%s: the soft DEM takes friction from [material] tangential (coulomb, viscous, regularised or spring), not from a tangential restitution",
-                     where);
-        goto fail;
+        return gr_fail(err, GR_EINPUT,
+                       "%s: the soft DEM takes friction from [material] tangential (coulomb, viscous, regularised or spring), not from a tangential restitution",
+                       where);
     }
-    if (d->hist_on && d->par.integrator == GR_DEM_CVODE) {
-        rc = gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
-        goto fail;
-    }
-    if (d->hist_on && !(d->kt > 0)) {
-        rc = gr_fail(err, GR_EINPUT, "[material] tangential = spring needs kt > 0");
-        goto fail;
-    }
+    if (d->hist_on && d->par.integrator == GR_DEM_CVODE)
+        return gr_fail(err, GR_EINPUT, "[dem] integrator = cvode cannot carry the tangential spring's history; use verlet or gear");
+    if (d->hist_on && !(d->kt > 0))
+        return gr_fail(err, GR_EINPUT, "[material] tangential = spring needs kt > 0");
+    return GR_OK;
+}
 
-    /* tags: rank of each grain's id */
+/* Tags are the ranks of the ids: the grains sorted by id in ix (entry t
+ * holds the index in init of tag t), which the caller frees. */
+static int tag_order(gr_dem *d, const gr_particles *init, gr_id_index **ix, gr_err *err)
+{
     size_t nt = init->n;
     d->ntag = nt;
-    int64_t *order = malloc((nt + 1) * 2 * sizeof *order);
+    *ix = malloc((nt + 1) * sizeof **ix);
     d->tag_id = malloc((nt + 1) * sizeof *d->tag_id);
     d->gone = gr_particles_create(nt + 1, err);
-    if (!order || !d->tag_id || !d->gone) {
-        free(order);
-        rc = d->gone ? gr_fail(err, GR_ERUN, "out of memory") : err->code;
-        goto fail;
-    }
-    for (size_t i = 0; i < nt; i++) {
-        order[2 * i] = init->id[i];
-        order[2 * i + 1] = (int64_t)i;
-    }
-    qsort(order, nt, 2 * sizeof *order, cmp_id);
-    for (size_t t = 1; t < nt; t++) {
-        if (order[2 * t] == order[2 * t - 2]) {
-            rc = gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)order[2 * t]);
-            free(order);
-            goto fail;
-        }
-    }
-    d->gone->n = nt;
-    size_t live = 0;
+    if (!*ix || !d->tag_id || !d->gone)
+        return d->gone ? gr_fail(err, GR_ERUN, "out of memory") : err->code;
+    gr_id_index_sort(init->id, nt, *ix);
+    int64_t dup = gr_id_index_duplicate(*ix, nt);
+    if (dup >= 0)
+        return gr_fail(err, GR_EINPUT, "two grains share the id %lld", (long long)dup);
+    return GR_OK;
+}
+
+/* Every grain, live or gone, goes to the tag-indexed record; the live ones
+ * must have a positive radius and (unless fixed) mass. Sets the diameter
+ * range and the history's slots, and returns the live count in *live. */
+static int record_grains(gr_dem *d, const gr_particles *init, const gr_id_index *ix, size_t *live,
+                         gr_err *err)
+{
+    size_t nt = d->ntag;
     double rmin = INFINITY;
+    d->gone->n = nt;
+    *live = 0;
     for (size_t t = 0; t < nt; t++) {
-        size_t i = (size_t)order[2 * t + 1];
+        size_t i = ix[t].i;
         d->tag_id[t] = init->id[i];
         gr_particles_copy_one(d->gone, t, init, i);
         if (init->flags[i] & GR_PF_GONE)
             continue;
-        live++;
+        ++*live;
         d->rmax = fmax(d->rmax, init->radius[i]);
         rmin = fmin(rmin, init->radius[i]);
-        if (!(init->radius[i] > 0) || (!(init->flags[i] & GR_PF_FIXED) && !(init->mass[i] > 0))) {
-            free(order);
-            rc = gr_fail(err, GR_EINPUT, "grain id %lld has radius %g and mass %g; both must be positive",
-                         (long long)init->id[i], init->radius[i], init->mass[i]);
-            goto fail;
-        }
+        if (!(init->radius[i] > 0) || (!(init->flags[i] & GR_PF_FIXED) && !(init->mass[i] > 0)))
+            return gr_fail(err, GR_EINPUT, "grain id %lld has radius %g and mass %g; both must be positive",
+                           (long long)init->id[i], init->radius[i], init->mass[i]);
     }
-    if (live == 0) {
-        free(order);
-        rc = gr_fail(err, GR_EINPUT, "the scene has no grains");
-        goto fail;
-    }
+    if (*live == 0)
+        return gr_fail(err, GR_EINPUT, "the scene has no grains");
     d->dmax = 2 * d->rmax;
     d->dmin = 2 * rmin;
     if (d->hist_on) {
         double a = asin(rmin / (rmin + d->rmax));
         d->hist.cap = (int)floor(M_PI / a + 1e-9) + 4;
     }
-    if (gr_dem_grow(d, live + 16, err)) {
-        free(order);
-        rc = err->code;
-        goto fail;
-    }
-    int p = d->cur = 0;
-    for (size_t t = 0; t < nt; t++) {
-        size_t i = (size_t)order[2 * t + 1];
-        if (init->flags[i] & GR_PF_GONE)
-            continue;
-        size_t k = d->n++;
-        int fixed = (init->flags[i] & GR_PF_FIXED) != 0;
-        d->f[F_X][p][k] = init->x[i];
-        d->f[F_Y][p][k] = init->y[i];
-        d->f[F_VX][p][k] = fixed ? 0.0 : init->vx[i];
-        d->f[F_VY][p][k] = fixed ? 0.0 : init->vy[i];
-        if (d->rot)
-            d->f[F_W][p][k] = fixed ? 0.0 : init->omega[i];
-        d->rad[k] = init->radius[i];
-        d->mass[k] = init->mass[i];
-        d->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
-        d->im[k] = fixed ? 0.0 : 1.0 / init->mass[i];
-        d->iI[k] = fixed ? 0.0 : 1.0 / d->inertia[k];
-        d->gf[k] = fixed ? 0.0 : d->g;
-        d->tag[k] = (int32_t)t;
-        d->flags[k] = init->flags[i];
-        d->species[k] = init->species[i];
-        d->nmobile += !fixed;
-        /* periodic positions live in [0, L) */
-        if (d->Lx > 0)
-            d->f[F_X][p][k] -= d->Lx * floor(d->f[F_X][p][k] / d->Lx);
-        if (d->Ly > 0)
-            d->f[F_Y][p][k] -= d->Ly * floor(d->f[F_Y][p][k] / d->Ly);
-    }
-    free(order);
-    if (make_segments(d, err)) {
-        rc = err->code;
-        goto fail;
-    }
-    d->scratch = gr_particles_create(nt + 1, err);
-    if (!d->scratch) {
-        rc = err->code;
-        goto fail;
-    }
+    return GR_OK;
+}
+
+/* Live grain i of init into slot k of buffer 0, as tag t. */
+static void load_grain(gr_dem *d, size_t k, const gr_particles *init, size_t i, size_t t)
+{
+    int fixed = (init->flags[i] & GR_PF_FIXED) != 0;
+    d->f[F_X][0][k] = init->x[i];
+    d->f[F_Y][0][k] = init->y[i];
+    d->f[F_VX][0][k] = fixed ? 0.0 : init->vx[i];
+    d->f[F_VY][0][k] = fixed ? 0.0 : init->vy[i];
+    if (d->rot)
+        d->f[F_W][0][k] = fixed ? 0.0 : init->omega[i];
+    d->rad[k] = init->radius[i];
+    d->mass[k] = init->mass[i];
+    d->inertia[k] = init->inertia[i] > 0 ? init->inertia[i] : gr_disk_inertia(init->mass[i], init->radius[i]);
+    d->im[k] = fixed ? 0.0 : 1.0 / init->mass[i];
+    d->iI[k] = fixed ? 0.0 : 1.0 / d->inertia[k];
+    d->gf[k] = fixed ? 0.0 : d->g;
+    d->tag[k] = (int32_t)t;
+    d->flags[k] = init->flags[i];
+    d->species[k] = init->species[i];
+    d->nmobile += !fixed;
+    /* periodic positions live in [0, L) */
+    if (d->Lx > 0)
+        d->f[F_X][0][k] -= d->Lx * floor(d->f[F_X][0][k] / d->Lx);
+    if (d->Ly > 0)
+        d->f[F_Y][0][k] -= d->Ly * floor(d->f[F_Y][0][k] / d->Ly);
+}
+
+/* The live grains, in id order, into the arrays (buffer 0 current). */
+static int load_grains(gr_dem *d, const gr_particles *init, const gr_id_index *ix, size_t live,
+                       gr_err *err)
+{
+    if (gr_dem_grow(d, live + 16, err))
+        return err->code;
+    d->cur = 0;
+    for (size_t t = 0; t < d->ntag; t++)
+        if (!(init->flags[ix[t].i] & GR_PF_GONE))
+            load_grain(d, d->n++, init, ix[t].i, t);
+    return GR_OK;
+}
+
+/* Walls, scratch, the reinsertion generator, gates, cells and lists. */
+static int set_scene(gr_dem *d, gr_err *err)
+{
+    const gr_scene *sc = &d->sc;
+    if (make_segments(d, err))
+        return err->code;
+    d->scratch = gr_particles_create(d->ntag + 1, err);
+    if (!d->scratch)
+        return err->code;
     if (sc->silo.present && sc->silo.reinsert) {
         d->rng = gr_rng_create(sc->seed, STREAM_DEM_REINSERT, err);
-        if (!d->rng) {
-            rc = err->code;
-            goto fail;
-        }
+        if (!d->rng)
+            return err->code;
     }
     d->gates_open = !(sc->silo.present && isfinite(sc->silo.open_time));
-    if (gr_dem_prepare(d, err)) {
-        rc = err->code;
-        goto fail;
-    }
+    return gr_dem_prepare(d, err);
+}
+
+/* Forces of the initial state (Gear's second derivative from them), its
+ * energy, and the floor under which energy jumps are not checked. */
+static int first_forces(gr_dem *d, gr_err *err)
+{
+    int p = d->cur;
     if (d->par.integrator == GR_DEM_CVODE) {
-        if (gr_dem_cv_create(d, err)) {
-            rc = err->code;
-            goto fail;
-        }
+        if (gr_dem_cv_create(d, err))
+            return err->code;
     } else {
-        if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err)) {
-            rc = err->code;
-            goto fail;
-        }
+        if (gr_dem_eval_at(d, p, d->t, 0, 0.0, d->par.neighbour, d->seg_force, err))
+            return err->code;
         if (d->par.integrator == GR_DEM_GEAR) {
             double h2 = 0.5 * d->par.dt * d->par.dt;
             for (size_t i = 0; i < d->n; i++) {
@@ -319,84 +249,29 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
     gr_dem_energy(d, &ek, NULL);
     d->ekin_last = ek + d->eel_eval;
+    return GR_OK;
+}
+
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+                  gr_dem **out, gr_err *err)
+{
+    *out = NULL;
+    gr_dem *d = calloc(1, sizeof *d);
+    if (!d)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    d->sc = *sc;
+    d->par = *par;
+    gr_id_index *ix = NULL;
+    size_t live = 0;
+    int rc = set_law(d, sc, err) || tag_order(d, init, &ix, err) ||
+             record_grains(d, init, ix, &live, err) || load_grains(d, init, ix, live, err);
+    free(ix);
+    if (rc || set_scene(d, err) || first_forces(d, err)) {
+        rc = err->code;
+        gr_dem_free(d);
+        return rc;
+    }
     *out = d;
-    return GR_OK;
-fail:
-    gr_dem_free(d);
-    return rc;
-}
-
-long gr_dem_index(const gr_dem *d, long tag)
-{
-    for (size_t i = 0; i < d->n; i++)
-        if (d->tag[i] == tag)
-            return (long)i;
-    return -1;
-}
-
-/* Record the current state of the grains in `which` (tags) into d->gone. */
-static void record(gr_dem *d, size_t i, uint32_t extra_flags)
-{
-    int p = d->cur;
-    gr_particles *g = d->gone;
-    size_t t = (size_t)d->tag[i];
-    g->x[t] = d->f[F_X][p][i];
-    g->y[t] = d->f[F_Y][p][i];
-    g->vx[t] = d->f[F_VX][p][i];
-    g->vy[t] = d->f[F_VY][p][i];
-    g->omega[t] = d->rot ? d->f[F_W][p][i] : 0.0;
-    g->flags[t] = d->flags[i] | extra_flags;
-}
-
-int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err)
-{
-    (void)err;
-    size_t hc = d->hist_on ? (size_t)d->hist.cap : 0;
-    size_t k = 0;
-    for (size_t i = 0; i < d->n; i++) {
-        if (gone[i]) {
-            record(d, i, GR_PF_GONE);
-            if (!(d->flags[i] & GR_PF_FIXED))
-                d->nmobile--;
-            continue;
-        }
-        if (k != i) {
-#define MV(a) if (a) (a)[k] = (a)[i];
-            for (int f = 0; f < F_NFIELDS; f++)
-                for (int p = 0; p < 2; p++)
-                    MV(d->f[f][p]);
-            MV(d->rad) MV(d->im) MV(d->iI) MV(d->gf)
-            MV(d->mass) MV(d->inertia) MV(d->xref) MV(d->yref) MV(d->ext_fx) MV(d->ext_fy)
-            MV(d->tag) MV(d->flags) MV(d->species)
-#undef MV
-            if (hc) {
-                gr_dem_hist *h = &d->hist;
-#define MVR(a) memcpy((a) + k * hc, (a) + i * hc, hc * sizeof *(a));
-                MVR(h->partner) MVR(h->partner_old) MVR(h->z) MVR(h->z_old) MVR(h->stamp) MVR(h->stamp_old)
-#undef MVR
-            }
-        }
-        k++;
-    }
-    d->n = k;
-    d->need_build = 1;
-    return GR_OK;
-}
-
-int gr_dem_snapshot(gr_dem *d, gr_particles *out, gr_err *err)
-{
-    if (gr_particles_copy(out, d->gone, err))
-        return err->code;
-    int p = d->cur;
-    for (size_t i = 0; i < d->n; i++) {
-        size_t t = (size_t)d->tag[i];
-        out->x[t] = d->f[F_X][p][i];
-        out->y[t] = d->f[F_Y][p][i];
-        out->vx[t] = d->f[F_VX][p][i];
-        out->vy[t] = d->f[F_VY][p][i];
-        out->omega[t] = d->rot ? d->f[F_W][p][i] : 0.0;
-        out->flags[t] = d->flags[i];
-    }
     return GR_OK;
 }
 
@@ -424,7 +299,7 @@ void gr_dem_energy(gr_dem *d, double *ekin, double *eel)
     double a = d->normal == GR_NORMAL_HERTZ ? 2.5 : 2.0;
     for (size_t i = 0; i < d->n; i++) {
         for (size_t j = i + 1; j < d->n; j++) {
-            double dx = gr_dem_image(x[j] - x[i], d->Lx), dy = gr_dem_image(y[j] - y[i], d->Ly);
+            double dx = gr_min_image(x[j] - x[i], d->Lx), dy = gr_min_image(y[j] - y[i], d->Ly);
             double rs = d->rad[i] + d->rad[j];
             if (dx * dx + dy * dy < rs * rs) {
                 double xi = rs - sqrt(dx * dx + dy * dy);
@@ -474,12 +349,8 @@ void gr_dem_reset_window(gr_dem *d)
 
 int gr_dem_set_external(gr_dem *d, long tag, double fx, double fy, gr_err *err)
 {
-    if (!d->ext_fx) {
-        d->ext_fx = calloc(d->cap, sizeof(double));
-        d->ext_fy = calloc(d->cap, sizeof(double));
-        if (!d->ext_fx || !d->ext_fy)
-            return gr_fail(err, GR_ERUN, "out of memory");
-    }
+    if (gr_dem_external_arrays(d, err))
+        return err->code;
     long i = gr_dem_index(d, tag);
     if (i < 0)
         return gr_fail(err, GR_EINPUT, "no live grain with tag %ld", tag);

@@ -1,0 +1,265 @@
+/* The integrators' per-grain passes: velocity Verlet's drift and kick
+ * (2.17-2.21), Gear's 6-value predictor and corrector, explicit Euler,
+ * each written into the other buffer so that a refused step leaves the
+ * last good state in place. They read and write grains only: below the
+ * force evaluation (which fuses the kick) and the step. */
+#include <math.h>
+#include <stddef.h>
+
+#include "dem.h"
+#include "geom.h"
+
+/* Per-particle loops run over fixed blocks, threads taking whole blocks;
+ * block results are combined in block order, so sums do not depend on the
+ * number of threads. gr_dem_grow keeps d->blk at two results per block of
+ * the capacity. */
+
+static inline double wrap(double x, double L)
+{
+    if (L > 0) {
+        if (x >= L)
+            x -= L;
+        else if (x < 0)
+            x += L;
+    }
+    return x;
+}
+
+/* Drift and first kick of grains [i0, i1); their two largest squared
+ * displacements since the list build go to top2[0], top2[1] when
+ * track != 0. */
+void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2])
+{
+    double dt = d->par.dt, h = 0.5 * dt;
+    const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
+    const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
+    const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
+    double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
+    double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
+    const double *restrict im = d->im;
+    const double *restrict xr = d->xref, *restrict yr = d->yref;
+    double *restrict fxn = d->f[F_FX][q], *restrict fyn = d->f[F_FY][q], *restrict tqn = d->f[F_TQ][q];
+    double g = d->g;
+    const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
+    double *restrict wn = d->f[F_W][q];
+    const double *restrict iI = d->iI;
+    double Lx = d->Lx, Ly = d->Ly;
+    int rot = d->rot;
+    double m1 = 0, m2 = 0;
+    for (size_t i = i0; i < i1; i++) {
+        /* fixed grains (im = 0) feel no gravity */
+        double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
+        double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
+        double nx = wrap(x[i] + dt * hx, Lx), ny = wrap(y[i] + dt * hy, Ly);
+        /* the new forces start from zero here, saving a pass */
+        fxn[i] = 0.0;
+        fyn[i] = 0.0;
+        xn[i] = nx;
+        yn[i] = ny;
+        /* the new buffer holds v(t+dt) predicted to second order,
+         * v(t+dt/2) + (dt/2) a(t), which the damping sees (the half-step
+         * velocity would make the dissipation first order); the second
+         * kick corrects it with a(t+dt) - a(t) */
+        vxn[i] = hx + h * ax;
+        vyn[i] = hy + h * ay;
+        if (rot) {
+            wn[i] = w[i] + dt * tq[i] * iI[i];
+            tqn[i] = 0.0;
+        }
+        if (track) {
+            double dx = gr_min_image(nx - xr[i], Lx), dy = gr_min_image(ny - yr[i], Ly);
+            double s2 = dx * dx + dy * dy;
+            if (s2 > m2) {
+                if (s2 > m1) {
+                    m2 = m1;
+                    m1 = s2;
+                } else {
+                    m2 = s2;
+                }
+            }
+        }
+    }
+    top2[0] = m1;
+    top2[1] = m2;
+}
+
+void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b)
+{
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < d->n ? i0 + DEM_BLOCK : d->n;
+    gr_dem_drift(d, p, q, track, i0, i1, d->blk + 2 * b);
+}
+
+/* Sum of the two largest displacements from the per-block maxima that
+ * gr_dem_predict_block left (the same whatever the thread count: a maximum). */
+double gr_dem_moved_blocks(const gr_dem *d)
+{
+    return gr_dem_top2_sum(d->blk, 2 * ((d->n + DEM_BLOCK - 1) / DEM_BLOCK));
+}
+
+/* Returns the sum of the two largest displacements since the list build
+ * when track != 0 (section 2.4.1), else 0. */
+double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track)
+{
+    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    int nth = gr_dem_threads(d);
+    if (nth > 1 && nb > 1) {
+#pragma omp parallel for schedule(static) num_threads(nth)
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_predict_block(d, p, q, track, b);
+    } else {
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_predict_block(d, p, q, track, b);
+    }
+    return track ? gr_dem_moved_blocks(d) : 0.0;
+}
+
+/* Second kick of grains [i0, i1): v(t+dt) = u + (dt/2) (a(t+dt) - a(t)),
+ * where u is the predicted velocity (gravity cancels); returns their
+ * kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array to stream). */
+double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
+{
+    double h = 0.5 * d->par.dt;
+    double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q];
+    const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
+    const double *restrict fxo = d->f[F_FX][p], *restrict fyo = d->f[F_FY][p];
+    const double *restrict im = d->im;
+    double *restrict w = d->f[F_W][q];
+    const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p], *restrict iI = d->iI;
+    int rot = d->rot;
+    double ek = 0, g = d->g, vm = 0;
+    for (size_t i = i0; i < i1; i++) {
+        double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
+        vx[i] = a;
+        vy[i] = c;
+        if (v2max) {
+            double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * (im[i] != 0));
+            double v2 = hx * hx + hy * hy;
+            vm = v2 > vm ? v2 : vm; /* not fmax: a libm call in this loop */
+        }
+        if (im[i] != 0)
+            ek += 0.5 * (a * a + c * c) / im[i];
+        if (rot) {
+            double ww = w[i] + h * (tq[i] - tqo[i]) * iI[i];
+            w[i] = ww;
+            if (iI[i] != 0)
+                ek += 0.5 * ww * ww / iI[i];
+        }
+    }
+    if (v2max)
+        *v2max = vm;
+    return ek;
+}
+
+void gr_dem_kick_block(gr_dem *d, int p, int q, size_t b)
+{
+    size_t i0 = b * DEM_BLOCK, i1 = i0 + DEM_BLOCK < d->n ? i0 + DEM_BLOCK : d->n;
+    d->blk[b] = gr_dem_kick(d, p, q, i0, i1, NULL);
+}
+
+/* Kinetic energy from the kick's per-block sums, in block order (the same
+ * bits whatever the thread count). */
+double gr_dem_kinetic_blocks(const gr_dem *d, size_t nb)
+{
+    double ek = 0;
+    for (size_t b = 0; b < nb; b++)
+        ek += d->blk[b];
+    return ek;
+}
+
+/* Second kick; returns the kinetic energy of the new state. */
+double gr_dem_correct_verlet(gr_dem *d, int p, int q)
+{
+    size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    int nth = gr_dem_threads(d);
+    if (nth > 1 && nb > 1) {
+#pragma omp parallel for schedule(static) num_threads(nth)
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_kick_block(d, p, q, b);
+    } else {
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_kick_block(d, p, q, b);
+    }
+    return gr_dem_kinetic_blocks(d, nb);
+}
+
+double gr_dem_kinetic(gr_dem *d, int q)
+{
+    double ek = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        double vx = d->f[F_VX][q][i], vy = d->f[F_VY][q][i];
+        ek += (d->im[i] != 0) * 0.5 * d->mass[i] * (vx * vx + vy * vy);
+        if (d->rot)
+            ek += (d->iI[i] != 0) * 0.5 * d->inertia[i] * d->f[F_W][q][i] * d->f[F_W][q][i];
+    }
+    return ek;
+}
+
+void gr_dem_predict_euler(gr_dem *d, int p, int q)
+{
+    double dt = d->par.dt;
+    for (size_t i = 0; i < d->n; i++) {
+        double ax = d->f[F_FX][p][i] * d->im[i], ay = d->f[F_FY][p][i] * d->im[i] - d->gf[i];
+        d->f[F_X][q][i] = wrap(d->f[F_X][p][i] + dt * d->f[F_VX][p][i], d->Lx);
+        d->f[F_Y][q][i] = wrap(d->f[F_Y][p][i] + dt * d->f[F_VY][p][i], d->Ly);
+        d->f[F_VX][q][i] = d->f[F_VX][p][i] + dt * ax;
+        d->f[F_VY][q][i] = d->f[F_VY][p][i] + dt * ay;
+        if (d->rot)
+            d->f[F_W][q][i] = d->f[F_W][p][i] + dt * d->f[F_TQ][p][i] * d->iI[i];
+    }
+}
+
+/* Gear, 6 values (Allen & Tildesley, app. E), scaled derivatives b_k;
+ * c0 = 3/16 because the forces depend on velocities. */
+static const double gear_c[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
+
+void gr_dem_predict_gear(gr_dem *d, int p, int q)
+{
+    double dt = d->par.dt;
+    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
+    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
+                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
+    int ndof = d->rot ? 3 : 2;
+    for (int c = 0; c < ndof; c++) {
+        double *r0 = d->f[q0[c]][p], *v = d->f[qv[c]][p];
+        double *b2 = d->f[qb[c][0]][p], *b3 = d->f[qb[c][1]][p], *b4 = d->f[qb[c][2]][p], *b5 = d->f[qb[c][3]][p];
+        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
+        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
+        for (size_t i = 0; i < d->n; i++) {
+            double b1 = dt * v[i];
+            R0[i] = wrap(r0[i] + b1 + b2[i] + b3[i] + b4[i] + b5[i], L);
+            double B1 = b1 + 2 * b2[i] + 3 * b3[i] + 4 * b4[i] + 5 * b5[i];
+            B2[i] = b2[i] + 3 * b3[i] + 6 * b4[i] + 10 * b5[i];
+            B3[i] = b3[i] + 4 * b4[i] + 10 * b5[i];
+            B4[i] = b4[i] + 5 * b5[i];
+            B5[i] = b5[i];
+            V[i] = B1 / dt;
+        }
+    }
+}
+
+void gr_dem_correct_gear(gr_dem *d, int q)
+{
+    double dt = d->par.dt, h2 = 0.5 * dt * dt;
+    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
+    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
+                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
+    int ndof = d->rot ? 3 : 2;
+    for (int c = 0; c < ndof; c++) {
+        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
+        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        const double *F = d->f[c == 0 ? F_FX : c == 1 ? F_FY : F_TQ][q];
+        const double *inv = c == 2 ? d->iI : d->im;
+        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
+        for (size_t i = 0; i < d->n; i++) {
+            double a = F[i] * inv[i] - (c == 1 ? d->gf[i] : 0.0);
+            double del = h2 * a - B2[i];
+            R0[i] = wrap(R0[i] + gear_c[0] * del, L);
+            V[i] += gear_c[1] * del / dt;
+            B2[i] += gear_c[2] * del;
+            B3[i] += gear_c[3] * del;
+            B4[i] += gear_c[4] * del;
+            B5[i] += gear_c[5] * del;
+        }
+    }
+}
