@@ -9,7 +9,6 @@
 #include "geom.h"
 #include "rng.h"
 
-enum { STREAM_DEM_REINSERT = 0xD3E1 };
 
 void gr_dem_free(gr_dem *d)
 {
@@ -215,7 +214,7 @@ static int set_scene(gr_dem *d, gr_err *err)
     if (!d->scratch)
         return err->code;
     if (sc->silo.present && sc->silo.reinsert) {
-        d->rng = gr_rng_create(sc->seed, STREAM_DEM_REINSERT, err);
+        d->rng = gr_rng_create(sc->seed, GR_STREAM_DEM_REINSERT, err);
         if (!d->rng)
             return err->code;
     }
