@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom.h"
+
 /* ------------------------------------------------ disk-rectangle overlap */
 
 /* Antiderivative of sqrt(r^2 - t^2) on [-r, r]. */
@@ -239,11 +241,6 @@ void gr_field_temperature(const gr_field *f, double *T)
 
 /* ----------------------------------------------------------- displacements */
 
-static double min_image(double d, double period)
-{
-    return period > 0.0 ? d - period * nearbyint(d / period) : d;
-}
-
 int gr_disp_window(const double *xa, const double *ya, const double *xb, const double *yb,
                    const uint32_t *flags, size_t n, const gr_disp_opts *o, double *dx,
                    double *dy, size_t *m, gr_err *err)
@@ -269,8 +266,8 @@ int gr_disp_window(const double *xa, const double *ya, const double *xb, const d
         if ((flags && (flags[i] & o->skip_flags)) || !(xa[i] >= o->x0 && xa[i] < o->x1) ||
             !(ya[i] >= o->y0 && ya[i] < o->y1))
             continue;
-        double ddx = min_image(xb[i] - xa[i], o->period_x);
-        double ddy = min_image(yb[i] - ya[i], o->period_y);
+        double ddx = gr_min_image(xb[i] - xa[i], o->period_x);
+        double ddy = gr_min_image(yb[i] - ya[i], o->period_y);
         if (!isfinite(ddx) || !isfinite(ddy)) {
             free(cs);
             free(col);
@@ -309,17 +306,6 @@ int gr_disp_window(const double *xa, const double *ya, const double *xb, const d
     return GR_OK;
 }
 
-typedef struct {
-    int64_t id;
-    size_t i;
-} id_index;
-
-static int cmp_id(const void *a, const void *b)
-{
-    int64_t x = ((const id_index *)a)->id, y = ((const id_index *)b)->id;
-    return (x > y) - (x < y);
-}
-
 int gr_disp_particles(const gr_particles *a, const gr_particles *b, const gr_disp_opts *o,
                       double *dx, double *dy, size_t *m, gr_err *err)
 {
@@ -338,7 +324,7 @@ int gr_disp_particles(const gr_particles *a, const gr_particles *b, const gr_dis
         free(fl);
         return rc;
     }
-    id_index *ix = malloc((b->n ? b->n : 1) * sizeof *ix);
+    gr_id_index *ix = malloc((b->n ? b->n : 1) * sizeof *ix);
     double *buf = malloc((n ? 4 * n : 1) * sizeof *buf);
     uint32_t *fl = malloc((n ? n : 1) * sizeof *fl);
     int rc = GR_OK;
@@ -346,15 +332,12 @@ int gr_disp_particles(const gr_particles *a, const gr_particles *b, const gr_dis
         rc = gr_fail(err, GR_ERUN, "displacements: out of memory");
         goto done;
     }
-    for (size_t j = 0; j < b->n; j++)
-        ix[j] = (id_index){b->id[j], j};
-    qsort(ix, b->n, sizeof *ix, cmp_id);
+    gr_id_index_sort(b->id, b->n, ix);
     /* Compact the grains present in both snapshots. */
     double *xa = buf, *ya = buf + n, *xb = buf + 2 * n, *yb = buf + 3 * n;
     size_t k = 0;
     for (size_t i = 0; i < n; i++) {
-        id_index key = {a->id[i], 0};
-        const id_index *hit = b->n ? bsearch(&key, ix, b->n, sizeof *ix, cmp_id) : NULL;
+        const gr_id_index *hit = gr_id_index_find(ix, b->n, a->id[i]);
         if (!hit)
             continue;
         xa[k] = a->x[i];

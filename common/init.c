@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "geom.h"
 #include "grid.h"
 #include "rng.h"
 
@@ -76,9 +77,7 @@ static int overlaps_any(const gr_grid *g, const gr_particles *p, double x, doubl
     int m = gr_grid_neighbours(g, gr_grid_cell(g, x, y), nb);
     for (int k = 0; k < m; k++) {
         for (long j = g->head[nb[k]]; j >= 0; j = g->next[j]) {
-            double dx = x - p->x[j], dy = y - p->y[j];
-            if (Lx > 0) dx -= Lx * round(dx / Lx);
-            if (Ly > 0) dy -= Ly * round(dy / Ly);
+            double dx = gr_min_image(x - p->x[j], Lx), dy = gr_min_image(y - p->y[j], Ly);
             double s = r + p->radius[j];
             if (dx * dx + dy * dy < s * s)
                 return 1;
