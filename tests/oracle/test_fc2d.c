@@ -184,6 +184,9 @@ static void random_packings(void **s)
                       (int)seed, p.nc, open, stick, slide, st.iterations, 1e3 * st.seconds,
                       st.nsgs_error, st.siconos_error, res.cone, res.eq);
         assert_true(st.nsgs_error <= tol);
+        /* Not a theorem: NSGS stops on ||W r + q - v|| / ||q||, which bounds
+         * the natural map only up to a factor of order (1 + mu) rho ||q|| / s;
+         * measured 0.5-0.6 tol on these seeds. */
         assert_true(res.total <= tol);
         free(r);
         free(u);
