@@ -8,7 +8,8 @@ cd "$(dirname "$0")"
 BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
-          hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy)
+          hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy
+          libsiconos-numerics-dev)
 
 say() { printf 'grano.sh: %s\n' "$*" >&2; }
 
