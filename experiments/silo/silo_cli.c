@@ -22,6 +22,12 @@ static const struct option common_opts[] = {
     {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0}};
 
+void silo_unit_label(const double *orifice, int nreal, size_t unit, char *buf, size_t n)
+{
+    size_t o = unit / (size_t)nreal, r = unit % (size_t)nreal;
+    snprintf(buf, n, "D%g-r%02zu", orifice[o], r);
+}
+
 int silo_bad(const silo_cli *cli, const char *opt, const char *val, const char *what)
 {
     fprintf(stderr, "grano %s: %s: '%s' is not %s\n", cli->name, opt, val ? val : "", what);

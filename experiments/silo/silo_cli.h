@@ -44,6 +44,10 @@ typedef struct {
     exp_report_fn report;
 } silo_cli;
 
+/* The label of unit `unit` of a sweep over orifices x nreal realisations
+ * (realisation fastest): "D<D>-r<r>", the name of its part file. */
+void silo_unit_label(const double *orifice, int nreal, size_t unit, char *buf, size_t n);
+
 /* "grano <cmd>: <opt>: '<val>' is not <what>" on stderr; returns 2. */
 int silo_bad(const silo_cli *cli, const char *opt, const char *val, const char *what);
 /* A decimal integer >= lo into *out; 0, or -1 leaving *out. */

@@ -21,8 +21,7 @@
 void sf_label(size_t unit, void *ctx, char *buf, size_t n)
 {
     const sf_ctx *c = ctx;
-    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    snprintf(buf, n, "D%g-r%02zu", c->orifice[o], r);
+    silo_unit_label(c->orifice, c->nreal, unit, buf, n);
 }
 
 void sf_key(size_t unit, void *ctx, char *buf, size_t n)

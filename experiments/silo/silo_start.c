@@ -22,8 +22,7 @@
 void ss_label(size_t unit, void *ctx, char *buf, size_t n)
 {
     const ss_ctx *c = ctx;
-    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    snprintf(buf, n, "D%g-r%02zu", c->orifice[o], r);
+    silo_unit_label(c->orifice, c->nreal, unit, buf, n);
 }
 
 void ss_key(size_t unit, void *ctx, char *buf, size_t n)
