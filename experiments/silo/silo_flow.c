@@ -37,6 +37,68 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
              c->sample_every, c->lift);
 }
 
+/* The measured blocks after the discarded transient: the grains that
+ * leave in each block (from the method's outflow counter), the packing of
+ * the square sq = {x0, y0, x1, y1} sampled every sample_every steps, and
+ * the surface at the block's end. The progress weighs the filling 0.3. */
+static int measure_blocks(const sf_ctx *c, const silo_cfg *cfg, gr_sim *st, gr_particles *snap, const double *sq,
+                          volatile double fillp, volatile double *progress, double *count, double *phi,
+                          double *top, gr_err *err)
+{
+    long total = c->discard + c->block * (long)c->nblocks;
+    gr_obs ob;
+    gr_obs_clear(&ob);
+    int rc = gr_sim_observe(st, &ob, err);
+    uint64_t last = ob.outflow;
+    for (int b = 0; b < c->nblocks && !rc; b++) {
+        long done = 0;
+        int ns = 0;
+        while (done < c->block && !rc) {
+            long k = c->sample_every < c->block - done ? c->sample_every : c->block - done;
+            if ((rc = silo_advance(cfg, st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
+                break;
+            done += k;
+            phi[b] += silo_packing(snap, sq[0], sq[1], sq[2], sq[3]);
+            ns++;
+            if (progress)
+                *progress = 0.3 * fillp + 0.7 * (double)(c->discard + b * c->block + done) / (double)total;
+        }
+        if (rc || (rc = gr_sim_observe(st, &ob, err)))
+            break;
+        phi[b] /= ns > 0 ? ns : 1;
+        count[b] = (double)(ob.outflow - last);
+        last = ob.outflow;
+        top[b] = silo_top(snap);
+    }
+    return rc;
+}
+
+/* The unit's part file: the key, the block series, the settled silo's
+ * bulk packing and height, the final grains and the cost. */
+static int write_part(const sf_ctx *c, const char *part, const char *key, const double *count, const double *phi,
+                      const double *top, double bulk, const silo_settled *set, const gr_particles *snap,
+                      const double *cost, gr_err *err)
+{
+    int rc = GR_OK;
+    gr_ckpt *ck = gr_ckpt_create(part, err);
+    if (!ck)
+        return err->code;
+    if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "counts", count, (size_t)c->nblocks, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "packing", phi, (size_t)c->nblocks, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "top", top, (size_t)c->nblocks, err);
+    if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
+    if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
+    if (!rc) rc = exp_put_particles(ck, "final", snap, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (rc) {
+        gr_ckpt_discard(ck);
+        return rc;
+    }
+    return gr_ckpt_close(ck, err);
+}
+
 int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
             gr_err *err)
 {
@@ -71,52 +133,12 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
                      : silo_packing(set.p, (rc ? 0 : sc->silo.x0) + mg, cfg.base + 2 * mg + 6,
                                     (rc ? 0 : sc->silo.x0) + cfg.width - mg, set.top - 2 * mg);
     long total = c->discard + c->block * (long)c->nblocks;
-    if (!rc && (rc = silo_advance(&cfg, st, (uint64_t)c->discard, err)) == GR_OK) {
-        gr_obs ob;
-        gr_obs_clear(&ob);
-        rc = gr_sim_observe(st, &ob, err);
-        uint64_t last = ob.outflow;
-        for (int b = 0; b < c->nblocks && !rc; b++) {
-            long done = 0;
-            int ns = 0;
-            while (done < c->block && !rc) {
-                long k = c->sample_every < c->block - done ? c->sample_every : c->block - done;
-                if ((rc = silo_advance(&cfg, st, (uint64_t)k, err)) || (rc = gr_sim_snapshot(st, snap, err)))
-                    break;
-                done += k;
-                phi[b] += silo_packing(snap, sq[0], sq[1], sq[2], sq[3]);
-                ns++;
-                if (progress)
-                    *progress = 0.3 * fillp + 0.7 * (double)(c->discard + b * c->block + done) / (double)total;
-            }
-            if (rc || (rc = gr_sim_observe(st, &ob, err)))
-                break;
-            phi[b] /= ns > 0 ? ns : 1;
-            count[b] = (double)(ob.outflow - last);
-            last = ob.outflow;
-            top[b] = silo_top(snap);
-        }
-    }
+    if (!rc && (rc = silo_advance(&cfg, st, (uint64_t)c->discard, err)) == GR_OK)
+        rc = measure_blocks(c, &cfg, st, snap, sq, fillp, progress, count, phi, top, err);
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)total};
-    gr_ckpt *ck = rc ? NULL : gr_ckpt_create(part, err);
-    if (!rc && !ck)
-        rc = err->code;
-    if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "counts", count, (size_t)c->nblocks, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "packing", phi, (size_t)c->nblocks, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "top", top, (size_t)c->nblocks, err);
-    if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
-    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
-    if (!rc) rc = exp_put_scalar(ck, "top0", set.top, err);
-    if (!rc) rc = exp_put_particles(ck, "final", snap, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
-    if (ck) {
-        if (rc)
-            gr_ckpt_discard(ck);
-        else
-            rc = gr_ckpt_close(ck, err);
-    }
+    if (!rc)
+        rc = write_part(c, part, key, count, phi, top, bulk, &set, snap, cost, err);
     gr_sim_free(st);
     gr_scene_free(sc);
     gr_particles_free(snap);
