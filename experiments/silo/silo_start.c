@@ -230,6 +230,102 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     return gr_ckpt_close(ck, err);
 }
 
+/* The window's grains at frame f become the origin of a free slot of s;
+ * none is started when all QMAX are still running. */
+static void start_origin(ustate *u, slotbuf *s, long f)
+{
+    for (int j = 0; j < QMAX; j++) {
+        origin *q = &s->q[j];
+        if (q->live)
+            continue;
+        q->live = 1, q->f0 = f, q->m = u->wm;
+        memcpy(q->idx, u->widx, u->wm * sizeof *q->idx);
+        memcpy(q->x, u->wx, u->wm * sizeof *q->x);
+        memcpy(q->y, u->wy, u->wm * sizeof *q->y);
+        break;
+    }
+}
+
+/* Frame f (at step): complete the origins whose lag has come, and start
+ * new ones every lag/8 frames (overlapping origins, many samples per
+ * lag) while the lag still fits before max_steps. The window is scanned
+ * once a frame at most, and only when an origin starts. */
+static int lag_frame(ustate *u, const gr_particles *snap, long f, long step, const double *win, double dt,
+                     gr_err *err)
+{
+    const ss_ctx *c = u->c;
+    int scanned = 0, rc = GR_OK;
+    for (size_t k = 0; k < c->nslots && !rc; k++) {
+        slotbuf *s = &u->sl[k];
+        long lag = c->lag[k], every = lag / 8 > 1 ? lag / 8 : 1;
+        for (int j = 0; j < QMAX && !rc; j++)
+            if (s->q[j].live && s->q[j].f0 + lag == f)
+                rc = complete(u, k, &s->q[j], snap, (double)(lag * c->fs) * dt, err);
+        if (f % every || step + lag * c->fs > c->max_steps)
+            continue;
+        if (!scanned)
+            window_scan(u, snap, win[0], win[1]), scanned = 1;
+        start_origin(u, s, f);
+    }
+    return rc;
+}
+
+/* One field grid a snapshot time (fig. 3.2), cells of c->cell over the
+ * container from its left wall xl and base up. */
+static int create_fields(const ss_ctx *c, const silo_cfg *cfg, double xl, gr_field **fld, gr_err *err)
+{
+    int nx = (int)floor(cfg->width / c->cell + 1e-9), ny = (int)floor(cfg->height / c->cell + 1e-9);
+    for (size_t j = 0; j < c->ntimes; j++)
+        if (!(fld[j] = gr_field_create(nx, ny, xl, cfg->base, c->cell, c->cell, err)))
+            return err->code;
+    return GR_OK;
+}
+
+/* Follow the open silo frame by frame (every fs steps): the fields near
+ * their snapshot times, the lagged displacements, the surface and the
+ * outflow every 10 frames into ts (step, surface, outflow; at most tscap
+ * numbers), until the surface has fallen fall_stop after min_steps, or
+ * max_steps. *step is the last step reached. */
+static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_particles *snap, gr_field **fld,
+                            double *ts, size_t tscap, size_t *nts, const double *win, size_t klayer,
+                            double *ybuf, double top0, volatile double *progress, long *step, gr_err *err)
+{
+    const ss_ctx *c = u->c;
+    double top = top0;
+    long f = 0;
+    int rc = GR_OK;
+    while (!rc) {
+        if ((rc = gr_sim_snapshot(st, snap, err)))
+            break;
+        for (size_t j = 0; j < c->ntimes; j++)
+            if (labs(*step - c->times[j]) <= 2 * c->fs &&
+                (rc = gr_field_add(fld[j], snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
+                break;
+        if (!rc)
+            rc = lag_frame(u, snap, f, *step, win, cfg->dt, err);
+        if (rc)
+            break;
+        if (f % 10 == 0)
+            top = silo_surface(snap, klayer, ybuf);
+        if (f % 10 == 0 && *nts + 3 <= tscap) {
+            gr_obs ob;
+            gr_obs_clear(&ob);
+            if ((rc = gr_sim_observe(st, &ob, err)))
+                break;
+            ts[(*nts)++] = (double)*step, ts[(*nts)++] = top, ts[(*nts)++] = (double)ob.outflow;
+        }
+        if (progress)
+            *progress = fmax((double)*step / (double)c->max_steps,
+                             *step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
+        if ((*step >= c->min_steps && top0 - top >= c->fall_stop) || *step >= c->max_steps)
+            break;
+        if ((rc = silo_advance(cfg, st, (uint64_t)c->fs, err)))
+            break;
+        f++, *step += c->fs;
+    }
+    return rc;
+}
+
 int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
             gr_err *err)
 {
@@ -261,10 +357,8 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (!rc)
         rc = silo_open(&cfg, &set, &sc, &st, err);
     double xl = rc ? 0 : sc->silo.x0, base = cfg.base, W = cfg.width;
-    int nx = (int)floor(W / c->cell + 1e-9), ny = (int)floor(cfg.height / c->cell + 1e-9);
-    for (size_t j = 0; j < c->ntimes && !rc; j++)
-        if (!(fld[j] = gr_field_create(nx, ny, xl, base, c->cell, c->cell, err)))
-            rc = err->code;
+    if (!rc)
+        rc = create_fields(c, &cfg, xl, fld, err);
     /* the window is centred in the silo across and in the settled packing's height */
     double win[2] = {xl + 0.5 * (W - c->window), base + 0.5 * (set.top - base) - 0.5 * c->window};
     /* the thesis follows the discharge "hasta que el grano más alto cae dos
@@ -275,57 +369,10 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double *ybuf = malloc(((size_t)cfg.n + klayer + 1) * sizeof *ybuf);
     if (!ybuf && !rc)
         rc = gr_fail(err, GR_ERUN, "out of memory");
-    double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0, top = top0;
-    long f = 0, step = 0;
-    while (!rc) {
-        if ((rc = gr_sim_snapshot(st, snap, err)))
-            break;
-        for (size_t j = 0; j < c->ntimes; j++)
-            if (labs(step - c->times[j]) <= 2 * c->fs &&
-                (rc = gr_field_add(fld[j], snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
-                break;
-        int scanned = 0;
-        for (size_t k = 0; k < c->nslots && !rc; k++) {
-            slotbuf *s = &u.sl[k];
-            long lag = c->lag[k], every = lag / 8 > 1 ? lag / 8 : 1;
-            for (int j = 0; j < QMAX && !rc; j++)
-                if (s->q[j].live && s->q[j].f0 + lag == f)
-                    rc = complete(&u, k, &s->q[j], snap, (double)(lag * c->fs) * cfg.dt, err);
-            if (f % every || step + lag * c->fs > c->max_steps)
-                continue;
-            if (!scanned)
-                window_scan(&u, snap, win[0], win[1]), scanned = 1;
-            for (int j = 0; j < QMAX; j++) {
-                origin *q = &s->q[j];
-                if (q->live)
-                    continue;
-                q->live = 1, q->f0 = f, q->m = u.wm;
-                memcpy(q->idx, u.widx, u.wm * sizeof *q->idx);
-                memcpy(q->x, u.wx, u.wm * sizeof *q->x);
-                memcpy(q->y, u.wy, u.wm * sizeof *q->y);
-                break;
-            }
-        }
-        if (rc)
-            break;
-        if (f % 10 == 0)
-            top = silo_surface(snap, klayer, ybuf);
-        if (f % 10 == 0 && nts + 3 <= tscap) {
-            gr_obs ob;
-            gr_obs_clear(&ob);
-            if ((rc = gr_sim_observe(st, &ob, err)))
-                break;
-            ts[nts++] = (double)step, ts[nts++] = top, ts[nts++] = (double)ob.outflow;
-        }
-        if (progress)
-            *progress = fmax((double)step / (double)c->max_steps,
-                             step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
-        if ((step >= c->min_steps && top0 - top >= c->fall_stop) || step >= c->max_steps)
-            break;
-        if ((rc = silo_advance(&cfg, st, (uint64_t)c->fs, err)))
-            break;
-        f++, step += c->fs;
-    }
+    double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0;
+    long step = 0;
+    if (!rc)
+        rc = follow_discharge(&u, &cfg, st, snap, fld, ts, tscap, &nts, win, klayer, ybuf, top0, progress, &step, err);
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)
