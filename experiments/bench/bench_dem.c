@@ -373,6 +373,73 @@ static int packing(const char *integ, double dt, double T, int n, double *xy, do
     return rc;
 }
 
+/* The two-disk collision at dt = t_c/10 ... t_c/(10 2^(nk-1)) for each
+ * integrator: one block of the table each, so that gnuplot's `index`
+ * picks an integrator. */
+static void accuracy_collisions(FILE *f, double tc0, double e_ref, double tc_ref, int nk, int quick)
+{
+    for (int g = 0; g < 3; g++) {
+        for (int k = 0; k < nk; k++) {
+            double dt = tc0 / 10 / pow(2, k), e, tc, secs = 0;
+            long steps;
+            gr_err e2 = {0};
+            if (collision(integ_names[g], dt, 0, quick ? 4 : 8, &e, &tc, &secs, &steps, &e2)) {
+                printf("collision %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
+                continue;
+            }
+            double ee = fabs(e / e_ref - 1), et = fabs(tc / tc_ref - 1);
+            fprintf(f, "collision %s %.6g %ld %.6g %.6g %.6g nan\n", integ_names[g], dt, steps, secs, ee, et);
+            printf("collision %-6s dt = t_c/%-5.0f: e error %.3e, t_c error %.3e, %.3g s\n", integ_names[g],
+                   tc0 / dt, ee, et, secs);
+        }
+        fprintf(f, "\n\n");
+    }
+}
+
+/* The settling packing of n grains to time T for each integrator, the
+ * largest position error against xref; xy is room for 2 n numbers. */
+static void accuracy_packing(FILE *f, int n, double T, const double *xref, double *xy, int nk)
+{
+    for (int g = 0; g < 3; g++) {
+        for (int k = 0; k < nk; k++) {
+            double dt = 4e-4 / pow(2, k), secs;
+            long steps;
+            gr_err e2 = {0};
+            if (packing(integ_names[g], dt, T, n, xy, &secs, &steps, &e2)) {
+                printf("packing %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
+                continue;
+            }
+            double worst = 0;
+            for (int i = 0; i < 2 * n; i++)
+                worst = fmax(worst, fabs(xy[i] - xref[i]));
+            fprintf(f, "packing %s %.6g %ld %.6g nan nan %.6g\n", integ_names[g], dt, steps, secs, worst);
+            printf("packing   %-6s dt = %-9.4g: position error %.3e d, %.3g s\n", integ_names[g], dt, worst, secs);
+        }
+        fprintf(f, "\n\n");
+    }
+}
+
+/* Error against CPU time, the figure of the accuracy sweep in dat. */
+static int accuracy_plot(const char *dat, const char *png, int n, double T, gr_err *err)
+{
+    FILE *gp = gr_plot_open(png, 1100, 480, err);
+    if (!gp)
+        return err->code;
+    fprintf(gp, "set multiplot layout 1,2\nset logscale xy\nset format y '10^{%%L}'\nset grid\n"
+                "set key bottom left\nset xlabel 'CPU seconds'\n"
+                "set title 'two-disk collision (Hertz, {/Symbol g}_n = 100, v = 1; phase-averaged)'\n"
+                "set ylabel 'relative error against CVODE'\n"
+                "plot for [g=0:2] '%s' index g using 5:6 with linespoints title word('verlet gear euler', g+1).' e', "
+                "for [g=0:2] '%s' index g using 5:7 with linespoints dashtype 2 title word('verlet gear euler', g+1).' t_c'\n"
+                "set title 'settling packing (%d grains, t = %g)'\nset ylabel 'largest position error / d'\n"
+                "plot for [g=3:5] '%s' index g using 5:8 with linespoints title word('verlet gear euler', g-2)\n"
+                "unset multiplot\n",
+            dat, dat, n, T, dat);
+    if (gr_plot_close(gp, png, err))
+        return err->code;
+    return GR_OK;
+}
+
 static int bench_dem_accuracy(const char *dir, int quick, gr_err *err)
 {
     char dat[1200], png[1200];
@@ -406,55 +473,11 @@ static int bench_dem_accuracy(const char *dir, int quick, gr_err *err)
     fprintf(f, "# grano bench dem --accuracy: error against the CVODE reference and cost\n"
                "# problem integrator dt steps cpu_seconds err_restitution err_contact_time err_position\n");
     int nk = quick ? 3 : 6;
-    for (int g = 0; g < 3; g++) {
-        for (int k = 0; k < nk; k++) {
-            double dt = tc0 / 10 / pow(2, k), e, tc, secs = 0;
-            long steps;
-            gr_err e2 = {0};
-            if (collision(integ_names[g], dt, 0, quick ? 4 : 8, &e, &tc, &secs, &steps, &e2)) {
-                printf("collision %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
-                continue;
-            }
-            double ee = fabs(e / e_ref - 1), et = fabs(tc / tc_ref - 1);
-            fprintf(f, "collision %s %.6g %ld %.6g %.6g %.6g nan\n", integ_names[g], dt, steps, secs, ee, et);
-            printf("collision %-6s dt = t_c/%-5.0f: e error %.3e, t_c error %.3e, %.3g s\n", integ_names[g],
-                   tc0 / dt, ee, et, secs);
-        }
-        fprintf(f, "\n\n");
-    }
-    for (int g = 0; g < 3; g++) {
-        for (int k = 0; k < nk; k++) {
-            double dt = 4e-4 / pow(2, k), secs;
-            long steps;
-            gr_err e2 = {0};
-            if (packing(integ_names[g], dt, T, n, xy, &secs, &steps, &e2)) {
-                printf("packing %s dt=%.4g: failed (%s)\n", integ_names[g], dt, e2.msg);
-                continue;
-            }
-            double worst = 0;
-            for (int i = 0; i < 2 * n; i++)
-                worst = fmax(worst, fabs(xy[i] - xref[i]));
-            fprintf(f, "packing %s %.6g %ld %.6g nan nan %.6g\n", integ_names[g], dt, steps, secs, worst);
-            printf("packing   %-6s dt = %-9.4g: position error %.3e d, %.3g s\n", integ_names[g], dt, worst, secs);
-        }
-        fprintf(f, "\n\n");
-    }
+    accuracy_collisions(f, tc0, e_ref, tc_ref, nk, quick);
+    accuracy_packing(f, n, T, xref, xy, nk);
     fclose(f);
     free(xref), free(xy);
-    FILE *gp = gr_plot_open(png, 1100, 480, err);
-    if (!gp)
-        return err->code;
-    fprintf(gp, "set multiplot layout 1,2\nset logscale xy\nset format y '10^{%%L}'\nset grid\n"
-                "set key bottom left\nset xlabel 'CPU seconds'\n"
-                "set title 'two-disk collision (Hertz, {/Symbol g}_n = 100, v = 1; phase-averaged)'\n"
-                "set ylabel 'relative error against CVODE'\n"
-                "plot for [g=0:2] '%s' index g using 5:6 with linespoints title word('verlet gear euler', g+1).' e', "
-                "for [g=0:2] '%s' index g using 5:7 with linespoints dashtype 2 title word('verlet gear euler', g+1).' t_c'\n"
-                "set title 'settling packing (%d grains, t = %g)'\nset ylabel 'largest position error / d'\n"
-                "plot for [g=3:5] '%s' index g using 5:8 with linespoints title word('verlet gear euler', g-2)\n"
-                "unset multiplot\n",
-            dat, dat, n, T, dat);
-    if (gr_plot_close(gp, png, err))
+    if (accuracy_plot(dat, png, n, T, err))
         return err->code;
     printf("wrote %s and %s\n", dat, png);
     return GR_OK;
@@ -477,14 +500,21 @@ static void usage(FILE *f)
             "DIR/dem_accuracy.dat and DIR/dem_accuracy.png (default DIR: .).\n");
 }
 
-int bench_dem(int argc, char **argv)
+/* The options of bench dem. */
+typedef struct {
+    long ns[16];
+    int nn;
+    long steps, settle, threads;
+    double skin;
+    const char *peer, *dir;
+    int accuracy, quick, scaling, threads_given;
+} bd_opts;
+
+/* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
+static int parse_args(int argc, char **argv, bd_opts *o)
 {
-    long ns[16] = {5000, 20000, 80000};
-    int nn = 3;
-    long steps = 2000, settle = 1000, threads = 1;
-    double skin = 0.2;
-    const char *peer = NULL, *dir = ".";
-    int accuracy = 0, quick = 0, scaling = 0, threads_given = 0;
+    *o = (bd_opts){.ns = {5000, 20000, 80000}, .nn = 3, .steps = 2000, .settle = 1000, .threads = 1, .skin = 0.2,
+                   .peer = NULL, .dir = "."};
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         const char *v = i + 1 < argc ? argv[i + 1] : NULL;
@@ -492,88 +522,109 @@ int bench_dem(int argc, char **argv)
             usage(stdout);
             return 0;
         } else if (!strcmp(a, "--accuracy")) {
-            accuracy = 1;
+            o->accuracy = 1;
         } else if (!strcmp(a, "--scaling")) {
-            scaling = 1;
+            o->scaling = 1;
         } else if (!strcmp(a, "--quick")) {
-            quick = 1;
+            o->quick = 1;
         } else if (v && !strcmp(a, "--n")) {
-            nn = 0;
-            for (char *s = argv[++i], *end; *s && nn < 16; s = *end ? end + 1 : end) {
-                ns[nn++] = strtol(s, &end, 10);
-                if (end == s || ns[nn - 1] < 1 || (*end && *end != ',')) {
+            o->nn = 0;
+            for (char *s = argv[++i], *end; *s && o->nn < 16; s = *end ? end + 1 : end) {
+                o->ns[o->nn++] = strtol(s, &end, 10);
+                if (end == s || o->ns[o->nn - 1] < 1 || (*end && *end != ',')) {
                     fprintf(stderr, "grano bench dem: --n wants positive integers separated by commas\n");
                     return 2;
                 }
             }
         } else if (v && !strcmp(a, "--steps")) {
-            steps = atol(argv[++i]);
+            o->steps = atol(argv[++i]);
         } else if (v && !strcmp(a, "--settle")) {
-            settle = atol(argv[++i]);
+            o->settle = atol(argv[++i]);
         } else if (v && !strcmp(a, "--threads")) {
-            threads = atol(argv[++i]);
-            threads_given = 1;
+            o->threads = atol(argv[++i]);
+            o->threads_given = 1;
         } else if (v && !strcmp(a, "--skin")) {
-            skin = atof(argv[++i]);
+            o->skin = atof(argv[++i]);
         } else if (v && !strcmp(a, "--peer")) {
-            peer = argv[++i];
-            if (strcmp(peer, "lammps")) {
-                fprintf(stderr, "grano bench dem: unknown peer '%s' (known: lammps)\n", peer);
+            o->peer = argv[++i];
+            if (strcmp(o->peer, "lammps")) {
+                fprintf(stderr, "grano bench dem: unknown peer '%s' (known: lammps)\n", o->peer);
                 return 2;
             }
         } else if (v && !strcmp(a, "--dir")) {
-            dir = argv[++i];
+            o->dir = argv[++i];
         } else {
             fprintf(stderr, "grano bench dem: unknown or incomplete option '%s'\n", a);
             usage(stderr);
             return 2;
         }
     }
-    if (steps < 1 || settle < 0 || threads < 1 || !(skin >= 0)) {
+    return -1;
+}
+
+/* The options that make sense only together; 0 or the exit code 2. */
+static int check_args(bd_opts *o)
+{
+    if (o->steps < 1 || o->settle < 0 || o->threads < 1 || !(o->skin >= 0)) {
         fprintf(stderr, "grano bench dem: --steps and --threads must be positive, --settle and --skin not negative\n");
         return 2;
     }
-    if (scaling && !threads_given)
-        threads = 2;
-    if (scaling && (threads < 2 || peer)) {
+    if (o->scaling && !o->threads_given)
+        o->threads = 2;
+    if (o->scaling && (o->threads < 2 || o->peer)) {
         fprintf(stderr, "grano bench dem: --scaling compares 1 thread with --threads T >= 2, without --peer\n");
         return 2;
     }
-    if (mkdir(dir, 0777) && errno != EEXIST) {
-        fprintf(stderr, "grano bench dem: cannot create %s: %s\n", dir, strerror(errno));
+    if (mkdir(o->dir, 0777) && errno != EEXIST) {
+        fprintf(stderr, "grano bench dem: cannot create %s: %s\n", o->dir, strerror(errno));
         return 2;
     }
+    return 0;
+}
+
+/* One bed's lines: the human one and the RESULT line the checks read. */
+static void print_bed(const bd_opts *o, const bed_result *r)
+{
+    if (o->scaling) {
+        printf("dem n=%ld: %.4g particle-steps/s on 1 thread, %.4g on %ld (alternating rounds)\n", r->n, r->rate1,
+               r->rate, o->threads);
+        printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g threads=%ld speedup=%.3f\n", r->n,
+               o->steps, r->rate, o->threads, r->rate / r->rate1);
+        fflush(stdout);
+        return;
+    }
+    printf("dem n=%ld threads=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second x threads), %.1f bytes per grain\n",
+           r->n, o->threads, r->seconds, r->rate, r->cpu_rate, r->bytes_per_grain);
+    if (o->peer)
+        printf("lammps n=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second; CPU-time ratio %.3f)\n", r->n,
+               r->lammps_seconds, r->lammps_rate, r->lammps_cpu_rate, r->cpu_rate / r->lammps_cpu_rate);
+    printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g", r->n, o->steps, r->rate);
+    if (o->peer)
+        printf(" lammps_particle_steps_per_s=%.6g ratio=%.3f", r->lammps_rate, r->rate / r->lammps_rate);
+    printf("\n");
+    fflush(stdout);
+}
+
+int bench_dem(int argc, char **argv)
+{
+    bd_opts o;
+    int rc = parse_args(argc, argv, &o);
+    if (rc >= 0 || (rc = check_args(&o)))
+        return rc;
     gr_err err = {0};
-    if (accuracy) {
-        int rc = bench_dem_accuracy(dir, quick, &err);
+    if (o.accuracy) {
+        rc = bench_dem_accuracy(o.dir, o.quick, &err);
         if (rc)
             fprintf(stderr, "grano bench dem: %s\n", err.msg);
         return rc;
     }
-    for (int k = 0; k < nn; k++) {
+    for (int k = 0; k < o.nn; k++) {
         bed_result r = {0};
-        if (bed(ns[k], steps, settle, threads, scaling, skin, peer, dir, &r, &err)) {
-            fprintf(stderr, "grano bench dem: n = %ld: %s\n", ns[k], err.msg);
+        if (bed(o.ns[k], o.steps, o.settle, o.threads, o.scaling, o.skin, o.peer, o.dir, &r, &err)) {
+            fprintf(stderr, "grano bench dem: n = %ld: %s\n", o.ns[k], err.msg);
             return err.code;
         }
-        if (scaling) {
-            printf("dem n=%ld: %.4g particle-steps/s on 1 thread, %.4g on %ld (alternating rounds)\n", r.n,
-                   r.rate1, r.rate, threads);
-            printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g threads=%ld speedup=%.3f\n", r.n,
-                   steps, r.rate, threads, r.rate / r.rate1);
-            fflush(stdout);
-            continue;
-        }
-        printf("dem n=%ld threads=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second x threads), %.1f bytes per grain\n",
-               r.n, threads, r.seconds, r.rate, r.cpu_rate, r.bytes_per_grain);
-        if (peer)
-            printf("lammps n=%ld: %.4g s, %.4g particle-steps/s (%.4g per CPU-second; CPU-time ratio %.3f)\n", r.n,
-                   r.lammps_seconds, r.lammps_rate, r.lammps_cpu_rate, r.cpu_rate / r.lammps_cpu_rate);
-        printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g", r.n, steps, r.rate);
-        if (peer)
-            printf(" lammps_particle_steps_per_s=%.6g ratio=%.3f", r.lammps_rate, r.rate / r.lammps_rate);
-        printf("\n");
-        fflush(stdout);
+        print_bed(&o, &r);
     }
     return 0;
 }

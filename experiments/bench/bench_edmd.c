@@ -157,107 +157,131 @@ static int bench_ratio(long n1, long n2, const double *etas, int ne, int rounds,
     return 0;
 }
 
-int bench_edmd(int argc, char **argv)
+/* The options of bench edmd. */
+typedef struct {
+    double ns[16], etas[8];
+    int nn, ne;
+    double equil, measure;
+    int arity;
+    double cell;
+    const char *queue;
+    double sort;
+    int rounds;
+} be_opts;
+
+/* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
+static int parse_args(int argc, char **argv, be_opts *o)
 {
-    double ns[16] = {1e3, 1e4, 1e5, 1e6}, etas[8] = {0.3, 0.6};
-    int nn = 4, ne = 2;
-    double equil = 20, measure = 10;
-    int arity = 2;
-    double cell = 0;
-    const char *queue = NULL;
-    double sort = -1.0;
-    int rounds = 0;
+    *o = (be_opts){.ns = {1e3, 1e4, 1e5, 1e6}, .etas = {0.3, 0.6}, .nn = 4, .ne = 2, .equil = 20, .measure = 10,
+                   .arity = 2, .cell = 0, .queue = NULL, .sort = -1.0, .rounds = 0};
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
             usage(stdout);
             return 0;
         } else if (!strcmp(argv[a], "--quick")) {
-            nn = 2;
+            o->nn = 2;
         } else if (a + 1 < argc && !strcmp(argv[a], "--n")) {
-            nn = parse_list(argv[++a], ns, 16);
+            o->nn = parse_list(argv[++a], o->ns, 16);
         } else if (a + 1 < argc && !strcmp(argv[a], "--eta")) {
-            ne = parse_list(argv[++a], etas, 8);
+            o->ne = parse_list(argv[++a], o->etas, 8);
         } else if (a + 1 < argc && !strcmp(argv[a], "--equil")) {
-            equil = atof(argv[++a]);
+            o->equil = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--measure")) {
-            measure = atof(argv[++a]);
+            o->measure = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--ratio")) {
-            rounds = atoi(argv[++a]);
-            if (rounds < 1 || rounds > 64) {
+            o->rounds = atoi(argv[++a]);
+            if (o->rounds < 1 || o->rounds > 64) {
                 fprintf(stderr, "grano bench edmd: --ratio takes 1 to 64 rounds\n");
                 return 2;
             }
         } else if (a + 1 < argc && !strcmp(argv[a], "--arity")) {
-            arity = atoi(argv[++a]);
+            o->arity = atoi(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--sort")) {
-            sort = atof(argv[++a]);
+            o->sort = atof(argv[++a]);
         } else if (a + 1 < argc && !strcmp(argv[a], "--queue")) {
-            queue = argv[++a];
+            o->queue = argv[++a];
         } else if (a + 1 < argc && !strcmp(argv[a], "--cell")) {
-            cell = atof(argv[++a]);
+            o->cell = atof(argv[++a]);
         } else {
             fprintf(stderr, "grano bench edmd: unknown or incomplete option '%s'\n", argv[a]);
             usage(stderr);
             return 2;
         }
-        if (nn <= 0 || ne <= 0) {
+        if (o->nn <= 0 || o->ne <= 0) {
             fprintf(stderr, "grano bench edmd: bad list after %s\n", argv[a]);
             return 2;
         }
     }
-    for (int i = 0; i < ne; i++)
-        if (!(etas[i] > 0 && etas[i] <= 0.7)) {
-            fprintf(stderr, "grano bench edmd: packing fraction %g outside (0, 0.7]\n", etas[i]);
+    return -1;
+}
+
+/* One row of the table: N disks at packing eta, equilibrated first so
+ * that the lattice start does not count, then timed over at least 2e6
+ * collisions so that short runs are not all clock resolution. */
+static int bench_one(const be_opts *o, long n, double eta)
+{
+    gr_err err = {0};
+    gr_scene *sc = bench_scene(n, eta, o->arity, o->cell, o->queue, o->sort, &err);
+    gr_particles *p = sc ? gr_particles_create((size_t)n, &err) : NULL;
+    gr_edmd_params prm;
+    gr_edmd *s = NULL;
+    if (!sc || !p || gr_init_particles(sc, p, &err) || gr_edmd_params_read(sc, &prm, &err) ||
+        gr_edmd_create(sc, p, &prm, &s, &err)) {
+        fprintf(stderr, "grano bench edmd: N = %ld, eta = %g: %s\n", n, eta, err.msg);
+        gr_particles_free(p);
+        gr_scene_free(sc);
+        return err.code ? err.code : 1;
+    }
+    gr_particles_free(p);
+    if (gr_edmd_advance(s, INFINITY, (uint64_t)(o->equil * n), &err)) {
+        fprintf(stderr, "grano bench edmd: %s\n", err.msg);
+        gr_edmd_free(s);
+        gr_scene_free(sc);
+        return err.code;
+    }
+    gr_edmd_counters c0, c1;
+    gr_edmd_get_counters(s, &c0);
+    double want = o->measure * n > 2e6 ? o->measure * n : 2e6;
+    double w0 = now_wall(), u0 = now_cpu();
+    int rc = gr_edmd_advance(s, INFINITY, (uint64_t)want, &err);
+    double w1 = now_wall(), u1 = now_cpu();
+    gr_edmd_get_counters(s, &c1);
+    gr_edmd_free(s);
+    gr_scene_free(sc);
+    if (rc) {
+        fprintf(stderr, "grano bench edmd: %s\n", err.msg);
+        return rc;
+    }
+    double coll = (double)(c1.pair - c0.pair);
+    double ev = coll + (double)(c1.crossing - c0.crossing) + (double)(c1.stale - c0.stale);
+    printf("  %9ld %5.2f %12.0f %9.3f %14.4g %14.4g %14.4g\n", n, eta, coll, w1 - w0, coll / (w1 - w0),
+           coll / (u1 - u0), ev / (w1 - w0));
+    printf("RESULT method=edmd n=%ld eta=%g collisions_per_s=%.4g cpu_collisions_per_s=%.4g\n", n, eta,
+           coll / (w1 - w0), coll / (u1 - u0));
+    fflush(stdout);
+    return 0;
+}
+
+int bench_edmd(int argc, char **argv)
+{
+    be_opts o;
+    int rc = parse_args(argc, argv, &o);
+    if (rc >= 0)
+        return rc;
+    for (int i = 0; i < o.ne; i++)
+        if (!(o.etas[i] > 0 && o.etas[i] <= 0.7)) {
+            fprintf(stderr, "grano bench edmd: packing fraction %g outside (0, 0.7]\n", o.etas[i]);
             return 2;
         }
     printf("# elastic disks, periodic box, lattice start with speeds 1 in random directions\n");
-    if (rounds)
-        return bench_ratio((long)ns[0], (long)ns[nn - 1], etas, ne, rounds, arity, cell, queue, sort, equil);
+    if (o.rounds)
+        return bench_ratio((long)o.ns[0], (long)o.ns[o.nn - 1], o.etas, o.ne, o.rounds, o.arity, o.cell, o.queue,
+                           o.sort, o.equil);
     printf("# %9s %5s %12s %9s %14s %14s %14s\n", "N", "eta", "collisions", "wall_s", "coll/s", "coll/cpu_s",
            "events/s");
-    for (int ie = 0; ie < ne; ie++) {
-        for (int in = 0; in < nn; in++) {
-            long n = (long)ns[in];
-            gr_err err = {0};
-            gr_scene *sc = bench_scene(n, etas[ie], arity, cell, queue, sort, &err);
-            gr_particles *p = sc ? gr_particles_create((size_t)n, &err) : NULL;
-            gr_edmd_params prm;
-            gr_edmd *s = NULL;
-            if (!sc || !p || gr_init_particles(sc, p, &err) || gr_edmd_params_read(sc, &prm, &err) ||
-                gr_edmd_create(sc, p, &prm, &s, &err)) {
-                fprintf(stderr, "grano bench edmd: N = %ld, eta = %g: %s\n", n, etas[ie], err.msg);
-                gr_particles_free(p);
-                gr_scene_free(sc);
-                return err.code ? err.code : 1;
-            }
-            gr_particles_free(p);
-            if (gr_edmd_advance(s, INFINITY, (uint64_t)(equil * n), &err)) {
-                fprintf(stderr, "grano bench edmd: %s\n", err.msg);
-                gr_edmd_free(s);
-                gr_scene_free(sc);
-                return err.code;
-            }
-            gr_edmd_counters c0, c1;
-            gr_edmd_get_counters(s, &c0);
-            double want = measure * n > 2e6 ? measure * n : 2e6;
-            double w0 = now_wall(), u0 = now_cpu();
-            int rc = gr_edmd_advance(s, INFINITY, (uint64_t)want, &err);
-            double w1 = now_wall(), u1 = now_cpu();
-            gr_edmd_get_counters(s, &c1);
-            gr_edmd_free(s);
-            gr_scene_free(sc);
-            if (rc) {
-                fprintf(stderr, "grano bench edmd: %s\n", err.msg);
+    for (int ie = 0; ie < o.ne; ie++)
+        for (int in = 0; in < o.nn; in++)
+            if ((rc = bench_one(&o, (long)o.ns[in], o.etas[ie])))
                 return rc;
-            }
-            double coll = (double)(c1.pair - c0.pair);
-            double ev = coll + (double)(c1.crossing - c0.crossing) + (double)(c1.stale - c0.stale);
-            printf("  %9ld %5.2f %12.0f %9.3f %14.4g %14.4g %14.4g\n", n, etas[ie], coll, w1 - w0,
-                   coll / (w1 - w0), coll / (u1 - u0), ev / (w1 - w0));
-            printf("RESULT method=edmd n=%ld eta=%g collisions_per_s=%.4g cpu_collisions_per_s=%.4g\n", n, etas[ie],
-                   coll / (w1 - w0), coll / (u1 - u0));
-            fflush(stdout);
-        }
-    }
     return 0;
 }

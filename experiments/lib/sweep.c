@@ -30,6 +30,93 @@ static void sleep_ms(long ms)
     nanosleep(&ts, NULL);
 }
 
+/* Each unit's part path and key; a part whose key matches is reused
+ * (unless --force) and counted in *done_before, the others are marked in
+ * todo. Returns how many are to run. A unit whose path or key could not
+ * be allocated is to run, and fails there with "out of memory". */
+static size_t plan_units(const exp_sweep *sw, exp_label_fn label, exp_label_fn keyf, void *ctx, char **paths,
+                         char **keys, unit_slot *slot, unsigned char *todo, size_t *done_before)
+{
+    size_t ntodo = 0;
+    for (size_t u = 0; u < sw->nunits; u++) {
+        char lab[256];
+        label(u, ctx, lab, sizeof lab);
+        paths[u] = malloc(strlen(sw->dir) + strlen(sw->prefix) + strlen(lab) + 16);
+        keys[u] = malloc(2048);
+        if (!paths[u] || !keys[u])
+            continue;
+        sprintf(paths[u], "%s/%s-%s.part", sw->dir, sw->prefix, lab);
+        keyf(u, ctx, keys[u], 2048);
+        if (!sw->force && exp_part_key_matches(paths[u], keys[u])) {
+            slot[u].progress = 1;
+            (*done_before)++;
+        } else {
+            todo[u] = 1;
+            ntodo++;
+        }
+    }
+    return ntodo;
+}
+
+/* Fork unit u: the child runs it, leaves its status and message in the
+ * shared slot (the parent reads them, the child's memory being gone) and
+ * exits. Returns the child's pid, or -1 with errno. */
+static pid_t start_unit(exp_unit_fn fn, size_t u, char **paths, char **keys, void *ctx, unit_slot *slot)
+{
+    fflush(NULL);
+    pid_t c = fork();
+    if (c != 0)
+        return c;
+    gr_err e = {0};
+    int st = paths[u] && keys[u] ? fn(u, paths[u], keys[u], ctx, &slot[u].progress, &e)
+                                 : gr_fail(&e, GR_ERUN, "out of memory");
+    slot[u].status = st;
+    snprintf(slot[u].msg, sizeof slot[u].msg, "%.590s", e.msg);
+    _exit(st ? 1 : 0);
+}
+
+/* Unit u has ended with wait status `status`: a failure, or a success
+ * without its part, becomes the error rc if none came first (the first
+ * failure is the one reported); returns rc. */
+static int reap_unit(size_t u, int status, exp_label_fn label, void *ctx, char **paths, unit_slot *slot, int rc,
+                     gr_err *err)
+{
+    char lab[256];
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        if (!rc) {
+            label(u, ctx, lab, sizeof lab);
+            rc = gr_fail(err, GR_ERUN, "unit %s failed: %s", lab,
+                         slot[u].msg[0] ? slot[u].msg : (WIFSIGNALED(status) ? "killed by a signal" : "no message"));
+        }
+    } else if (access(paths[u], F_OK) != 0) {
+        if (!rc) {
+            label(u, ctx, lab, sizeof lab);
+            rc = gr_fail(err, GR_ERUN, "unit %s ended without writing %s", lab, paths[u]);
+        }
+    } else
+        slot[u].progress = 1;
+    return rc;
+}
+
+/* The summed progress of the units that run (each from 0 to 1). */
+static double todo_progress(const unit_slot *slot, const unsigned char *todo, size_t n)
+{
+    double sum = 0;
+    for (size_t u = 0; u < n; u++)
+        if (todo[u])
+            sum += slot[u].progress;
+    return sum;
+}
+
+/* The run's own memory; the paths belong to the caller. */
+static void free_run(unit_slot *slot, pid_t *pid, char **keys, unsigned char *todo, size_t n)
+{
+    for (size_t u = 0; u < n; u++)
+        free(keys[u]);
+    free(keys), free(pid), free(todo);
+    munmap(slot, (n + 1) * sizeof *slot);
+}
+
 int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                    exp_label_fn keyf, void *ctx, char **paths, size_t *done_before, gr_err *err)
 {
@@ -49,24 +136,7 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
         free(pid), free(keys), free(todo);
         return gr_fail(err, GR_ERUN, "out of memory");
     }
-    size_t ntodo = 0;
-    for (size_t u = 0; u < n; u++) {
-        char lab[256];
-        label(u, ctx, lab, sizeof lab);
-        paths[u] = malloc(strlen(sw->dir) + strlen(sw->prefix) + strlen(lab) + 16);
-        keys[u] = malloc(2048);
-        if (!paths[u] || !keys[u])
-            continue;
-        sprintf(paths[u], "%s/%s-%s.part", sw->dir, sw->prefix, lab);
-        keyf(u, ctx, keys[u], 2048);
-        if (!sw->force && exp_part_key_matches(paths[u], keys[u])) {
-            slot[u].progress = 1;
-            (*done_before)++;
-        } else {
-            todo[u] = 1;
-            ntodo++;
-        }
-    }
+    size_t ntodo = plan_units(sw, label, keyf, ctx, paths, keys, slot, todo, done_before);
     gr_progress *pg = sw->progress && ntodo ? gr_progress_create(stderr, 0, (double)ntodo, 1.0) : NULL;
     size_t next = 0, running = 0, finished = 0;
     int rc = GR_OK;
@@ -77,20 +147,10 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                 next++;
                 continue;
             }
-            fflush(NULL);
-            pid_t c = fork();
+            pid_t c = start_unit(fn, next, paths, keys, ctx, slot);
             if (c < 0) {
                 rc = gr_fail(err, GR_ERUN, "fork: %s", strerror(errno));
                 break;
-            }
-            if (c == 0) {
-                gr_err e = {0};
-                int st = paths[next] && keys[next]
-                             ? fn(next, paths[next], keys[next], ctx, &slot[next].progress, &e)
-                             : gr_fail(&e, GR_ERUN, "out of memory");
-                slot[next].status = st;
-                snprintf(slot[next].msg, sizeof slot[next].msg, "%.590s", e.msg);
-                _exit(st ? 1 : 0);
             }
             pid[next] = c;
             running++;
@@ -107,40 +167,18 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                 pid[u] = 0;
                 running--;
                 finished++;
-                if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-                    if (!rc) {
-                        char lab[256];
-                        label(u, ctx, lab, sizeof lab);
-                        rc = gr_fail(err, GR_ERUN, "unit %s failed: %s", lab,
-                                     slot[u].msg[0] ? slot[u].msg
-                                                    : (WIFSIGNALED(status) ? "killed by a signal" : "no message"));
-                    }
-                } else if (access(paths[u], F_OK) != 0) {
-                    if (!rc) {
-                        char lab[256];
-                        label(u, ctx, lab, sizeof lab);
-                        rc = gr_fail(err, GR_ERUN, "unit %s ended without writing %s", lab, paths[u]);
-                    }
-                } else
-                    slot[u].progress = 1;
+                rc = reap_unit(u, status, label, ctx, paths, slot, rc, err);
             }
             continue;
         }
         if (w < 0 && running)
             running = 0; /* no children left: should not happen */
-        double sum = 0;
-        for (size_t u = 0; u < n; u++)
-            if (todo[u])
-                sum += slot[u].progress;
-        gr_progress_update(pg, sum, "units done", (double)finished);
+        gr_progress_update(pg, todo_progress(slot, todo, n), "units done", (double)finished);
         sleep_ms(200);
     }
     gr_progress_finish(pg);
     gr_progress_free(pg);
-    for (size_t u = 0; u < n; u++)
-        free(keys[u]);
-    free(keys), free(pid), free(todo);
-    munmap(slot, (n + 1) * sizeof *slot);
+    free_run(slot, pid, keys, todo, n);
     return rc;
 }
 

@@ -162,6 +162,38 @@ void silo_settled_free(silo_settled *s)
     s->p = s->filling = NULL;
 }
 
+/* The summed kinetic energy of the mobile grains, the most energetic 1%
+ * left out: a few rattlers on the surface (a grain rolling without
+ * rolling resistance) must not keep the whole silo from counting as
+ * settled. *nm counts the mobile grains, *inside those below ytop; ebuf
+ * has room for every grain. */
+static double settling_energy(const gr_particles *p, double ytop, double *ebuf, size_t *nm, size_t *inside)
+{
+    double ek = 0;
+    *nm = 0, *inside = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
+            continue;
+        *inside += p->y[i] < ytop;
+        ebuf[(*nm)++] = 0.5 * p->mass[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]) +
+                        0.5 * p->inertia[i] * p->omega[i] * p->omega[i];
+    }
+    qsort(ebuf, *nm, sizeof *ebuf, exp_cmp_double);
+    for (size_t i = 0; i < *nm - *nm / 100; i++)
+        ek += ebuf[i];
+    return ek;
+}
+
+/* The picture of the filling (thesis fig. 3.1): a copy of p at time t. */
+static int keep_filling(silo_settled *out, const gr_particles *p, double t, gr_err *err)
+{
+    out->filling = gr_particles_create(0, err);
+    if (!out->filling || gr_particles_copy(out->filling, p, err))
+        return err->code;
+    out->t_filling = t;
+    return GR_OK;
+}
+
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err)
 {
     *out = (silo_settled){0};
@@ -187,35 +219,17 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
     while (!rc) {
         if ((rc = silo_advance(c, st, chunk, err)) || (rc = gr_sim_snapshot(st, p, err)))
             break;
-        double t = gr_sim_time(st), ek = 0;
-        size_t nm = 0, inside = 0;
-        for (size_t i = 0; i < p->n; i++) {
-            if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
-                continue;
-            inside += p->y[i] < ytop;
-            ebuf[nm++] = 0.5 * p->mass[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]) +
-                         0.5 * p->inertia[i] * p->omega[i] * p->omega[i];
-        }
-        /* a few rattlers on the surface (a grain rolling without rolling
-         * resistance) must not keep the whole silo from counting as settled:
-         * the most energetic 1% of the grains are left out */
-        qsort(ebuf, nm, sizeof *ebuf, exp_cmp_double);
-        for (size_t i = 0; i < nm - nm / 100; i++)
-            ek += ebuf[i];
+        double t = gr_sim_time(st);
+        size_t nm, inside;
+        double ek = settling_energy(p, ytop, ebuf, &nm, &inside);
         if (nm < (size_t)c->n) {
             rc = gr_fail(err, GR_ERUN, "silo filling (seed %llu): %zu grains escaped the closed silo",
                          (unsigned long long)c->seed, (size_t)c->n - nm);
             break;
         }
         ek /= (double)(nm - nm / 100);
-        if (!out->filling && (!c->hopper || inside >= nm / 2)) {
-            out->filling = gr_particles_create(0, err);
-            if (!out->filling || gr_particles_copy(out->filling, p, err)) {
-                rc = err->code;
-                break;
-            }
-            out->t_filling = t;
-        }
+        if (!out->filling && (!c->hopper || inside >= nm / 2) && (rc = keep_filling(out, p, t, err)))
+            break;
         if (progress)
             *progress = fmin(0.99, t / c->fill_max);
         if (inside == nm && ek < c->ke_tol) {

@@ -54,21 +54,13 @@ static size_t nearest(const sf_ctx *c, double D)
     return b;
 }
 
-static int figures(const sf_ctx *c, const double *tab, const double *fits, const double *wser,
-                   const double *pdf, double rho, gr_err *err)
+/* Thesis fig. 4.1: the flow rate against D, linear with the Beverloo fit
+ * and logarithmic with the slopes 3/2 and 5/2 through the widest orifice. */
+static int fig4_1(const sf_ctx *c, const double *tab, const double *fits, double rho, gr_err *err)
 {
     size_t n = c->norif;
     char png[1200];
     double bt = (double)c->block * c->base.dt;
-    /* every figure below divides by or takes logs of the flow */
-    for (size_t o = 0; o < n; o++)
-        if (!(tab[o * NCOL + C_W] > 0))
-            return gr_fail(err, GR_ERUN,
-                           "no grain left through the %g d orifice in the %d measured blocks: the flow "
-                           "figures need outflow (the results and tables are written); measure longer "
-                           "(--discard, --blocks, --block-steps)",
-                           tab[o * NCOL + C_D], c->nblocks);
-    /* fig 4.1 */
     snprintf(png, sizeof png, "%s/fig4_1_flow_rate.png", c->dir);
     FILE *gp = gr_plot_open(png, 1100, 480, err);
     if (!gp)
@@ -96,13 +88,19 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     fprintf(gp, "plot $t using 1:2:3 with yerrorbars pt 7 lc rgb 'black' title 'grano', %g*(x/%g)**1.5 lw 2 lc rgb 'red' title 'slope 1.5', %g*(x/%g)**2.5 lw 2 lc rgb 'blue' title 'slope 2.5'\n",
             Wmax, Dmax, Wmax, Dmax);
     fprintf(gp, "unset multiplot\n");
-    int rc = gr_plot_close(gp, png, err);
-    /* fig 4.2 */
+    return gr_plot_close(gp, png, err);
+}
+
+/* Thesis fig. 4.2: the reduced flow of three orifices block by block, and
+ * its spread against D with the power-law fits (all, small, large D). */
+static int fig4_2(const sf_ctx *c, const double *tab, const double *fits, const double *wser, gr_err *err)
+{
+    size_t n = c->norif;
+    char png[1200];
     snprintf(png, sizeof png, "%s/fig4_2_flow_fluctuations.png", c->dir);
-    if (!rc && !(gp = gr_plot_open(png, 1100, 480, err)))
-        rc = err->code;
-    if (rc)
-        return rc;
+    FILE *gp = gr_plot_open(png, 1100, 480, err);
+    if (!gp)
+        return err->code;
     const double want[3] = {3.56, 6.24, 16.04};
     const char *col[3] = {"black", "red", "blue"};
     fprintf(gp, "$w << EOD\n");
@@ -132,10 +130,16 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
         fprintf(gp, ", (x>%g ? %g*x**%g : 1/0) dt 2 lc rgb 'orange' title 'D > %g: (D/d)^{%.2f}'", c->split, fl[0], fl[2], c->split, fl[2]);
     fprintf(gp, ", %g*(x/%g)**-2 lw 2 lc rgb 'red' title '(D/d)^{-2}'\n", tab[C_SIGW], tab[C_D]);
     fprintf(gp, "unset multiplot\n");
-    if ((rc = gr_plot_close(gp, png, err)))
-        return rc;
-    /* fig 4.3 */
+    return gr_plot_close(gp, png, err);
+}
+
+/* Thesis fig. 4.3: the pdf of the reduced flow fluctuations, small and
+ * large orifices, against eq. 4.4 and a Gaussian. */
+static int fig4_3(const sf_ctx *c, const double *pdf, gr_err *err)
+{
+    char png[1200];
     snprintf(png, sizeof png, "%s/fig4_3_fluctuation_pdf.png", c->dir);
+    FILE *gp;
     if (!(gp = gr_plot_open(png, 700, 500, err)))
         return err->code;
     fprintf(gp, "$p << EOD\n");
@@ -145,10 +149,16 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     fprintf(gp, "set title 'Reduced flow fluctuations {/Symbol D}w / {/Symbol s}_w (thesis fig. 4.3)'\nset xlabel '{/Symbol D}w / {/Symbol s}_w'\nset ylabel 'P'\nset key bottom center\n");
     fprintf(gp, "plot $p using 1:($2>0?$2:1/0) with points pt 6 ps 1.2 lc rgb 'black' title 'D <= %g d', $p using 1:($3>0?$3:1/0) with points pt 4 ps 1.2 lc rgb 'black' title 'D > %g d', (2/pi)/(1+x*x)**2 lw 2 lc rgb 'red' title 'eq. 4.4', exp(-x*x/2)/sqrt(2*pi) lw 2 lc rgb 'blue' title 'Gaussian'\n",
             c->split, c->split);
-    if ((rc = gr_plot_close(gp, png, err)))
-        return rc;
-    /* fig 4.5 */
+    return gr_plot_close(gp, png, err);
+}
+
+/* Thesis fig. 4.5: the packing fraction above the orifice against D. */
+static int fig4_5(const sf_ctx *c, const double *tab, const double *fits, gr_err *err)
+{
+    size_t n = c->norif;
+    char png[1200];
     snprintf(png, sizeof png, "%s/fig4_5_packing.png", c->dir);
+    FILE *gp;
     if (!(gp = gr_plot_open(png, 700, 500, err)))
         return err->code;
     const double *fd = fits + FIT_DENS * 9;
@@ -162,10 +172,19 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
         fprintf(gp, ", %g*(1-%g*exp(-%g*x)) lw 2 lc rgb 'red' title '{/Symbol r}_0(1 - a e^{-bD}): {/Symbol r}_0 = %.3f, a = %.2f, b = %.2f%s'",
                 fd[0], fd[2], fd[4], fd[0], fd[2], fd[4], fd[8] == 2 ? " (b at a bound)" : "");
     fprintf(gp, "\n");
-    if ((rc = gr_plot_close(gp, png, err)))
-        return rc;
-    /* fig 4.6 */
+    return gr_plot_close(gp, png, err);
+}
+
+/* Thesis fig. 4.6: the flow with the modified law against Beverloo's,
+ * linear and logarithmic. */
+static int fig4_6(const sf_ctx *c, const double *tab, const double *fits, double rho, gr_err *err)
+{
+    size_t n = c->norif;
+    char png[1200];
+    const double *fb = fits + FIT_BEV * 9, *fm = fits + FIT_MOD * 9;
+    char b1[32], b2[32], b3[32];
     snprintf(png, sizeof png, "%s/fig4_6_modified_flow_law.png", c->dir);
+    FILE *gp;
     if (!(gp = gr_plot_open(png, 1100, 480, err)))
         return err->code;
     fprintf(gp, "$t << EOD\n");
@@ -184,6 +203,29 @@ static int figures(const sf_ctx *c, const double *tab, const double *fits, const
     }
     fprintf(gp, "unset multiplot\n");
     return gr_plot_close(gp, png, err);
+}
+
+static int figures(const sf_ctx *c, const double *tab, const double *fits, const double *wser,
+                   const double *pdf, double rho, gr_err *err)
+{
+    /* every figure below divides by or takes logs of the flow */
+    for (size_t o = 0; o < c->norif; o++)
+        if (!(tab[o * NCOL + C_W] > 0))
+            return gr_fail(err, GR_ERUN,
+                           "no grain left through the %g d orifice in the %d measured blocks: the flow "
+                           "figures need outflow (the results and tables are written); measure longer "
+                           "(--discard, --blocks, --block-steps)",
+                           tab[o * NCOL + C_D], c->nblocks);
+    int rc = fig4_1(c, tab, fits, rho, err);
+    if (!rc)
+        rc = fig4_2(c, tab, fits, wser, err);
+    if (!rc)
+        rc = fig4_3(c, pdf, err);
+    if (!rc)
+        rc = fig4_5(c, tab, fits, err);
+    if (!rc)
+        rc = fig4_6(c, tab, fits, rho, err);
+    return rc;
 }
 
 static int fit_sigma(const double *D, const double *s, size_t n, double lo, double hi, gr_fit *f)

@@ -2,7 +2,6 @@
  * unit of work is one discharge: fill, settle, open, and follow the grains
  * until the top grain has fallen two diameters; the report averages the
  * units of each orifice. */
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -16,14 +15,14 @@
 #include "parts.h"
 #include "progress.h"
 #include "rng.h"
+#include "silo_cli.h"
 #include "silo_start.h"
 #include "sweep.h"
 
 void ss_label(size_t unit, void *ctx, char *buf, size_t n)
 {
     const ss_ctx *c = ctx;
-    size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    snprintf(buf, n, "D%g-r%02zu", c->orifice[o], r);
+    silo_unit_label(c->orifice, c->nreal, unit, buf, n);
 }
 
 void ss_key(size_t unit, void *ctx, char *buf, size_t n)
@@ -231,6 +230,102 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     return gr_ckpt_close(ck, err);
 }
 
+/* The window's grains at frame f become the origin of a free slot of s;
+ * none is started when all QMAX are still running. */
+static void start_origin(ustate *u, slotbuf *s, long f)
+{
+    for (int j = 0; j < QMAX; j++) {
+        origin *q = &s->q[j];
+        if (q->live)
+            continue;
+        q->live = 1, q->f0 = f, q->m = u->wm;
+        memcpy(q->idx, u->widx, u->wm * sizeof *q->idx);
+        memcpy(q->x, u->wx, u->wm * sizeof *q->x);
+        memcpy(q->y, u->wy, u->wm * sizeof *q->y);
+        break;
+    }
+}
+
+/* Frame f (at step): complete the origins whose lag has come, and start
+ * new ones every lag/8 frames (overlapping origins, many samples per
+ * lag) while the lag still fits before max_steps. The window is scanned
+ * once a frame at most, and only when an origin starts. */
+static int lag_frame(ustate *u, const gr_particles *snap, long f, long step, const double *win, double dt,
+                     gr_err *err)
+{
+    const ss_ctx *c = u->c;
+    int scanned = 0, rc = GR_OK;
+    for (size_t k = 0; k < c->nslots && !rc; k++) {
+        slotbuf *s = &u->sl[k];
+        long lag = c->lag[k], every = lag / 8 > 1 ? lag / 8 : 1;
+        for (int j = 0; j < QMAX && !rc; j++)
+            if (s->q[j].live && s->q[j].f0 + lag == f)
+                rc = complete(u, k, &s->q[j], snap, (double)(lag * c->fs) * dt, err);
+        if (f % every || step + lag * c->fs > c->max_steps)
+            continue;
+        if (!scanned)
+            window_scan(u, snap, win[0], win[1]), scanned = 1;
+        start_origin(u, s, f);
+    }
+    return rc;
+}
+
+/* One field grid a snapshot time (fig. 3.2), cells of c->cell over the
+ * container from its left wall xl and base up. */
+static int create_fields(const ss_ctx *c, const silo_cfg *cfg, double xl, gr_field **fld, gr_err *err)
+{
+    int nx = (int)floor(cfg->width / c->cell + 1e-9), ny = (int)floor(cfg->height / c->cell + 1e-9);
+    for (size_t j = 0; j < c->ntimes; j++)
+        if (!(fld[j] = gr_field_create(nx, ny, xl, cfg->base, c->cell, c->cell, err)))
+            return err->code;
+    return GR_OK;
+}
+
+/* Follow the open silo frame by frame (every fs steps): the fields near
+ * their snapshot times, the lagged displacements, the surface and the
+ * outflow every 10 frames into ts (step, surface, outflow; at most tscap
+ * numbers), until the surface has fallen fall_stop after min_steps, or
+ * max_steps. *step is the last step reached. */
+static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_particles *snap, gr_field **fld,
+                            double *ts, size_t tscap, size_t *nts, const double *win, size_t klayer,
+                            double *ybuf, double top0, volatile double *progress, long *step, gr_err *err)
+{
+    const ss_ctx *c = u->c;
+    double top = top0;
+    long f = 0;
+    int rc = GR_OK;
+    while (!rc) {
+        if ((rc = gr_sim_snapshot(st, snap, err)))
+            break;
+        for (size_t j = 0; j < c->ntimes; j++)
+            if (labs(*step - c->times[j]) <= 2 * c->fs &&
+                (rc = gr_field_add(fld[j], snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
+                break;
+        if (!rc)
+            rc = lag_frame(u, snap, f, *step, win, cfg->dt, err);
+        if (rc)
+            break;
+        if (f % 10 == 0)
+            top = silo_surface(snap, klayer, ybuf);
+        if (f % 10 == 0 && *nts + 3 <= tscap) {
+            gr_obs ob;
+            gr_obs_clear(&ob);
+            if ((rc = gr_sim_observe(st, &ob, err)))
+                break;
+            ts[(*nts)++] = (double)*step, ts[(*nts)++] = top, ts[(*nts)++] = (double)ob.outflow;
+        }
+        if (progress)
+            *progress = fmax((double)*step / (double)c->max_steps,
+                             *step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
+        if ((*step >= c->min_steps && top0 - top >= c->fall_stop) || *step >= c->max_steps)
+            break;
+        if ((rc = silo_advance(cfg, st, (uint64_t)c->fs, err)))
+            break;
+        f++, *step += c->fs;
+    }
+    return rc;
+}
+
 int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
             gr_err *err)
 {
@@ -262,10 +357,8 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     if (!rc)
         rc = silo_open(&cfg, &set, &sc, &st, err);
     double xl = rc ? 0 : sc->silo.x0, base = cfg.base, W = cfg.width;
-    int nx = (int)floor(W / c->cell + 1e-9), ny = (int)floor(cfg.height / c->cell + 1e-9);
-    for (size_t j = 0; j < c->ntimes && !rc; j++)
-        if (!(fld[j] = gr_field_create(nx, ny, xl, base, c->cell, c->cell, err)))
-            rc = err->code;
+    if (!rc)
+        rc = create_fields(c, &cfg, xl, fld, err);
     /* the window is centred in the silo across and in the settled packing's height */
     double win[2] = {xl + 0.5 * (W - c->window), base + 0.5 * (set.top - base) - 0.5 * c->window};
     /* the thesis follows the discharge "hasta que el grano más alto cae dos
@@ -276,57 +369,10 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double *ybuf = malloc(((size_t)cfg.n + klayer + 1) * sizeof *ybuf);
     if (!ybuf && !rc)
         rc = gr_fail(err, GR_ERUN, "out of memory");
-    double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0, top = top0;
-    long f = 0, step = 0;
-    while (!rc) {
-        if ((rc = gr_sim_snapshot(st, snap, err)))
-            break;
-        for (size_t j = 0; j < c->ntimes; j++)
-            if (labs(step - c->times[j]) <= 2 * c->fs &&
-                (rc = gr_field_add(fld[j], snap, GR_PF_FIXED | GR_PF_GONE, 1.0, err)))
-                break;
-        int scanned = 0;
-        for (size_t k = 0; k < c->nslots && !rc; k++) {
-            slotbuf *s = &u.sl[k];
-            long lag = c->lag[k], every = lag / 8 > 1 ? lag / 8 : 1;
-            for (int j = 0; j < QMAX && !rc; j++)
-                if (s->q[j].live && s->q[j].f0 + lag == f)
-                    rc = complete(&u, k, &s->q[j], snap, (double)(lag * c->fs) * cfg.dt, err);
-            if (f % every || step + lag * c->fs > c->max_steps)
-                continue;
-            if (!scanned)
-                window_scan(&u, snap, win[0], win[1]), scanned = 1;
-            for (int j = 0; j < QMAX; j++) {
-                origin *q = &s->q[j];
-                if (q->live)
-                    continue;
-                q->live = 1, q->f0 = f, q->m = u.wm;
-                memcpy(q->idx, u.widx, u.wm * sizeof *q->idx);
-                memcpy(q->x, u.wx, u.wm * sizeof *q->x);
-                memcpy(q->y, u.wy, u.wm * sizeof *q->y);
-                break;
-            }
-        }
-        if (rc)
-            break;
-        if (f % 10 == 0)
-            top = silo_surface(snap, klayer, ybuf);
-        if (f % 10 == 0 && nts + 3 <= tscap) {
-            gr_obs ob;
-            gr_obs_clear(&ob);
-            if ((rc = gr_sim_observe(st, &ob, err)))
-                break;
-            ts[nts++] = (double)step, ts[nts++] = top, ts[nts++] = (double)ob.outflow;
-        }
-        if (progress)
-            *progress = fmax((double)step / (double)c->max_steps,
-                             step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
-        if ((step >= c->min_steps && top0 - top >= c->fall_stop) || step >= c->max_steps)
-            break;
-        if ((rc = silo_advance(&cfg, st, (uint64_t)c->fs, err)))
-            break;
-        f++, step += c->fs;
-    }
+    double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0;
+    long step = 0;
+    if (!rc)
+        rc = follow_discharge(&u, &cfg, st, snap, fld, ts, tscap, &nts, win, klayer, ybuf, top0, progress, &step, err);
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)
@@ -375,23 +421,6 @@ static void usage(FILE *f)
         "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
 }
 
-static int bad(const char *opt, const char *val, const char *what)
-{
-    fprintf(stderr, "grano silo-start: %s: '%s' is not %s\n", opt, val, what);
-    return 2;
-}
-
-static int parse_long(const char *s, long lo, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(s, &end, 10);
-    if (*end || end == s || errno || v < lo)
-        return -1;
-    *out = v;
-    return 0;
-}
-
 /* Lags 1, 2, 3, 4, 6, 8, 11, ... frames (ratio about sqrt 2). */
 static void make_lags(ss_ctx *c)
 {
@@ -431,101 +460,38 @@ static int ss_report_any(const void *ctx, char *const *parts, char *summary, siz
     return ss_report(ctx, parts, summary, nsum, err);
 }
 
-/* Run (or reuse) every unit, then the report; the exit code. */
-static int run_sweep(ss_ctx *c, int jobs, int force, int quiet)
-{
-    char pdir[1100];
-    snprintf(pdir, sizeof pdir, "%s/parts", c->dir);
-    gr_err e = {0};
-    size_t nu = c->norif * (size_t)c->nreal, reused = 0;
-    exp_sweep sw = {nu, jobs, pdir, "start", !quiet, "discharges", force};
-    char summary[4096] = "";
-    double t_units = 0;
-    int rc = exp_sweep_and_report(&sw, ss_unit, ss_label, ss_key, ss_report_any, c, summary,
-                                   sizeof summary, &t_units, &reused, &e);
-    if (rc)
-        fprintf(stderr, "grano silo-start: %s\n", e.msg);
-    else if (!quiet)
-        fprintf(stderr, "grano silo-start: %zu discharges (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s",
-                nu, reused, t_units, jobs, jobs > 1 ? "s" : "", c->dir, summary);
-    return rc;
-}
+static const struct option ss_own_opts[] = {{"max-steps", required_argument, NULL, 'M'}, {NULL, 0, NULL, 0}};
 
-/* a long option without a short one */
-#define OPT_METHOD 0x100
+static int ss_own_option(int ch, const char *arg, void *own);
+
+static const silo_cli ss_cli = {
+    .name = "silo-start", .usage = usage, .own = ss_own_opts, .own_short = "", .own_parse = ss_own_option,
+    .orifices = "3.8,11", .quick_orifices = "3.8,11", .reinsert = 0,
+    .prefix = "start", .progress_what = "discharges", .units_what = "discharges",
+    .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any};
+
+/* --max-steps into *(long *)own */
+static int ss_own_option(int ch, const char *arg, void *own)
+{
+    if (ch != 'M')
+        return 1;
+    return silo_parse_long(arg, 100, own) ? silo_bad(&ss_cli, "--max-steps", arg, "an integer >= 100") : 0;
+}
 
 int cmd_silo_start(int argc, char **argv)
 {
-    static const struct option opts[] = {
-        {"orifices", required_argument, NULL, 'D'}, {"realisations", required_argument, NULL, 'n'},
-        {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
-        {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
-        {"width", required_argument, NULL, 'W'},    {"max-steps", required_argument, NULL, 'M'},
-        {"method", required_argument, NULL, OPT_METHOD}, {"quick", no_argument, NULL, 'Q'},
-        {"force", no_argument, NULL, 'f'},
-        {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
-        {NULL, 0, NULL, 0}};
-    const char *orif = NULL, *out = NULL, *method = "dem";
-    long nreal = -1, jobs = 1, seed = 1, grains = -1, maxsteps = -1;
-    double width = -1;
-    int quick = 0, force = 0, quiet = 0, ch;
-    opterr = 0;
-    optind = 1;
-    while ((ch = getopt_long(argc, argv, ":D:n:s:j:o:Qfqh", opts, NULL)) != -1) {
-        char *end;
-        switch (ch) {
-        case 'D': orif = optarg; break;
-        case 'n': if (parse_long(optarg, 1, &nreal)) return bad("--realisations", optarg, "a positive integer"); break;
-        case 's': if (parse_long(optarg, 0, &seed)) return bad("--seed", optarg, "a non-negative integer"); break;
-        case 'j': if (parse_long(optarg, 1, &jobs) || jobs > 256) return bad("--jobs", optarg, "an integer in 1..256"); break;
-        case 'o': out = optarg; break;
-        case 'G': if (parse_long(optarg, 10, &grains)) return bad("--grains", optarg, "an integer >= 10"); break;
-        case 'W':
-            width = strtod(optarg, &end);
-            if (*end || !(width >= 8) || !isfinite(width)) return bad("--width", optarg, "a width >= 8");
-            break;
-        case 'M': if (parse_long(optarg, 100, &maxsteps)) return bad("--max-steps", optarg, "an integer >= 100"); break;
-        case OPT_METHOD: method = optarg; break;
-        case 'Q': quick = 1; break;
-        case 'f': force = 1; break;
-        case 'q': quiet = 1; break;
-        case 'h': usage(stdout); return 0;
-        case ':': fprintf(stderr, "grano silo-start: option '%s' needs a value\n", argv[optind - 1]); return 2;
-        default:
-            fprintf(stderr, "grano silo-start: unknown option '%s' (see grano silo-start --help)\n", argv[optind - 1]);
-            return 2;
-        }
-    }
-    if (optind != argc) {
-        fprintf(stderr, "grano silo-start: unexpected argument '%s'\n", argv[optind]);
-        return 2;
-    }
+    silo_opts o;
+    long maxsteps = -1;
+    int rc = silo_cli_parse(&ss_cli, argc, argv, &o, &maxsteps);
+    if (rc >= 0)
+        return rc;
     ss_ctx c = {0};
-    c.quick = quick;
-    if (quick)
-        silo_cfg_quick(&c.base, 1);
-    else
-        silo_cfg_thesis(&c.base, 1);
-    if (grains > 0)
-        c.base.n = grains;
-    if (width > 0)
-        c.base.width = width, c.base.height = 2 * width;
-    if (exp_parse_list(orif ? orif : "3.8,11", c.orifice, SS_MAX_ORIF, &c.norif))
-        return bad("--orifices", orif, "a comma-separated list of positive widths");
-    for (size_t i = 0; i < c.norif; i++)
-        if (c.orifice[i] >= c.base.width - 2)
-            return bad("--orifices", orif, "narrower than the silo");
-    gr_err me = {0};
-    /* the silo as the units will open it */
-    silo_cfg probe = c.base;
-    probe.orifice = c.orifice[0];
-    if (silo_choose_method(&probe, method, &me)) {
-        fprintf(stderr, "grano silo-start: %s\n", me.msg);
-        return 2;
-    }
-    c.base.method = probe.method;
-    c.nreal = (int)(nreal > 0 ? nreal : quick ? 2 : 20);
-    c.seed = (uint64_t)seed;
+    c.quick = o.quick;
+    if ((rc = silo_cli_silo(&ss_cli, &o, &c.base, c.orifice, SS_MAX_ORIF, &c.norif)))
+        return rc;
+    int quick = o.quick;
+    c.nreal = (int)(o.nreal > 0 ? o.nreal : quick ? 2 : 20);
+    c.seed = (uint64_t)o.seed;
     c.fs = 20;
     c.min_steps = quick ? 4000 : 10000;
     c.max_steps = maxsteps > 0 ? maxsteps : quick ? 12000 : 800000;
@@ -536,7 +502,6 @@ int cmd_silo_start(int argc, char **argv)
     make_lags(&c);
     make_times(&c);
     char dir[1024];
-    snprintf(dir, sizeof dir, "%s", out ? out : quick ? "results/silo-start-quick" : "results/silo-start");
-    c.dir = dir;
-    return run_sweep(&c, (int)jobs, force, quiet);
+    c.dir = silo_cli_dir(&ss_cli, &o, dir, sizeof dir);
+    return silo_cli_sweep(&ss_cli, &o, &c, c.norif * (size_t)c.nreal, c.dir);
 }

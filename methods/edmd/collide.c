@@ -45,6 +45,59 @@ static double tangential_impulse(const gr_edmd *s, double gt, double inv_mt, dou
     return Jt;
 }
 
+/* The kinetic energy of grain i, translational plus rotational; *rot gets
+ * the rotational part, which only rough disks have (smooth disks never
+ * read the spin arrays, so that a smooth run touches less memory). */
+static inline double grain_energy(const gr_edmd *s, const edmd_p *a, int32_t i, double m, double *rot)
+{
+    *rot = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
+    return 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + *rot;
+}
+
+/* The pair's impulse along the normal (nx, ny) and the tangent (-ny, nx),
+ * applied to both grains; the tangent impulse only for rough disks, and
+ * neither rule dissipates under the collapse guard. */
+static inline void pair_impulse(gr_edmd *s, int32_t i, int32_t j, double mi, double mj, double nx, double ny,
+                                double gn, double t, double *Jn_out, double *Jt_out)
+{
+    edmd_p *a = &s->p[i], *b = &s->p[j];
+    int guard = guarded(s, s->alpha < 1.0 || (s->rough && s->beta < 1.0), gn, i, j, t);
+    double al = guard ? 1.0 : s->alpha;
+    double mred = mi * mj / (mi + mj);
+    double Jn = -(1.0 + al) * mred * gn, Jt = 0.0;
+    double tx = -ny, ty = nx;
+    if (s->rough && !guard) {
+        double gt = (b->vx - a->vx) * tx + (b->vy - a->vy) * ty - (s->w[j] * b->r + s->w[i] * a->r);
+        double inv_mt = 1.0 / mi + 1.0 / mj + a->r * a->r / s->inertia[i] + b->r * b->r / s->inertia[j];
+        Jt = tangential_impulse(s, gt, inv_mt, Jn);
+        s->w[i] -= a->r * Jt / s->inertia[i];
+        s->w[j] -= b->r * Jt / s->inertia[j];
+    }
+    double Jx = Jn * nx + Jt * tx, Jy = Jn * ny + Jt * ty;
+    a->vx -= Jx / mi;
+    a->vy -= Jy / mi;
+    b->vx += Jx / mj;
+    b->vy += Jy / mj;
+    *Jn_out = Jn;
+    *Jt_out = Jt;
+}
+
+/* The counters every pair collision moves, and the observer's hook, which
+ * sees the pair by identity (smaller id first) rather than by the slot
+ * that a reordering may change. */
+static inline void pair_count(gr_edmd *s, int32_t i, int32_t j, double t)
+{
+    s->p[i].ncol++;
+    s->p[j].ncol++;
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
+        s->tlast[i] = s->tlast[j] = t;
+    s->cnt.pair++;
+    if (s->hook) {
+        long ia = (long)s->id[i], ib = (long)s->id[j];
+        s->hook(s->hook_user, 0, ia < ib ? ia : ib, ia < ib ? ib : ia, t);
+    }
+}
+
 void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
 {
     edmd_p *a = &s->p[i], *b = &s->p[j];
@@ -66,36 +119,15 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double gn = (b->vx - a->vx) * nx + (b->vy - a->vy) * ny;
     /* equal masses: no random read of the mass array */
     double mi = s->m_one > 0.0 ? s->m_one : s->m[i], mj = s->m_one > 0.0 ? s->m_one : s->m[j];
-    /* spins enter only for rough disks */
-    double ri0 = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
-    double rj0 = s->rough ? 0.5 * s->inertia[j] * s->w[j] * s->w[j] : 0.0;
-    double e0 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + ri0;
-    double f0 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + rj0;
+    double ri0, rj0, ri1, rj1;
+    double e0 = grain_energy(s, a, i, mi, &ri0), f0 = grain_energy(s, b, j, mj, &rj0);
     double vy0i = a->vy, vy0j = b->vy;
     double Jn = 0.0, Jt = 0.0;
-    if (gn < 0.0) {
-        int guard = guarded(s, s->alpha < 1.0 || (s->rough && s->beta < 1.0), gn, i, j, t);
-        double al = guard ? 1.0 : s->alpha;
-        double mred = mi * mj / (mi + mj);
-        Jn = -(1.0 + al) * mred * gn;
-        double tx = -ny, ty = nx;
-        if (s->rough && !guard) {
-            double gt = (b->vx - a->vx) * tx + (b->vy - a->vy) * ty - (s->w[j] * b->r + s->w[i] * a->r);
-            double inv_mt = 1.0 / mi + 1.0 / mj + a->r * a->r / s->inertia[i] + b->r * b->r / s->inertia[j];
-            Jt = tangential_impulse(s, gt, inv_mt, Jn);
-            s->w[i] -= a->r * Jt / s->inertia[i];
-            s->w[j] -= b->r * Jt / s->inertia[j];
-        }
-        double Jx = Jn * nx + Jt * tx, Jy = Jn * ny + Jt * ty;
-        a->vx -= Jx / mi;
-        a->vy -= Jy / mi;
-        b->vx += Jx / mj;
-        b->vy += Jy / mj;
-    }
-    double ri1 = s->rough ? 0.5 * s->inertia[i] * s->w[i] * s->w[i] : 0.0;
-    double rj1 = s->rough ? 0.5 * s->inertia[j] * s->w[j] * s->w[j] : 0.0;
-    double e1 = 0.5 * mi * (a->vx * a->vx + a->vy * a->vy) + ri1;
-    double f1 = 0.5 * mj * (b->vx * b->vx + b->vy * b->vy) + rj1;
+    if (gn < 0.0)
+        pair_impulse(s, i, j, mi, mj, nx, ny, gn, t, &Jn, &Jt);
+    /* the running sums take the change, not a recount, so that a step
+     * costs O(1) whatever N */
+    double e1 = grain_energy(s, a, i, mi, &ri1), f1 = grain_energy(s, b, j, mj, &rj1);
     double dE = (e1 - e0) + (f1 - f0);
     s->m_K += dE;
     s->m_Krot += (ri1 + rj1) - (ri0 + rj0);
@@ -105,15 +137,7 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     s->a_virial += dist * Jn;
     if (s->cacc)
         edmd_measure_pair(s, i, j, -(Jn * nx + Jt * -ny), -(Jn * ny + Jt * nx), e1 - e0, f1 - f0, -dx, -dy);
-    a->ncol++;
-    b->ncol++;
-    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
-        s->tlast[i] = s->tlast[j] = t;
-    s->cnt.pair++;
-    if (s->hook) {
-        long ia = (long)s->id[i], ib = (long)s->id[j];
-        s->hook(s->hook_user, 0, ia < ib ? ia : ib, ia < ib ? ib : ia, t);
-    }
+    pair_count(s, i, j, t);
 }
 
 /* High-frequency sinusoidal floor: the phase met is weighted by the
@@ -131,60 +155,60 @@ static double hf_sine_velocity(gr_edmd *s, double vy)
     return 0.0;
 }
 
-void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
+/* The inward normal (nx, ny) of the wall met and, for the driven floor,
+ * its normal velocity at time t; returns the side whose momentum the wall
+ * takes (a segment's goes to no side, -1). */
+static inline int wall_normal(gr_edmd *s, const edmd_p *a, int wall, double t, double *nx, double *ny, double *Vn)
+{
+    *nx = 0.0;
+    *ny = 0.0;
+    *Vn = 0.0;
+    switch (wall) {
+    case GR_LEFT: *nx = 1.0; return wall;
+    case GR_RIGHT: *nx = -1.0; return wall;
+    case GR_TOP: *ny = -1.0; return wall;
+    case GR_BOTTOM: *ny = 1.0; return wall;
+    default: break;
+    }
+    if (wall >= W_SEG) {
+        edmd_segment_normal(s, wall - W_SEG, a->x, a->y, nx, ny);
+        return -1;
+    }
+    *ny = 1.0;
+    switch (s->floor) {
+    case GR_FLOOR_SINE: *Vn = -s->fA * s->fomega * sin(s->fomega * t); break;
+    case GR_FLOOR_SAWTOOTH: *Vn = s->fA * s->fomega / M_PI; break;
+    case GR_FLOOR_SINE_HF: *Vn = hf_sine_velocity(s, a->vy); break;
+    case GR_FLOOR_SAWTOOTH_HF: *Vn = s->fV0; break;
+    default: break;
+    }
+    return GR_BOTTOM;
+}
+
+/* The wall's impulse on grain i, the wall having infinite mass; returns the
+ * normal part, the tangential one only for rough disks off the guard. */
+static inline double wall_impulse(gr_edmd *s, int32_t i, double m, double nx, double ny, double gn, double t)
 {
     edmd_p *a = &s->p[i];
-    edmd_measure_advance(s, t);
-    if (s->cacc)
-        edmd_field_flush(s, i, t);
-    edmd_advance_p(a, t, s->g);
-    double nx = 0.0, ny = 0.0, Vn = 0.0;
-    int side = wall;
-    switch (wall) {
-    case GR_LEFT: nx = 1.0; break;
-    case GR_RIGHT: nx = -1.0; break;
-    case GR_TOP: ny = -1.0; break;
-    case GR_BOTTOM: ny = 1.0; break;
-    default:
-        if (wall >= W_SEG) {
-            edmd_segment_normal(s, wall - W_SEG, a->x, a->y, &nx, &ny);
-            side = -1;
-            break;
-        }
-        ny = 1.0;
-        side = GR_BOTTOM;
-        switch (s->floor) {
-        case GR_FLOOR_SINE: Vn = -s->fA * s->fomega * sin(s->fomega * t); break;
-        case GR_FLOOR_SAWTOOTH: Vn = s->fA * s->fomega / M_PI; break;
-        case GR_FLOOR_SINE_HF: Vn = hf_sine_velocity(s, a->vy); break;
-        case GR_FLOOR_SAWTOOTH_HF: Vn = s->fV0; break;
-        default: break;
-        }
+    int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, i, -1, t);
+    double e = guard ? 1.0 : s->alpha_w;
+    double Jn = -(1.0 + e) * m * gn;
+    double Jt = 0.0, tx = -ny, ty = nx;
+    if (s->rough && !guard) {
+        double gt = a->vx * tx + a->vy * ty - s->w[i] * a->r;
+        Jt = tangential_impulse(s, gt, 1.0 / m + a->r * a->r / s->inertia[i], Jn);
+        s->w[i] -= a->r * Jt / s->inertia[i];
     }
-    double m = s->m[i];
-    double gn = a->vx * nx + a->vy * ny - Vn;
-    double e0 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double vy0 = a->vy;
-    double Jn = 0.0;
-    if (gn < 0.0) {
-        int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, i, -1, t);
-        double e = guard ? 1.0 : s->alpha_w;
-        Jn = -(1.0 + e) * m * gn;
-        double Jt = 0.0, tx = -ny, ty = nx;
-        if (s->rough && !guard) {
-            double gt = a->vx * tx + a->vy * ty - s->w[i] * a->r;
-            Jt = tangential_impulse(s, gt, 1.0 / m + a->r * a->r / s->inertia[i], Jn);
-            s->w[i] -= a->r * Jt / s->inertia[i];
-        }
-        a->vx += (Jn * nx + Jt * tx) / m;
-        a->vy += (Jn * ny + Jt * ty) / m;
-    }
-    double e1 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double dE = e1 - e0;
-    s->m_K += dE;
-    s->m_Krot += 0.5 * s->inertia[i] * s->w[i] * s->w[i] - kr0;
-    s->m_Smvy += m * (a->vy - vy0);
+    a->vx += (Jn * nx + Jt * tx) / m;
+    a->vy += (Jn * ny + Jt * ty) / m;
+    return Jn;
+}
+
+/* Where the energy dE went: the driven floor injects it, every other wall
+ * dissipates it; the side's momentum feeds the pressure on the walls and
+ * the cell's share of the collisional stress feeds the fields. */
+static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double nx, double ny, double Jn, double dE)
+{
     if (wall == W_FLOOR) {
         s->e_inj += dE;
         s->a_inj += dE;
@@ -198,15 +222,39 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
         s->obs_mom += Jn;
     }
     if (s->cacc) {
-        /* the wall's share of the collisional stress and dissipation */
-        edmd_cellacc *c = &s->cacc[a->cell];
-        double r = a->r;
+        edmd_cellacc *c = &s->cacc[s->p[i].cell];
+        double r = s->p[i].r;
         c->cxx += r * nx * Jn * nx;
         c->cxy += r * nx * Jn * ny;
         c->cyy += r * ny * Jn * ny;
         if (wall != W_FLOOR)
             c->diss -= dE;
     }
+}
+
+void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
+{
+    edmd_p *a = &s->p[i];
+    edmd_measure_advance(s, t);
+    if (s->cacc)
+        edmd_field_flush(s, i, t);
+    edmd_advance_p(a, t, s->g);
+    double nx, ny, Vn;
+    int side = wall_normal(s, a, wall, t, &nx, &ny, &Vn);
+    double m = s->m[i];
+    double gn = a->vx * nx + a->vy * ny - Vn;
+    double e0 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
+    double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
+    double vy0 = a->vy;
+    double Jn = 0.0;
+    if (gn < 0.0)
+        Jn = wall_impulse(s, i, m, nx, ny, gn, t);
+    double e1 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
+    double dE = e1 - e0;
+    s->m_K += dE;
+    s->m_Krot += 0.5 * s->inertia[i] * s->w[i] * s->w[i] - kr0;
+    s->m_Smvy += m * (a->vy - vy0);
+    wall_tally(s, i, wall, side, nx, ny, Jn, dE);
     a->ncol++;
     s->tlast[i] = t;
     s->cnt.wall++;

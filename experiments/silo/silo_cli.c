@@ -1,0 +1,184 @@
+/* The command line shared by the silo commands (silo_cli.h). */
+#include "silo_cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "opts.h"
+
+/* a long option without a short one */
+#define OPT_METHOD 0x100
+/* room for the common options, the command's own and the end mark */
+#define MAX_OPTS 24
+
+static const struct option common_opts[] = {
+    {"orifices", required_argument, NULL, 'D'}, {"realisations", required_argument, NULL, 'n'},
+    {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
+    {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
+    {"width", required_argument, NULL, 'W'},    {"method", required_argument, NULL, OPT_METHOD},
+    {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
+    {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
+    {NULL, 0, NULL, 0}};
+
+void silo_unit_label(const double *orifice, int nreal, size_t unit, char *buf, size_t n)
+{
+    size_t o = unit / (size_t)nreal, r = unit % (size_t)nreal;
+    snprintf(buf, n, "D%g-r%02zu", orifice[o], r);
+}
+
+int silo_bad(const silo_cli *cli, const char *opt, const char *val, const char *what)
+{
+    fprintf(stderr, "grano %s: %s: '%s' is not %s\n", cli->name, opt, val ? val : "", what);
+    return 2;
+}
+
+int silo_parse_long(const char *s, long lo, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (*end || end == s || errno || v < lo)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+/* One common option into *o: 0 taken, 2 a bad value, 1 not a common one. */
+static int common_option(const silo_cli *cli, int ch, const char *arg, silo_opts *o)
+{
+    char *end;
+    switch (ch) {
+    case 'D': o->orif = arg; return 0;
+    case 'n': return silo_parse_long(arg, 1, &o->nreal) ? silo_bad(cli, "--realisations", arg, "a positive integer") : 0;
+    case 's': return silo_parse_long(arg, 0, &o->seed) ? silo_bad(cli, "--seed", arg, "a non-negative integer") : 0;
+    case 'j':
+        if (silo_parse_long(arg, 1, &o->jobs) || o->jobs > 256)
+            return silo_bad(cli, "--jobs", arg, "an integer in 1..256");
+        return 0;
+    case 'o': o->out = arg; return 0;
+    case 'G': return silo_parse_long(arg, 10, &o->grains) ? silo_bad(cli, "--grains", arg, "an integer >= 10") : 0;
+    case 'W':
+        o->width = strtod(arg, &end);
+        if (*end || !(o->width >= 8) || !isfinite(o->width))
+            return silo_bad(cli, "--width", arg, "a width >= 8");
+        return 0;
+    case OPT_METHOD: o->method = arg; return 0;
+    case 'Q': o->quick = 1; return 0;
+    case 'f': o->force = 1; return 0;
+    case 'q': o->quiet = 1; return 0;
+    default: return 1;
+    }
+}
+
+/* The long options and short letters getopt sees: the common ones and the
+ * command's own, in one table because getopt_long takes only one. */
+static void option_table(const silo_cli *cli, struct option *opts, char *shorts, size_t nshort)
+{
+    size_t k = 0;
+    for (const struct option *p = common_opts; p->name; p++)
+        opts[k++] = *p;
+    for (const struct option *p = cli->own; p && p->name && k + 1 < MAX_OPTS; p++)
+        opts[k++] = *p;
+    opts[k] = (struct option){NULL, 0, NULL, 0};
+    snprintf(shorts, nshort, ":D:n:s:j:o:%sQfqh", cli->own_short ? cli->own_short : "");
+}
+
+int silo_cli_parse(const silo_cli *cli, int argc, char **argv, silo_opts *o, void *own)
+{
+    *o = (silo_opts){NULL, NULL, "dem", -1, 1, 1, -1, -1, 0, 0, 0};
+    struct option opts[MAX_OPTS];
+    char shorts[64];
+    option_table(cli, opts, shorts, sizeof shorts);
+    int ch;
+    opterr = 0;
+    optind = 1;
+    while ((ch = getopt_long(argc, argv, shorts, opts, NULL)) != -1) {
+        if (ch == 'h') {
+            cli->usage(stdout);
+            return 0;
+        }
+        if (ch == ':') {
+            fprintf(stderr, "grano %s: option '%s' needs a value\n", cli->name, argv[optind - 1]);
+            return 2;
+        }
+        int rc = common_option(cli, ch, optarg, o);
+        if (rc == 1 && ch != '?' && cli->own_parse)
+            rc = cli->own_parse(ch, optarg, own);
+        if (rc == 1 || ch == '?') {
+            fprintf(stderr, "grano %s: unknown option '%s' (see grano %s --help)\n", cli->name, argv[optind - 1],
+                    cli->name);
+            return 2;
+        }
+        if (rc)
+            return rc;
+    }
+    if (optind != argc) {
+        fprintf(stderr, "grano %s: unexpected argument '%s'\n", cli->name, argv[optind]);
+        return 2;
+    }
+    return -1;
+}
+
+int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, double *orifice, size_t cap,
+                  size_t *norif)
+{
+    if (o->quick) {
+        silo_cfg_quick(base, 1);
+        if (cli->quick_n > 0)
+            base->n = cli->quick_n;
+        if (cli->quick_width > 0)
+            base->width = cli->quick_width;
+    } else
+        silo_cfg_thesis(base, 1);
+    if (o->grains > 0)
+        base->n = o->grains;
+    if (o->width > 0)
+        base->width = o->width, base->height = 2 * o->width;
+    if (exp_parse_list(o->orif ? o->orif : o->quick ? cli->quick_orifices : cli->orifices, orifice, cap, norif))
+        return silo_bad(cli, "--orifices", o->orif, "a comma-separated list of positive widths");
+    for (size_t i = 0; i < *norif; i++)
+        if (orifice[i] >= base->width - 2)
+            return silo_bad(cli, "--orifices", o->orif, "narrower than the silo");
+    gr_err me = {0};
+    /* the silo as the units will open it */
+    silo_cfg probe = *base;
+    probe.orifice = orifice[0];
+    probe.reinsert = cli->reinsert;
+    if (silo_choose_method(&probe, o->method, &me)) {
+        fprintf(stderr, "grano %s: %s\n", cli->name, me.msg);
+        return 2;
+    }
+    base->method = probe.method;
+    return 0;
+}
+
+const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, size_t n)
+{
+    if (o->out)
+        snprintf(dir, n, "%s", o->out);
+    else
+        snprintf(dir, n, "results/%s%s", cli->name, o->quick ? "-quick" : "");
+    return dir;
+}
+
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t nunits, const char *dir)
+{
+    char pdir[1100];
+    snprintf(pdir, sizeof pdir, "%s/parts", dir);
+    gr_err e = {0};
+    int jobs = (int)o->jobs;
+    size_t reused = 0;
+    exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force};
+    char summary[4096] = "";
+    double t_units = 0;
+    int rc = exp_sweep_and_report(&sw, cli->unit, cli->label, cli->key, cli->report, ctx, summary,
+                                   sizeof summary, &t_units, &reused, &e);
+    if (rc)
+        fprintf(stderr, "grano %s: %s\n", cli->name, e.msg);
+    else if (!o->quiet)
+        fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s", cli->name,
+                nunits, cli->units_what, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
+    return rc;
+}
