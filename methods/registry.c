@@ -6,9 +6,11 @@
 
 extern const gr_method_type gr_edmd_method;
 extern const gr_method_type gr_dem_method;
+extern const gr_method_type gr_cd_method;
 static const gr_method_type *const registry[] = {
     &gr_edmd_method,
     &gr_dem_method,
+    &gr_cd_method,
     NULL
 };
 

@@ -1,0 +1,79 @@
+/* Helpers shared by the contact dynamics validations: a scene from INI
+ * text, an instance from given grains, and the backend's state. */
+#ifndef GR_CD_TEST_H
+#define GR_CD_TEST_H
+
+#include "test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "cd/cd_int.h"
+#include "init.h"
+#include "method.h"
+
+extern const gr_method_type gr_cd_method;
+
+static inline gr_scene *ct_scene(const char *text)
+{
+    static const char *const ext[] = {"cd", NULL};
+    gr_err e = {0};
+    gr_scene *sc = gr_scene_parse(text, "cd-test.ini", ext, &e);
+    if (!sc)
+        print_error("scene: %s\n", e.msg);
+    assert_non_null(sc);
+    return sc;
+}
+
+/* An instance from the grains p (NULL: the scene's own). */
+static inline gr_sim *ct_sim(const gr_scene *sc, const gr_particles *p)
+{
+    gr_err e = {0};
+    gr_particles *q = (gr_particles *)p;
+    if (!q) {
+        q = gr_particles_create(0, &e);
+        assert_int_equal(gr_init_particles(sc, q, &e), GR_OK);
+    }
+    gr_sim *s = NULL;
+    if (gr_sim_create(&gr_cd_method, sc, q, &s, &e))
+        print_error("create: %s\n", e.msg);
+    assert_non_null(s);
+    if (!p)
+        gr_particles_free(q);
+    return s;
+}
+
+static inline gr_cd *ct_state(gr_sim *s) { return gr_sim_state(s); }
+
+static inline void ct_steps(gr_sim *s, long n)
+{
+    gr_err e = {0};
+    for (long k = 0; k < n; k++) {
+        if (gr_sim_step(s, &e)) {
+            print_error("step: %s\n", e.msg);
+            fail();
+        }
+    }
+}
+
+/* The last step's contact of (i, j), or NULL. */
+static inline const gr_cd_contact *ct_contact(const gr_cd *d, int64_t i, int64_t j)
+{
+    for (size_t k = 0; k < d->prev.n; k++)
+        if (d->prev.c[k].i == i && d->prev.c[k].j == j)
+            return &d->prev.c[k];
+    return NULL;
+}
+
+static inline uint64_t ct_counter(gr_sim *s, const char *name)
+{
+    gr_counter c[GR_MAX_COUNTERS];
+    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
+    for (size_t k = 0; k < n; k++)
+        if (!strcmp(c[k].name, name))
+            return c[k].value;
+    fail_msg("no counter %s", name);
+    return 0;
+}
+
+#endif
