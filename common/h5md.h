@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "err.h"
+#include "contacts.h"
 #include "observe.h"
 #include "particles.h"
 
@@ -55,6 +56,12 @@ int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time,
 
 /* Append one sample of every observable (step = o->steps, time = o->t). */
 int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err);
+
+/* The contact network of a frame (contacts/, docs/output-format.md): rows
+ * (i, j, fn, ft) after those of the earlier frames, then the frame's count,
+ * step and time, so a run killed half-way leaves only complete frames. */
+int gr_h5md_write_contacts(gr_h5md *h, uint64_t step, double time, const gr_contacts *c,
+                           gr_err *err);
 
 /* A field on a regular grid: fields/<name>, values[(iy * nx + ix) * ncomp + c]
  * for the cell whose lower-left corner is (x0 + ix dx, y0 + iy dy). */
@@ -131,6 +138,12 @@ int gr_h5md_read_frame(gr_h5md_reader *r, size_t frame, gr_particles *p,
 /* The nobs observable samples into obs[]; a quantity absent from the file
  * is NaN (counts: 0). */
 int gr_h5md_read_obs(gr_h5md_reader *r, gr_obs *obs, gr_err *err);
+
+/* Frames that hold a contact network (0 when the run wrote none), and the
+ * network of one of them (c resized; step and time may be NULL). */
+int gr_h5md_contact_frames(gr_h5md_reader *r, size_t *frames, gr_err *err);
+int gr_h5md_read_contacts(gr_h5md_reader *r, size_t k, gr_contacts *c, uint64_t *step,
+                          double *time, gr_err *err);
 
 /* (Re)write the XDMF sidecar <path>.xdmf of an opened file from what it
  * holds, e.g. after a killed run (the writer updates it in steps). */

@@ -248,8 +248,10 @@ static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_
         bad = g < 0 || H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, &idx, shrink_field, &t_keep) < 0;
         gr_h5_close(g);
     }
+    if (!bad && gr_h5md_contacts_keep(h->file, t_keep))
+        bad = 1;
     if (bad || H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0) {
-        gr_h5_fail(err, GR_ERUN, "cannot continue %s: its trajectory, observables or fields are malformed",
+        gr_h5_fail(err, GR_ERUN, "cannot continue %s: its trajectory, observables, fields or contacts are malformed",
                    path);
         gr_h5md_release(h);
         return NULL;

@@ -94,6 +94,10 @@ hid_t gr_h5md_file_of(const gr_h5md *h);
 const char *gr_h5md_path_of(const gr_h5md *h);
 hid_t gr_h5md_reader_file(const gr_h5md_reader *r);
 
+/* Drop the contact networks of frames later than t_keep (a restart writes
+ * them again); 0 when there are none. */
+int gr_h5md_contacts_keep(hid_t file, double t_keep);
+
 /* ---- writer state (h5md.c; reopened by h5md_append.c) ---- */
 
 enum { E_POS, E_VEL, E_OMEGA, E_FLAGS, E_RADIUS, E_MASS, E_INERTIA, E_SPECIES, E_ID, NPE };

@@ -25,7 +25,8 @@ static const char *const keys_silo[] = {
 static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", NULL};
 static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
-static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", NULL};
+static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
+                                       NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
@@ -478,7 +479,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
     if (POSITIVE("run", "until", 10.0, &sc->run.until) ||
         POSITIVE("run", "output_every", sc->run.until / 100.0, &sc->run.output_every) ||
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
-        POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every))
+        POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
+        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err))
         return err->code;
     return GR_OK;
 }

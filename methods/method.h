@@ -12,6 +12,7 @@
 #include <stdint.h>
 
 #include "ckpt.h"
+#include "contacts.h"
 #include "err.h"
 #include "fields.h"
 #include "observe.h"
@@ -84,6 +85,9 @@ typedef struct gr_method_type {
     void (*reset_window)(void *state);
     /* One time step or event [advance(t = inf, max_steps = 1)]. */
     int (*step)(void *state, gr_err *err);
+    /* The contact network at time(): every contact that carries a force
+     * (common/contacts.h) [none: `[run] contacts = yes` is refused]. */
+    int (*contacts)(void *state, gr_contacts *out, gr_err *err);
 } gr_method_type;
 
 /* Optional operations, for gr_sim_require and `grano methods`. */
@@ -92,9 +96,10 @@ enum {
     GR_OP_FIELDS = 1u << 1,
     GR_OP_COUNTERS = 1u << 2,
     GR_OP_RESET_WINDOW = 1u << 3,
-    GR_OP_STEP = 1u << 4
+    GR_OP_STEP = 1u << 4,
+    GR_OP_CONTACTS = 1u << 5
 };
-#define GR_OP_COUNT 5
+#define GR_OP_COUNT 6
 /* Operations the backend implements itself (not by a default). */
 unsigned gr_method_ops(const gr_method_type *m);
 const char *gr_op_name(unsigned op_bit);
@@ -133,6 +138,7 @@ void gr_sim_reset_window(gr_sim *s);
 int gr_sim_snapshot(gr_sim *s, gr_particles *out, gr_err *err);
 int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err);
 size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap);
+int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err);
 /* GR_EINPUT if the backend lacks any of ops (GR_OP_*): "<who> needs <op>,
  * which method '<name>' does not give". */
 int gr_sim_require(const gr_method_type *m, unsigned ops, const char *who, gr_err *err);

@@ -21,7 +21,8 @@ struct gr_sim {
 };
 
 static const char *const op_names[GR_OP_COUNT] = {"snapshots", "fields", "counters",
-                                                 "measurement windows", "single steps"};
+                                                 "measurement windows", "single steps",
+                                                 "contact networks"};
 
 const char *gr_op_name(unsigned op)
 {
@@ -35,7 +36,7 @@ unsigned gr_method_ops(const gr_method_type *m)
 {
     return (m->snapshot ? GR_OP_SNAPSHOT : 0) | (m->fields ? GR_OP_FIELDS : 0) |
            (m->counters ? GR_OP_COUNTERS : 0) | (m->reset_window ? GR_OP_RESET_WINDOW : 0) |
-           (m->step ? GR_OP_STEP : 0);
+           (m->step ? GR_OP_STEP : 0) | (m->contacts ? GR_OP_CONTACTS : 0);
 }
 
 /* Operations a backend gives, itself or through a default. */
@@ -165,6 +166,14 @@ int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err)
     if (s->type->snapshot(s->state, s->scratch, err))
         return err->code;
     return gr_field_add(f, s->scratch, GR_PF_FIXED | GR_PF_GONE, w, err);
+}
+
+int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err)
+{
+    if (!s->type->contacts)
+        return gr_sim_require(s->type, GR_OP_CONTACTS, "a contact network", err);
+    out->n = 0;
+    return s->type->contacts(s->state, out, err);
 }
 
 size_t gr_counters_put(gr_counter *out, size_t cap, const gr_counter *all, size_t n)

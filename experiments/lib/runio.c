@@ -100,6 +100,7 @@ typedef struct {
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
+    gr_contacts *net;  /* [run] contacts = yes */
     double *buf;
 } run_io;
 
@@ -160,6 +161,9 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
+            if (io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
+                            (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))))
+                break;
             if ((status = write_fields(io, &obs, err)))
                 break;
             while (t >= t0 + (double)k[1] * rc->output_every - eps)
@@ -186,6 +190,19 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     return status;
 }
 
+/* `[run] contacts = yes` asks the method for its contact network with each
+ * frame: refused up front, naming the line, if the method has none. */
+static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io, gr_err *err)
+{
+    char where[1200], who[1300];
+    gr_scene_where(sc, "run", "contacts", where, sizeof where);
+    snprintf(who, sizeof who, "%s = yes", where);
+    if (gr_sim_require(m, GR_OP_CONTACTS, who, err))
+        return err->code;
+    io->net = gr_contacts_create(0, err);
+    return io->net ? GR_OK : err->code;
+}
+
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
     run_io io = {0};
@@ -198,6 +215,8 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         goto done;
     }
     if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
+        goto done;
+    if (sc->run.contacts && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
     double t0 = gr_sim_time(st);
@@ -243,6 +262,7 @@ done:
     gr_h5md_free(io.h);
     free(io.buf);
     gr_field_free(io.field);
+    gr_contacts_free(io.net);
     gr_sim_free(st);
     gr_particles_free(init);
     gr_particles_free(io.snap);

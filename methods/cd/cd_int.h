@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "ckpt.h"
+#include "contacts.h"
 #include "err.h"
 #include "grid.h"
 #include "observe.h"
@@ -138,5 +139,9 @@ void gr_cd_reset_window(gr_cd *d);
 /* cd_ckpt.c */
 int gr_cd_save(const gr_cd *d, gr_ckpt *ck, gr_err *err);
 int gr_cd_load(gr_cd *d, gr_ckpt *ck, gr_err *err);
+
+/* cd_network.c: the last step's contacts that carry a force, as forces on
+ * grain i along n (from j to i) and t (n rotated by +90 degrees). */
+int gr_cd_contacts(const gr_cd *d, gr_contacts *out, gr_err *err);
 
 #endif

@@ -53,6 +53,8 @@ static int m_load(void *s, gr_ckpt *ck, gr_err *err) { return gr_cd_load(s, ck, 
 
 static void m_free(void *s) { gr_cd_free(s); }
 
+static int m_contacts(void *s, gr_contacts *out, gr_err *err) { return gr_cd_contacts(s, out, err); }
+
 const gr_method_type gr_cd_method = {
     .name = "cd",
     .summary = "contact dynamics (Moreau-Jean): rigid disks, Signorini-Coulomb by non-linear Gauss-Seidel",
@@ -71,5 +73,6 @@ const gr_method_type gr_cd_method = {
     .snapshot = m_snapshot,
     .counters = m_counters,
     .reset_window = m_reset_window,
+    .contacts = m_contacts,
     .step = m_step,
 };
