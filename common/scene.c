@@ -292,20 +292,10 @@ static int read_walls(gr_scene *sc, gr_err *err)
     return GR_OK;
 }
 
-static int read_silo(gr_scene *sc, gr_err *err)
+/* The silo's box and orifice; margin is the thickness of its walls. */
+static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
 {
     gr_silo *s = &sc->silo;
-    s->present = 0;
-    for (size_t i = 0; i < sc->nentries; i++)
-        s->present |= !strcmp(sc->entries[i].section, "silo");
-    if (!s->present)
-        return GR_OK;
-    double d = gr_scene_max_diameter(sc);
-    int v;
-    if (gr_scene_get_choice(sc, "silo", "walls", walls_names, GR_WALLS_SEGMENTS, &v, err))
-        return err->code;
-    s->walls = (gr_wall_kind)v;
-    double margin = s->walls == GR_WALLS_GRAINS ? d : 0.0;
     if (POSITIVE("silo", "width", sc->width - 2 * margin, &s->width) ||
         POSITIVE("silo", "height", 0.0, &s->height) ||
         ANYNUM("silo", "left", 0.5 * (sc->width - s->width), &s->x0) ||
@@ -324,6 +314,14 @@ static int read_silo(gr_scene *sc, gr_err *err)
     if (s->x0 - margin < 0 || s->x0 + s->width + margin > sc->width || s->base - margin < 0 ||
         s->base + s->height > sc->height)
         return entry_fail(sc, "silo", "width", err, "the silo (with its walls) does not fit in the domain");
+    return GR_OK;
+}
+
+/* The hopper above the silo, the reinsertion band and the exit line;
+ * d is the largest grain diameter. */
+static int read_silo_flow(gr_scene *sc, double d, gr_err *err)
+{
+    gr_silo *s = &sc->silo;
     if (get_yesno(sc, "silo", "hopper", 0, &s->hopper, err) ||
         POSITIVE("silo", "hopper_outlet", 0.3 * s->width, &s->hopper_outlet) ||
         ANYNUM("silo", "hopper_bottom", s->base + s->height + 2 * d, &s->hopper_bottom) ||
@@ -344,31 +342,59 @@ static int read_silo(gr_scene *sc, gr_err *err)
         return entry_fail(sc, "silo", "reinsert_bottom", err, "the reinsertion band must be at least one diameter tall");
     if (s->exit_below > s->base)
         return entry_fail(sc, "silo", "exit_below", err, "grains must leave below the silo base");
-    if (s->walls == GR_WALLS_SEGMENTS) {
-        double x0 = s->x0, x1 = s->x0 + s->width, y0 = s->base, y1 = s->base + s->height;
-        double ol = s->orifice_center - 0.5 * s->orifice, orr = s->orifice_center + 0.5 * s->orifice;
-        gr_segment segs[6] = {
-            {x0, y0, x0, y1, INFINITY, 0, 0}, {x1, y0, x1, y1, INFINITY, 0, 0},
-            {x0, y0, ol, y0, INFINITY, 0, 0}, {orr, y0, x1, y0, INFINITY, 0, 0},
-            {ol, y0, orr, y0, s->open_time, 0, 0},
-            {0, 0, 0, 0, 0, 0, 0}};
-        int nseg = 5;
-        for (int k = 0; k < nseg; k++) {
-            /* Zero-length base pieces when the orifice touches a wall. */
-            if (segs[k].x0 == segs[k].x1 && segs[k].y0 == segs[k].y1)
-                continue;
-            if (add_segment(sc, segs[k], err))
-                return err->code;
-        }
-        if (s->hopper) {
-            double c = s->orifice_center, h = 0.5 * s->hopper_outlet;
-            gr_segment hl = {x0, s->hopper_top, c - h, s->hopper_bottom, INFINITY, 0, 0};
-            gr_segment hr = {c + h, s->hopper_bottom, x1, s->hopper_top, INFINITY, 0, 0};
-            if (add_segment(sc, hl, err) || add_segment(sc, hr, err))
-                return err->code;
-        }
+    return GR_OK;
+}
+
+/* The silo's side walls, base (the orifice piece opens at open_time)
+ * and hopper as wall segments. */
+static int add_silo_segments(gr_scene *sc, gr_err *err)
+{
+    const gr_silo *s = &sc->silo;
+    double x0 = s->x0, x1 = s->x0 + s->width, y0 = s->base, y1 = s->base + s->height;
+    double ol = s->orifice_center - 0.5 * s->orifice, orr = s->orifice_center + 0.5 * s->orifice;
+    gr_segment segs[6] = {
+        {x0, y0, x0, y1, INFINITY, 0, 0}, {x1, y0, x1, y1, INFINITY, 0, 0},
+        {x0, y0, ol, y0, INFINITY, 0, 0}, {orr, y0, x1, y0, INFINITY, 0, 0},
+        {ol, y0, orr, y0, s->open_time, 0, 0},
+        {0, 0, 0, 0, 0, 0, 0}};
+    int nseg = 5;
+    for (int k = 0; k < nseg; k++) {
+        /* Zero-length base pieces when the orifice touches a wall. */
+        if (segs[k].x0 == segs[k].x1 && segs[k].y0 == segs[k].y1)
+            continue;
+        if (add_segment(sc, segs[k], err))
+            return err->code;
+    }
+    if (s->hopper) {
+        double c = s->orifice_center, h = 0.5 * s->hopper_outlet;
+        gr_segment hl = {x0, s->hopper_top, c - h, s->hopper_bottom, INFINITY, 0, 0};
+        gr_segment hr = {c + h, s->hopper_bottom, x1, s->hopper_top, INFINITY, 0, 0};
+        if (add_segment(sc, hl, err) || add_segment(sc, hr, err))
+            return err->code;
     }
     return GR_OK;
+}
+
+static int read_silo(gr_scene *sc, gr_err *err)
+{
+    gr_silo *s = &sc->silo;
+    s->present = 0;
+    for (size_t i = 0; i < sc->nentries; i++)
+        s->present |= !strcmp(sc->entries[i].section, "silo");
+    if (!s->present)
+        return GR_OK;
+    double d = gr_scene_max_diameter(sc);
+    int v;
+    if (gr_scene_get_choice(sc, "silo", "walls", walls_names, GR_WALLS_SEGMENTS, &v, err))
+        return err->code;
+    s->walls = (gr_wall_kind)v;
+    double margin = s->walls == GR_WALLS_GRAINS ? d : 0.0;
+    int rc = read_silo_box(sc, margin, err);
+    if (!rc)
+        rc = read_silo_flow(sc, d, err);
+    if (rc || s->walls != GR_WALLS_SEGMENTS)
+        return rc;
+    return add_silo_segments(sc, err);
 }
 
 static int read_init(gr_scene *sc, gr_err *err)
