@@ -397,6 +397,93 @@ static int read_silo(gr_scene *sc, gr_err *err)
     return add_silo_segments(sc, err);
 }
 
+/* Default region: above the hopper, else inside the silo, else the domain. */
+static void default_init_region(const gr_scene *sc, double d, double r[4])
+{
+    r[0] = 0, r[1] = 0, r[2] = sc->width, r[3] = sc->height;
+    if (sc->silo.present) {
+        r[0] = sc->silo.x0;
+        r[2] = sc->silo.x0 + sc->silo.width;
+        r[1] = sc->silo.hopper ? sc->silo.hopper_top + 0.5 * d : sc->silo.base;
+        r[3] = sc->silo.hopper ? sc->height : sc->silo.base + sc->silo.height;
+    }
+}
+
+static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
+{
+    gr_init *in = &sc->init;
+    if (!fe)
+        return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
+    /* Relative paths are relative to the scene file. */
+    const char *slash = strrchr(sc->path, '/');
+    if (fe->value[0] == '/' || !slash)
+        snprintf(in->file, sizeof in->file, "%s", fe->value);
+    else
+        snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+    FILE *f = fopen(in->file, "r");
+    if (!f) {
+        char msg[1200];
+        snprintf(msg, sizeof msg, "cannot read '%s': %s", in->file, strerror(errno));
+        return entry_fail(sc, "init", "file", err, msg);
+    }
+    fclose(f);
+    return GR_OK;
+}
+
+/* Too many grains for the region: blame the region if the scene sets
+ * one, else the species counts. */
+static int crowded_fail(const gr_scene *sc, gr_err *err, const char *msg)
+{
+    return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
+                      gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
+}
+
+/* The lattice pitch: the widest grain any species can draw, spaced. */
+static double lattice_pitch(const gr_scene *sc, double d)
+{
+    const gr_init *in = &sc->init;
+    double a = in->spacing * d * (1.0 + sc->species[0].polydispersity);
+    for (int k = 1; k < sc->nspecies; k++) {
+        double ak = in->spacing * sc->species[k].diameter * (1.0 + sc->species[k].polydispersity);
+        if (ak > a)
+            a = ak;
+    }
+    return a;
+}
+
+/* More grains than fit: by area for any kind; by sites for a lattice;
+ * random sequential placement jams near 0.547, so refuse beyond 0.5. */
+static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
+{
+    const gr_init *in = &sc->init;
+    double area = (in->x1 - in->x0) * (in->y1 - in->y0), grains = 0;
+    long n = gr_scene_count(sc);
+    for (int k = 0; k < sc->nspecies; k++) {
+        double dk = sc->species[k].diameter;
+        grains += sc->species[k].count * M_PI * dk * dk / 4;
+    }
+    double phi = grains / area;
+    char msg[512];
+    if (phi > GR_HEX_PACKING) {
+        snprintf(msg, sizeof msg, "%ld grains cover %.3g of the initial region's area (%.4g x %.4g), more than the densest packing %.4f allows",
+                 n, phi, in->x1 - in->x0, in->y1 - in->y0, GR_HEX_PACKING);
+        return crowded_fail(sc, err, msg);
+    }
+    if (in->kind == GR_INIT_LATTICE) {
+        double a = lattice_pitch(sc, d);
+        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
+        if (nx * ny < n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+                     n, nx, ny, nx * ny, a);
+            return crowded_fail(sc, err, msg);
+        }
+    } else if (phi > 0.5) {
+        snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
+        return entry_fail(sc, "init", "kind", err, msg);
+    }
+    return GR_OK;
+}
+
 static int read_init(gr_scene *sc, gr_err *err)
 {
     gr_init *in = &sc->init;
@@ -405,14 +492,8 @@ static int read_init(gr_scene *sc, gr_err *err)
         return err->code;
     in->kind = (gr_init_kind)v;
     double d = gr_scene_max_diameter(sc);
-    /* Default region: above the hopper, else inside the silo, else the domain. */
-    double r[4] = {0, 0, sc->width, sc->height};
-    if (sc->silo.present) {
-        r[0] = sc->silo.x0;
-        r[2] = sc->silo.x0 + sc->silo.width;
-        r[1] = sc->silo.hopper ? sc->silo.hopper_top + 0.5 * d : sc->silo.base;
-        r[3] = sc->silo.hopper ? sc->height : sc->silo.base + sc->silo.height;
-    }
+    double r[4];
+    default_init_region(sc, d, r);
     if (gr_scene_get_vec(sc, "init", "region", 4, r, &found, err))
         return err->code;
     if (!(r[2] > r[0]) || !(r[3] > r[1]))
@@ -426,59 +507,9 @@ static int read_init(gr_scene *sc, gr_err *err)
     if (NONNEG("init", "v0", 1.0, &in->v0))
         return err->code;
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
-    if (in->kind == GR_INIT_FILE) {
-        if (!fe)
-            return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
-        /* Relative paths are relative to the scene file. */
-        const char *slash = strrchr(sc->path, '/');
-        if (fe->value[0] == '/' || !slash)
-            snprintf(in->file, sizeof in->file, "%s", fe->value);
-        else
-            snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
-        FILE *f = fopen(in->file, "r");
-        if (!f) {
-            char msg[1200];
-            snprintf(msg, sizeof msg, "cannot read '%s': %s", in->file, strerror(errno));
-            return entry_fail(sc, "init", "file", err, msg);
-        }
-        fclose(f);
-        return GR_OK;
-    }
-    /* More grains than fit: by area for any kind; by sites for a lattice;
-     * random sequential placement jams near 0.547, so refuse beyond 0.5. */
-    double area = (in->x1 - in->x0) * (in->y1 - in->y0), grains = 0;
-    long n = gr_scene_count(sc);
-    for (int k = 0; k < sc->nspecies; k++) {
-        double dk = sc->species[k].diameter;
-        grains += sc->species[k].count * M_PI * dk * dk / 4;
-    }
-    double phi = grains / area;
-    char msg[512];
-    if (phi > GR_HEX_PACKING) {
-        snprintf(msg, sizeof msg, "%ld grains cover %.3g of the initial region's area (%.4g x %.4g), more than the densest packing %.4f allows",
-                 n, phi, in->x1 - in->x0, in->y1 - in->y0, GR_HEX_PACKING);
-        return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
-                          gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
-    }
-    if (in->kind == GR_INIT_LATTICE) {
-        double a = in->spacing * d * (1.0 + sc->species[0].polydispersity);
-        for (int k = 1; k < sc->nspecies; k++) {
-            double ak = in->spacing * sc->species[k].diameter * (1.0 + sc->species[k].polydispersity);
-            if (ak > a)
-                a = ak;
-        }
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
-                     n, nx, ny, nx * ny, a);
-            return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
-                              gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
-        }
-    } else if (phi > 0.5) {
-        snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
-        return entry_fail(sc, "init", "kind", err, msg);
-    }
-    return GR_OK;
+    if (in->kind == GR_INIT_FILE)
+        return read_init_file(sc, fe, err);
+    return check_init_fits(sc, d, err);
 }
 
 static int read_measure_run(gr_scene *sc, gr_err *err)
