@@ -74,15 +74,10 @@ int gr_fit_check_data(const char *what, size_t np, const double *x, const double
     return GR_OK;
 }
 
-int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const double *sigma,
-                size_t n, const double *p0, const gr_fit_opts *opt, gr_fit *out, gr_err *err)
+static int check_start(const gr_model *m, const char *name, const double *x, size_t n,
+                       const double *p0, gr_err *err)
 {
-    const char *name = m->name ? m->name : "model";
-    int rc = gr_fit_check_data(name, m->np, x, y, sigma, n, err);
-    if (rc)
-        return rc;
-    size_t np = m->np;
-    for (size_t j = 0; j < np; j++)
+    for (size_t j = 0; j < m->np; j++)
         if (!isfinite(p0[j]))
             return gr_fail(err, GR_EINPUT, "%s fit: start value %zu is not finite", name, j);
     for (size_t i = 0; i < n; i++) {
@@ -91,6 +86,11 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
             return gr_fail(err, GR_EINPUT, "%s fit: model undefined at the start values (x = %g)",
                            name, x[i]);
     }
+    return GR_OK;
+}
+
+static gr_fit_opts opts_or_defaults(const gr_fit_opts *opt)
+{
     gr_fit_opts o = opt ? *opt : (gr_fit_opts){0};
     if (o.max_iter == 0)
         o.max_iter = 500;
@@ -100,6 +100,140 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
         o.gtol = 1e-10;
     if (o.ftol <= 0)
         o.ftol = 1e-12;
+    return o;
+}
+
+/* What the restarts of the GSL driver end with. */
+typedef struct {
+    int st, info;
+    size_t iter, nfev;
+} fit_run;
+
+/* GSL's gradient test at the driver's current position q. */
+static int gradient_small(gsl_multifit_nlinear_workspace *w, const double *q, size_t np,
+                          double gtol)
+{
+    double gmax = 0.0, phi = 0.0;
+    gsl_blas_ddot(w->f, w->f, &phi);
+    for (size_t j = 0; j < np; j++)
+        gmax = fmax(gmax, fabs(gsl_vector_get(w->g, j)) * fmax(fabs(q[j]), 1.0));
+    return gmax <= gtol * fmax(0.5 * phi, 1.0);
+}
+
+/* GSL's step-size test also fires when rejected steps (outside the
+ * domain, or a poor model of the cost) have shrunk the trust region to
+ * nothing: restart from where it stopped, with a fresh region, until a
+ * restart no longer moves. cur holds the start and receives the end. */
+static int restart_until_still(gsl_multifit_nlinear_workspace *w, gsl_multifit_nlinear_fdf *fdf,
+                               const gsl_vector *wts, const gr_fit_opts *o, double *cur,
+                               const char *name, fit_run *r, gr_err *err)
+{
+    size_t np = fdf->p;
+    int prev_info = 0;
+    for (int round = 0; round < 20; round++) {
+        gsl_vector_view start = gsl_vector_view_array(cur, np);
+        r->st = wts ? gsl_multifit_nlinear_winit(&start.vector, wts, fdf, w)
+                    : gsl_multifit_nlinear_init(&start.vector, fdf, w);
+        if (r->st)
+            return gr_fail(err, GR_ERUN, "%s fit: model evaluation failed (%s)", name,
+                           gsl_strerror(r->st));
+        r->st = gsl_multifit_nlinear_driver(o->max_iter, o->xtol, o->gtol, o->ftol, NULL, NULL,
+                                            &r->info, w);
+        r->iter += gsl_multifit_nlinear_niter(w);
+        r->nfev += fdf->nevalf;
+        /* GSL stops with "no progress" (GSL_EMAXITER after one iteration,
+         * info GSL_ENOPROG) when it finds no step that lowers the cost from
+         * the start. On a restart that confirms the previous optimum; on
+         * the first round (e.g. noise-free data from the exact start) accept
+         * it only where GSL's gradient test holds (its step test would look
+         * at a rejected step). */
+        const double *q = gsl_multifit_nlinear_position(w)->data;
+        int noprog = r->st == GSL_EMAXITER && r->info == GSL_ENOPROG;
+        if (noprog && round > 0) {
+            r->st = GSL_SUCCESS;
+            r->info = prev_info;
+        } else if (r->st != GSL_SUCCESS && gradient_small(w, q, np, o->gtol)) {
+            r->st = GSL_SUCCESS;
+            r->info = 2;
+        }
+        int moved = 0;
+        for (size_t j = 0; j < np; j++)
+            moved |= fabs(q[j] - cur[j]) > 1e-7 * fmax(fabs(cur[j]), 1e-7);
+        memcpy(cur, q, np * sizeof *cur);
+        if (r->st != GSL_SUCCESS || !moved || r->iter >= o->max_iter)
+            break;
+        prev_info = r->info;
+    }
+    return GR_OK;
+}
+
+static int store_covariance(const gr_model *m, const char *name,
+                            gsl_multifit_nlinear_workspace *w, gsl_matrix *cov,
+                            const gr_fit_opts *o, int weighted, gr_fit *out, gr_err *err)
+{
+    size_t np = m->np;
+    gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w), 0.0, cov);
+    out->scaled = o->scale == GR_FIT_SCALE_ALWAYS || (o->scale == GR_FIT_SCALE_AUTO && !weighted);
+    double s2 = out->scaled ? out->chi2_dof : 1.0;
+    for (size_t i = 0; i < np; i++)
+        for (size_t j = 0; j < np; j++)
+            out->cov[i][j] = s2 * gsl_matrix_get(cov, i, j);
+    for (size_t j = 0; j < np; j++) {
+        /* GSL zeroes the rows of parameters the Jacobian does not fix, so
+         * an unscaled variance that is not positive means undetermined. */
+        double v = gsl_matrix_get(cov, j, j);
+        out->err[j] = sqrt(out->cov[j][j]);
+        if (!(v > 0.0) || !isfinite(v) || !isfinite(out->p[j])) {
+            char buf[24];
+            return gr_fail(err, GR_ERUN,
+                           "%s fit: parameter %s is not determined by the data (variance %g)",
+                           name, pname(m, j, buf), v);
+        }
+    }
+    return GR_OK;
+}
+
+/* Runs the driver from out->p on workspaces already allocated and fills
+ * out with the optimum, its cost and covariance. */
+static int solve(const gr_model *m, const char *name, gsl_multifit_nlinear_fdf *fdf,
+                 gsl_multifit_nlinear_workspace *w, const gsl_vector *wts, gsl_matrix *cov,
+                 const gr_fit_opts *o, gr_fit *out, gr_err *err)
+{
+    size_t np = m->np;
+    double cur[GR_FIT_MAXP];
+    memcpy(cur, out->p, np * sizeof *cur);
+    fit_run r = {0};
+    int rc = restart_until_still(w, fdf, wts, o, cur, name, &r, err);
+    if (rc)
+        return rc;
+    memcpy(out->p, cur, np * sizeof(double));
+    out->iter = r.iter;
+    out->nfev = r.nfev;
+    out->info = r.info;
+    gsl_vector *f = gsl_multifit_nlinear_residual(w);
+    gsl_blas_ddot(f, f, &out->chi2);
+    out->chi2_dof = out->chi2 / out->dof;
+    if (r.st != GSL_SUCCESS) {
+        const char *why = r.st == GSL_EMAXITER && r.info == GSL_ENOPROG
+                              ? "no step lowers the cost from the start"
+                              : gsl_strerror(r.st);
+        return gr_fail(err, GR_ERUN, "%s fit did not converge after %zu iterations: %s (chi2 = %g)",
+                       name, out->iter, why, out->chi2);
+    }
+    return store_covariance(m, name, w, cov, o, wts != NULL, out, err);
+}
+
+int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const double *sigma,
+                size_t n, const double *p0, const gr_fit_opts *opt, gr_fit *out, gr_err *err)
+{
+    const char *name = m->name ? m->name : "model";
+    int rc = gr_fit_check_data(name, m->np, x, y, sigma, n, err);
+    if (!rc)
+        rc = check_start(m, name, x, n, p0, err);
+    if (rc)
+        return rc;
+    size_t np = m->np;
+    gr_fit_opts o = opts_or_defaults(opt);
 
     memset(out, 0, sizeof *out);
     out->np = np;
@@ -125,97 +259,11 @@ int gr_fit_nlin(const gr_model *m, const double *x, const double *y, const doubl
     gsl_matrix *cov = gsl_matrix_alloc(np, np);
     if (!w || !cov || (sigma && !wts)) {
         rc = gr_fail(err, GR_ERUN, "%s fit: out of memory (%zu points)", name, n);
-        goto done;
-    }
-    if (sigma)
-        for (size_t i = 0; i < n; i++)
+    } else {
+        for (size_t i = 0; sigma && i < n; i++)
             gsl_vector_set(wts, i, 1.0 / (sigma[i] * sigma[i]));
-    /* GSL's step-size test also fires when rejected steps (outside the
-     * domain, or a poor model of the cost) have shrunk the trust region to
-     * nothing: restart from where it stopped, with a fresh region, until a
-     * restart no longer moves. */
-    double cur[GR_FIT_MAXP];
-    memcpy(cur, p0, np * sizeof *cur);
-    int st, info = 0, prev_info = 0;
-    size_t iter = 0, nfev = 0;
-    for (int round = 0; round < 20; round++) {
-        gsl_vector_view start = gsl_vector_view_array(cur, np);
-        st = sigma ? gsl_multifit_nlinear_winit(&start.vector, wts, &fdf, w)
-                   : gsl_multifit_nlinear_init(&start.vector, &fdf, w);
-        if (st) {
-            rc = gr_fail(err, GR_ERUN, "%s fit: model evaluation failed (%s)", name,
-                         gsl_strerror(st));
-            goto done;
-        }
-        st = gsl_multifit_nlinear_driver(o.max_iter, o.xtol, o.gtol, o.ftol, NULL, NULL, &info,
-                                         w);
-        iter += gsl_multifit_nlinear_niter(w);
-        nfev += fdf.nevalf;
-        /* GSL stops with "no progress" (GSL_EMAXITER after one iteration,
-         * info GSL_ENOPROG) when it finds no step that lowers the cost from
-         * the start. On a restart that confirms the previous optimum; on
-         * the first round (e.g. noise-free data from the exact start) accept
-         * it only where GSL's gradient test holds (its step test would look
-         * at a rejected step). */
-        const double *q = gsl_multifit_nlinear_position(w)->data;
-        int noprog = st == GSL_EMAXITER && info == GSL_ENOPROG;
-        if (noprog && round > 0) {
-            st = GSL_SUCCESS;
-            info = prev_info;
-        } else if (st != GSL_SUCCESS) {
-            double gmax = 0.0, phi = 0.0;
-            gsl_blas_ddot(w->f, w->f, &phi);
-            for (size_t j = 0; j < np; j++)
-                gmax = fmax(gmax, fabs(gsl_vector_get(w->g, j)) * fmax(fabs(q[j]), 1.0));
-            if (gmax <= o.gtol * fmax(0.5 * phi, 1.0)) {
-                st = GSL_SUCCESS;
-                info = 2;
-            }
-        }
-        int moved = 0;
-        for (size_t j = 0; j < np; j++)
-            moved |= fabs(q[j] - cur[j]) > 1e-7 * fmax(fabs(cur[j]), 1e-7);
-        memcpy(cur, q, np * sizeof *cur);
-        if (st != GSL_SUCCESS || !moved || iter >= o.max_iter)
-            break;
-        prev_info = info;
+        rc = solve(m, name, &fdf, w, wts, cov, &o, out, err);
     }
-    memcpy(out->p, cur, np * sizeof(double));
-    out->iter = iter;
-    out->nfev = nfev;
-    out->info = info;
-    gsl_vector *f = gsl_multifit_nlinear_residual(w);
-    gsl_blas_ddot(f, f, &out->chi2);
-    out->chi2_dof = out->chi2 / out->dof;
-    if (st != GSL_SUCCESS) {
-        const char *why = st == GSL_EMAXITER && info == GSL_ENOPROG
-                              ? "no step lowers the cost from the start"
-                              : gsl_strerror(st);
-        rc = gr_fail(err, GR_ERUN, "%s fit did not converge after %zu iterations: %s (chi2 = %g)",
-                     name, out->iter, why, out->chi2);
-        goto done;
-    }
-    gsl_multifit_nlinear_covar(gsl_multifit_nlinear_jac(w), 0.0, cov);
-    out->scaled = o.scale == GR_FIT_SCALE_ALWAYS || (o.scale == GR_FIT_SCALE_AUTO && !sigma);
-    double s2 = out->scaled ? out->chi2_dof : 1.0;
-    for (size_t i = 0; i < np; i++)
-        for (size_t j = 0; j < np; j++)
-            out->cov[i][j] = s2 * gsl_matrix_get(cov, i, j);
-    for (size_t j = 0; j < np; j++) {
-        /* GSL zeroes the rows of parameters the Jacobian does not fix, so
-         * an unscaled variance that is not positive means undetermined. */
-        double v = gsl_matrix_get(cov, j, j);
-        out->err[j] = sqrt(out->cov[j][j]);
-        if (!(v > 0.0) || !isfinite(v) || !isfinite(out->p[j])) {
-            char buf[24];
-            rc = gr_fail(err, GR_ERUN,
-                         "%s fit: parameter %s is not determined by the data (variance %g)",
-                         name, pname(m, j, buf), v);
-            goto done;
-        }
-    }
-    rc = GR_OK;
-done:
     gsl_multifit_nlinear_free(w);
     gsl_vector_free(wts);
     gsl_matrix_free(cov);

@@ -156,22 +156,26 @@ static int count_obs(gr_h5md_reader *r)
     return 0;
 }
 
-static gr_h5md_reader *open_impl(const char *path, gr_err *err)
+/* The plain-file checks, so that a wrong path gets a message that says
+ * what it is rather than an HDF5 error stack. */
+static int check_hdf5_file(const char *path, gr_err *err)
 {
     struct stat st;
-    if (stat(path, &st) != 0) {
-        gr_fail(err, GR_EINPUT, "%s: %s", path, errno == ENOENT ? "no such file" : strerror(errno));
-        return NULL;
-    }
-    if (S_ISDIR(st.st_mode)) {
-        gr_fail(err, GR_EINPUT, "%s is a directory, not a grano result file", path);
-        return NULL;
-    }
+    if (stat(path, &st) != 0)
+        return gr_fail(err, GR_EINPUT, "%s: %s", path,
+                       errno == ENOENT ? "no such file" : strerror(errno));
+    if (S_ISDIR(st.st_mode))
+        return gr_fail(err, GR_EINPUT, "%s is a directory, not a grano result file", path);
     if (H5Fis_hdf5(path) <= 0) {
         H5Eclear2(H5E_DEFAULT);
-        gr_fail(err, GR_EINPUT, "%s is not an HDF5 file, so not a grano result file", path);
-        return NULL;
+        return gr_fail(err, GR_EINPUT, "%s is not an HDF5 file, so not a grano result file",
+                       path);
     }
+    return GR_OK;
+}
+
+static gr_h5md_reader *open_file(const char *path, gr_err *err)
+{
     gr_h5md_reader *r = calloc(1, sizeof *r);
     if (!r) {
         gr_fail(err, GR_ERUN, "out of memory");
@@ -185,56 +189,83 @@ static gr_h5md_reader *open_impl(const char *path, gr_err *err)
         free(r);
         return NULL;
     }
-    gr_h5md_info *in = &r->info;
-    in->path = strdup(path);
-    hid_t g = gr_h5_is_group(r->file, "h5md/creator") ? H5Gopen2(r->file, "h5md/creator", H5P_DEFAULT) : -1;
+    return r;
+}
+
+/* Reads h5md/creator into in; fails unless it names grano. */
+static int read_creator(hid_t file, gr_h5md_info *in, const char *path, gr_err *err)
+{
+    hid_t g = gr_h5_is_group(file, "h5md/creator") ? H5Gopen2(file, "h5md/creator", H5P_DEFAULT) : -1;
     in->creator = g >= 0 ? gr_h5_read_attr_str(g, "name") : NULL;
     in->creator_version = g >= 0 ? gr_h5_read_attr_str(g, "version") : NULL;
     gr_h5_close(g);
-    if (!in->creator || strcmp(in->creator, "grano") != 0) {
-        if (in->creator)
-            gr_fail(err, GR_EINPUT, "%s was written by '%s', not by grano", path, in->creator);
-        else
-            gr_fail(err, GR_EINPUT, "%s is an HDF5 file but not a grano result file (no h5md/creator)", path);
-        gr_h5md_reader_free(r);
-        return NULL;
-    }
-    g = H5Gopen2(r->file, "h5md", H5P_DEFAULT);
+    if (in->creator && strcmp(in->creator, "grano") == 0)
+        return GR_OK;
+    if (in->creator)
+        return gr_fail(err, GR_EINPUT, "%s was written by '%s', not by grano", path, in->creator);
+    return gr_fail(err, GR_EINPUT, "%s is an HDF5 file but not a grano result file (no h5md/creator)", path);
+}
+
+static void read_parameters(hid_t file, gr_h5md_info *in)
+{
+    hid_t g = H5Gopen2(file, "h5md", H5P_DEFAULT);
     if (g >= 0)
         gr_h5_read_attr_int(g, "version", in->h5md_version, 2);
     gr_h5_close(g);
-    g = gr_h5_is_group(r->file, "h5md/author") ? H5Gopen2(r->file, "h5md/author", H5P_DEFAULT) : -1;
+    g = gr_h5_is_group(file, "h5md/author") ? H5Gopen2(file, "h5md/author", H5P_DEFAULT) : -1;
     in->author = dup_or_empty(g >= 0 ? gr_h5_read_attr_str(g, "name") : NULL);
     gr_h5_close(g);
     in->creator_version = dup_or_empty(in->creator_version);
-    in->scene_text = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/scene"));
-    in->scene_name = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/scene_name"));
-    in->scene_path = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/scene_path"));
-    in->method = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/method"));
-    in->grano_version = dup_or_empty(gr_h5_read_dset_str(r->file, "parameters/grano_version"));
-    gr_h5_read_dset_u64(r->file, "parameters/seed", &in->seed);
-    in->has_checkpoint = gr_h5_is_group(r->file, "checkpoint");
-    in->box[0] = in->box[1] = NAN;
-    g = gr_h5_is_group(r->file, "particles/trajectory/box")
-            ? H5Gopen2(r->file, "particles/trajectory/box", H5P_DEFAULT) : -1;
-    if (g >= 0) {
-        char *b = NULL;
-        /* boundary is a fixed-length string array: read it as one block. */
-        hid_t a = H5Aexists(g, "boundary") > 0 ? H5Aopen(g, "boundary", H5P_DEFAULT) : -1;
-        if (a >= 0) {
-            hid_t t = H5Aget_type(a);
-            size_t len = H5Tget_size(t);
-            if (H5Tis_variable_str(t) <= 0 && (b = calloc(2 * len + 1, 1)) &&
-                H5Aread(a, t, b) >= 0) {
-                in->periodic[0] = !strncmp(b, "periodic", len < 8 ? len : 8);
-                in->periodic[1] = !strncmp(b + len, "periodic", len < 8 ? len : 8);
-            }
-            free(b);
-            H5Tclose(t);
-            H5Aclose(a);
+    in->scene_text = dup_or_empty(gr_h5_read_dset_str(file, "parameters/scene"));
+    in->scene_name = dup_or_empty(gr_h5_read_dset_str(file, "parameters/scene_name"));
+    in->scene_path = dup_or_empty(gr_h5_read_dset_str(file, "parameters/scene_path"));
+    in->method = dup_or_empty(gr_h5_read_dset_str(file, "parameters/method"));
+    in->grano_version = dup_or_empty(gr_h5_read_dset_str(file, "parameters/grano_version"));
+    gr_h5_read_dset_u64(file, "parameters/seed", &in->seed);
+    in->has_checkpoint = gr_h5_is_group(file, "checkpoint");
+}
+
+/* The box's boundary attribute into in->periodic (left 0 if absent). */
+static void read_boundary(hid_t file, gr_h5md_info *in)
+{
+    hid_t g = gr_h5_is_group(file, "particles/trajectory/box")
+                  ? H5Gopen2(file, "particles/trajectory/box", H5P_DEFAULT) : -1;
+    if (g < 0)
+        return;
+    char *b = NULL;
+    /* boundary is a fixed-length string array: read it as one block. */
+    hid_t a = H5Aexists(g, "boundary") > 0 ? H5Aopen(g, "boundary", H5P_DEFAULT) : -1;
+    if (a >= 0) {
+        hid_t t = H5Aget_type(a);
+        size_t len = H5Tget_size(t);
+        if (H5Tis_variable_str(t) <= 0 && (b = calloc(2 * len + 1, 1)) &&
+            H5Aread(a, t, b) >= 0) {
+            in->periodic[0] = !strncmp(b, "periodic", len < 8 ? len : 8);
+            in->periodic[1] = !strncmp(b + len, "periodic", len < 8 ? len : 8);
         }
-        gr_h5_close(g);
+        free(b);
+        H5Tclose(t);
+        H5Aclose(a);
     }
+    gr_h5_close(g);
+}
+
+static gr_h5md_reader *open_impl(const char *path, gr_err *err)
+{
+    if (check_hdf5_file(path, err))
+        return NULL;
+    gr_h5md_reader *r = open_file(path, err);
+    if (!r)
+        return NULL;
+    gr_h5md_info *in = &r->info;
+    in->path = strdup(path);
+    if (read_creator(r->file, in, path, err)) {
+        gr_h5md_reader_free(r);
+        return NULL;
+    }
+    read_parameters(r->file, in);
+    in->box[0] = in->box[1] = NAN;
+    read_boundary(r->file, in);
     if (!in->path || count_frames(r) || count_obs(r)) {
         gr_h5_fail(err, GR_EINPUT, "%s: malformed grano trajectory", path);
         gr_h5md_reader_free(r);

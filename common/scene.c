@@ -293,20 +293,10 @@ static int read_walls(gr_scene *sc, gr_err *err)
     return GR_OK;
 }
 
-static int read_silo(gr_scene *sc, gr_err *err)
+/* The silo's box and orifice; margin is the thickness of its walls. */
+static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
 {
     gr_silo *s = &sc->silo;
-    s->present = 0;
-    for (size_t i = 0; i < sc->nentries; i++)
-        s->present |= !strcmp(sc->entries[i].section, "silo");
-    if (!s->present)
-        return GR_OK;
-    double d = gr_scene_max_diameter(sc);
-    int v;
-    if (gr_scene_get_choice(sc, "silo", "walls", walls_names, GR_WALLS_SEGMENTS, &v, err))
-        return err->code;
-    s->walls = (gr_wall_kind)v;
-    double margin = s->walls == GR_WALLS_GRAINS ? d : 0.0;
     if (POSITIVE("silo", "width", sc->width - 2 * margin, &s->width) ||
         POSITIVE("silo", "height", 0.0, &s->height) ||
         ANYNUM("silo", "left", 0.5 * (sc->width - s->width), &s->x0) ||
@@ -325,6 +315,14 @@ static int read_silo(gr_scene *sc, gr_err *err)
     if (s->x0 - margin < 0 || s->x0 + s->width + margin > sc->width || s->base - margin < 0 ||
         s->base + s->height > sc->height)
         return entry_fail(sc, "silo", "width", err, "the silo (with its walls) does not fit in the domain");
+    return GR_OK;
+}
+
+/* The hopper above the silo, the reinsertion band and the exit line;
+ * d is the largest grain diameter. */
+static int read_silo_flow(gr_scene *sc, double d, gr_err *err)
+{
+    gr_silo *s = &sc->silo;
     if (get_yesno(sc, "silo", "hopper", 0, &s->hopper, err) ||
         POSITIVE("silo", "hopper_outlet", 0.3 * s->width, &s->hopper_outlet) ||
         ANYNUM("silo", "hopper_bottom", s->base + s->height + 2 * d, &s->hopper_bottom) ||
@@ -345,29 +343,144 @@ static int read_silo(gr_scene *sc, gr_err *err)
         return entry_fail(sc, "silo", "reinsert_bottom", err, "the reinsertion band must be at least one diameter tall");
     if (s->exit_below > s->base)
         return entry_fail(sc, "silo", "exit_below", err, "grains must leave below the silo base");
-    if (s->walls == GR_WALLS_SEGMENTS) {
-        double x0 = s->x0, x1 = s->x0 + s->width, y0 = s->base, y1 = s->base + s->height;
-        double ol = s->orifice_center - 0.5 * s->orifice, orr = s->orifice_center + 0.5 * s->orifice;
-        gr_segment segs[6] = {
-            {x0, y0, x0, y1, INFINITY, 0, 0}, {x1, y0, x1, y1, INFINITY, 0, 0},
-            {x0, y0, ol, y0, INFINITY, 0, 0}, {orr, y0, x1, y0, INFINITY, 0, 0},
-            {ol, y0, orr, y0, s->open_time, 0, 0},
-            {0, 0, 0, 0, 0, 0, 0}};
-        int nseg = 5;
-        for (int k = 0; k < nseg; k++) {
-            /* Zero-length base pieces when the orifice touches a wall. */
-            if (segs[k].x0 == segs[k].x1 && segs[k].y0 == segs[k].y1)
-                continue;
-            if (add_segment(sc, segs[k], err))
-                return err->code;
+    return GR_OK;
+}
+
+/* The silo's side walls, base (the orifice piece opens at open_time)
+ * and hopper as wall segments. */
+static int add_silo_segments(gr_scene *sc, gr_err *err)
+{
+    const gr_silo *s = &sc->silo;
+    double x0 = s->x0, x1 = s->x0 + s->width, y0 = s->base, y1 = s->base + s->height;
+    double ol = s->orifice_center - 0.5 * s->orifice, orr = s->orifice_center + 0.5 * s->orifice;
+    gr_segment segs[6] = {
+        {x0, y0, x0, y1, INFINITY, 0, 0}, {x1, y0, x1, y1, INFINITY, 0, 0},
+        {x0, y0, ol, y0, INFINITY, 0, 0}, {orr, y0, x1, y0, INFINITY, 0, 0},
+        {ol, y0, orr, y0, s->open_time, 0, 0},
+        {0, 0, 0, 0, 0, 0, 0}};
+    int nseg = 5;
+    for (int k = 0; k < nseg; k++) {
+        /* Zero-length base pieces when the orifice touches a wall. */
+        if (segs[k].x0 == segs[k].x1 && segs[k].y0 == segs[k].y1)
+            continue;
+        if (add_segment(sc, segs[k], err))
+            return err->code;
+    }
+    if (s->hopper) {
+        double c = s->orifice_center, h = 0.5 * s->hopper_outlet;
+        gr_segment hl = {x0, s->hopper_top, c - h, s->hopper_bottom, INFINITY, 0, 0};
+        gr_segment hr = {c + h, s->hopper_bottom, x1, s->hopper_top, INFINITY, 0, 0};
+        if (add_segment(sc, hl, err) || add_segment(sc, hr, err))
+            return err->code;
+    }
+    return GR_OK;
+}
+
+static int read_silo(gr_scene *sc, gr_err *err)
+{
+    gr_silo *s = &sc->silo;
+    s->present = 0;
+    for (size_t i = 0; i < sc->nentries; i++)
+        s->present |= !strcmp(sc->entries[i].section, "silo");
+    if (!s->present)
+        return GR_OK;
+    double d = gr_scene_max_diameter(sc);
+    int v;
+    if (gr_scene_get_choice(sc, "silo", "walls", walls_names, GR_WALLS_SEGMENTS, &v, err))
+        return err->code;
+    s->walls = (gr_wall_kind)v;
+    double margin = s->walls == GR_WALLS_GRAINS ? d : 0.0;
+    int rc = read_silo_box(sc, margin, err);
+    if (!rc)
+        rc = read_silo_flow(sc, d, err);
+    if (rc || s->walls != GR_WALLS_SEGMENTS)
+        return rc;
+    return add_silo_segments(sc, err);
+}
+
+/* Default region: above the hopper, else inside the silo, else the domain. */
+static void default_init_region(const gr_scene *sc, double d, double r[4])
+{
+    r[0] = 0, r[1] = 0, r[2] = sc->width, r[3] = sc->height;
+    if (sc->silo.present) {
+        r[0] = sc->silo.x0;
+        r[2] = sc->silo.x0 + sc->silo.width;
+        r[1] = sc->silo.hopper ? sc->silo.hopper_top + 0.5 * d : sc->silo.base;
+        r[3] = sc->silo.hopper ? sc->height : sc->silo.base + sc->silo.height;
+    }
+}
+
+static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
+{
+    gr_init *in = &sc->init;
+    if (!fe)
+        return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
+    /* Relative paths are relative to the scene file. */
+    const char *slash = strrchr(sc->path, '/');
+    if (fe->value[0] == '/' || !slash)
+        snprintf(in->file, sizeof in->file, "%s", fe->value);
+    else
+        snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+    FILE *f = fopen(in->file, "r");
+    if (!f) {
+        char msg[1200];
+        snprintf(msg, sizeof msg, "cannot read '%s': %s", in->file, strerror(errno));
+        return entry_fail(sc, "init", "file", err, msg);
+    }
+    fclose(f);
+    return GR_OK;
+}
+
+/* Too many grains for the region: blame the region if the scene sets
+ * one, else the species counts. */
+static int crowded_fail(const gr_scene *sc, gr_err *err, const char *msg)
+{
+    return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
+                      gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
+}
+
+/* The lattice pitch: the widest grain any species can draw, spaced. */
+static double lattice_pitch(const gr_scene *sc, double d)
+{
+    const gr_init *in = &sc->init;
+    double a = in->spacing * d * (1.0 + sc->species[0].polydispersity);
+    for (int k = 1; k < sc->nspecies; k++) {
+        double ak = in->spacing * sc->species[k].diameter * (1.0 + sc->species[k].polydispersity);
+        if (ak > a)
+            a = ak;
+    }
+    return a;
+}
+
+/* More grains than fit: by area for any kind; by sites for a lattice;
+ * random sequential placement jams near 0.547, so refuse beyond 0.5. */
+static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
+{
+    const gr_init *in = &sc->init;
+    double area = (in->x1 - in->x0) * (in->y1 - in->y0), grains = 0;
+    long n = gr_scene_count(sc);
+    for (int k = 0; k < sc->nspecies; k++) {
+        double dk = sc->species[k].diameter;
+        grains += sc->species[k].count * M_PI * dk * dk / 4;
+    }
+    double phi = grains / area;
+    char msg[512];
+    if (phi > GR_HEX_PACKING) {
+        snprintf(msg, sizeof msg, "%ld grains cover %.3g of the initial region's area (%.4g x %.4g), more than the densest packing %.4f allows",
+                 n, phi, in->x1 - in->x0, in->y1 - in->y0, GR_HEX_PACKING);
+        return crowded_fail(sc, err, msg);
+    }
+    if (in->kind == GR_INIT_LATTICE) {
+        double a = lattice_pitch(sc, d);
+        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
+        if (nx * ny < n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+                     n, nx, ny, nx * ny, a);
+            return crowded_fail(sc, err, msg);
         }
-        if (s->hopper) {
-            double c = s->orifice_center, h = 0.5 * s->hopper_outlet;
-            gr_segment hl = {x0, s->hopper_top, c - h, s->hopper_bottom, INFINITY, 0, 0};
-            gr_segment hr = {c + h, s->hopper_bottom, x1, s->hopper_top, INFINITY, 0, 0};
-            if (add_segment(sc, hl, err) || add_segment(sc, hr, err))
-                return err->code;
-        }
+    } else if (phi > 0.5) {
+        snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
+        return entry_fail(sc, "init", "kind", err, msg);
     }
     return GR_OK;
 }
@@ -380,14 +493,8 @@ static int read_init(gr_scene *sc, gr_err *err)
         return err->code;
     in->kind = (gr_init_kind)v;
     double d = gr_scene_max_diameter(sc);
-    /* Default region: above the hopper, else inside the silo, else the domain. */
-    double r[4] = {0, 0, sc->width, sc->height};
-    if (sc->silo.present) {
-        r[0] = sc->silo.x0;
-        r[2] = sc->silo.x0 + sc->silo.width;
-        r[1] = sc->silo.hopper ? sc->silo.hopper_top + 0.5 * d : sc->silo.base;
-        r[3] = sc->silo.hopper ? sc->height : sc->silo.base + sc->silo.height;
-    }
+    double r[4];
+    default_init_region(sc, d, r);
     if (gr_scene_get_vec(sc, "init", "region", 4, r, &found, err))
         return err->code;
     if (!(r[2] > r[0]) || !(r[3] > r[1]))
@@ -401,59 +508,9 @@ static int read_init(gr_scene *sc, gr_err *err)
     if (NONNEG("init", "v0", 1.0, &in->v0))
         return err->code;
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
-    if (in->kind == GR_INIT_FILE) {
-        if (!fe)
-            return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
-        /* Relative paths are relative to the scene file. */
-        const char *slash = strrchr(sc->path, '/');
-        if (fe->value[0] == '/' || !slash)
-            snprintf(in->file, sizeof in->file, "%s", fe->value);
-        else
-            snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
-        FILE *f = fopen(in->file, "r");
-        if (!f) {
-            char msg[1200];
-            snprintf(msg, sizeof msg, "cannot read '%s': %s", in->file, strerror(errno));
-            return entry_fail(sc, "init", "file", err, msg);
-        }
-        fclose(f);
-        return GR_OK;
-    }
-    /* More grains than fit: by area for any kind; by sites for a lattice;
-     * random sequential placement jams near 0.547, so refuse beyond 0.5. */
-    double area = (in->x1 - in->x0) * (in->y1 - in->y0), grains = 0;
-    long n = gr_scene_count(sc);
-    for (int k = 0; k < sc->nspecies; k++) {
-        double dk = sc->species[k].diameter;
-        grains += sc->species[k].count * M_PI * dk * dk / 4;
-    }
-    double phi = grains / area;
-    char msg[512];
-    if (phi > GR_HEX_PACKING) {
-        snprintf(msg, sizeof msg, "%ld grains cover %.3g of the initial region's area (%.4g x %.4g), more than the densest packing %.4f allows",
-                 n, phi, in->x1 - in->x0, in->y1 - in->y0, GR_HEX_PACKING);
-        return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
-                          gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
-    }
-    if (in->kind == GR_INIT_LATTICE) {
-        double a = in->spacing * d * (1.0 + sc->species[0].polydispersity);
-        for (int k = 1; k < sc->nspecies; k++) {
-            double ak = in->spacing * sc->species[k].diameter * (1.0 + sc->species[k].polydispersity);
-            if (ak > a)
-                a = ak;
-        }
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
-                     n, nx, ny, nx * ny, a);
-            return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
-                              gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
-        }
-    } else if (phi > 0.5) {
-        snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
-        return entry_fail(sc, "init", "kind", err, msg);
-    }
-    return GR_OK;
+    if (in->kind == GR_INIT_FILE)
+        return read_init_file(sc, fe, err);
+    return check_init_fits(sc, d, err);
 }
 
 static int read_measure_run(gr_scene *sc, gr_err *err)

@@ -23,6 +23,116 @@ static void orif_free(ss_res *o)
     free(o->vy), free(o->wsum);
 }
 
+/* The arrays one part (one discharge) left in its checkpoint. */
+typedef struct {
+    double *a[7]; /* per slot: lag, n, sx2, sx4, sy2, sy4, fall_sum */
+    double *fn, *fp, *fm, *fw, *ser, *grid;
+    size_t n, fnn, nser, ng, nw;
+} ss_part;
+
+/* The velocity field's sums over the parts of one orifice. */
+typedef struct {
+    double *num, *py, *mass;
+    size_t nc;
+} ss_field_sums;
+
+static int read_part(gr_ckpt *ck, const char *path, size_t ns, size_t nt, ss_part *p,
+                     gr_err *err)
+{
+    int rc = GR_OK;
+    const char *names[] = {"lag", "n", "sx2", "sx4", "sy2", "sy4", "fall_sum"};
+    for (int i = 0; i < 7 && !rc; i++)
+        rc = exp_get_array(ck, names[i], &p->a[i], &p->n, err);
+    if (!rc) rc = exp_get_array(ck, "field_num", &p->fn, &p->fnn, err);
+    if (!rc) rc = exp_get_array(ck, "field_py", &p->fp, &p->fnn, err);
+    if (!rc) rc = exp_get_array(ck, "field_mass", &p->fm, &p->fnn, err);
+    if (!rc) rc = exp_get_array(ck, "field_wsum", &p->fw, &p->nw, err);
+    if (!rc) rc = exp_get_array(ck, "field_grid", &p->grid, &p->ng, err);
+    if (!rc) rc = exp_get_array(ck, "series", &p->ser, &p->nser, err);
+    if (!rc && (p->n != ns || p->nw != nt))
+        rc = gr_fail(err, GR_EINPUT, "%s: part does not match the options", path);
+    return rc;
+}
+
+static void part_free(ss_part *p)
+{
+    for (int i = 0; i < 7; i++)
+        free(p->a[i]);
+    free(p->fn), free(p->fp), free(p->fm), free(p->fw), free(p->grid), free(p->ser);
+}
+
+/* Adds part p to the sums; the first part sets the field's size and grid. */
+static int add_part(const ss_part *p, size_t nt, ss_res *r, ss_field_sums *f, gr_err *err)
+{
+    if (!f->num) {
+        f->nc = p->fnn / nt;
+        memcpy(r->grid, p->grid, sizeof r->grid);
+        f->num = calloc(p->fnn, sizeof *f->num), f->py = calloc(p->fnn, sizeof *f->py),
+        f->mass = calloc(p->fnn, sizeof *f->mass);
+        r->wsum = calloc(nt, sizeof *r->wsum);
+        if (!f->num || !f->py || !f->mass || !r->wsum)
+            return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    for (size_t i = 0; i < nt * f->nc; i++)
+        f->num[i] += p->fn[i], f->py[i] += p->fp[i], f->mass[i] += p->fm[i];
+    for (size_t j = 0; j < nt; j++)
+        r->wsum[j] += p->fw[j];
+    double *const *a = p->a;
+    for (size_t s = 0; s < r->ns; s++) {
+        if (a[1][s] <= 0)
+            continue;
+        if (isnan(r->msd->lag[s]))
+            r->msd->lag[s] = a[0][s];
+        r->msd->n[s] += a[1][s], r->msd->sx2[s] += a[2][s], r->msd->sx4[s] += a[3][s];
+        r->msd->sy2[s] += a[4][s], r->msd->sy4[s] += a[5][s];
+        r->fall[s] += a[6][s];
+    }
+    return GR_OK;
+}
+
+/* Writes realisation k's raw data to the file and adds its cost to the mean. */
+static int write_part(const ss_ctx *c, int k, gr_ckpt *ck, const ss_part *p, ss_res *r,
+                      gr_h5md *h, gr_err *err)
+{
+    size_t ns = r->ns;
+    char nm[128];
+    double *raw = malloc(ns * 7 * sizeof *raw);
+    for (size_t s = 0; raw && s < ns; s++)
+        for (int i = 0; i < 7; i++)
+            raw[s * 7 + (size_t)i] = p->a[i][s];
+    snprintf(nm, sizeof nm, "D%g/r%02d/msd_sums", r->D, k);
+    int rc = raw ? exp_put_result(h, nm, ns, 7, "lag,n,sum_dx2,sum_dx4,sum_dy2,sum_dy4,sum_fall",
+                       "per-slot sums of this discharge", raw, err)
+                 : gr_fail(err, GR_ERUN, "out of memory");
+    free(raw);
+    snprintf(nm, sizeof nm, "D%g/r%02d/series", r->D, k);
+    if (!rc && p->nser >= 3)
+        rc = exp_put_result(h, nm, p->nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", p->ser, err);
+    double cost[5];
+    exp_get_cost(ck, cost);
+    for (int q = 0; q < 5; q++)
+        r->cost[q] += cost[q] / (double)c->nreal;
+    snprintf(nm, sizeof nm, "D%g/r%02d/cost", r->D, k);
+    if (!rc)
+        rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the filling, of the run, and its steps", cost, err);
+    double meta[4] = {(double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
+                      exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps")};
+    snprintf(nm, sizeof nm, "D%g/r%02d/meta", r->D, k);
+    if (!rc)
+        rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, top height, steps run", meta, err);
+    return rc;
+}
+
+static int mean_velocity(const ss_field_sums *f, size_t nt, ss_res *r, gr_err *err)
+{
+    r->vy = malloc((nt * f->nc + 1) * sizeof *r->vy);
+    if (!r->vy)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    for (size_t i = 0; i < nt * f->nc; i++)
+        r->vy[i] = f->mass[i] > 0 ? f->py[i] / f->mass[i] : NAN;
+    return GR_OK;
+}
+
 /* Sums of every part of orifice o; per-realisation raw data go to the file. */
 static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h5md *h,
                   gr_err *err)
@@ -32,91 +142,26 @@ static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h
     r->ns = ns;
     if (!(r->msd = gr_msd_create(ns, err)))
         return err->code;
-    double *num = NULL, *py = NULL, *mass = NULL;
-    size_t nc = 0;
+    ss_field_sums f = {0};
     int rc = GR_OK;
     for (int k = 0; k < c->nreal && !rc; k++) {
         const char *path = parts[o * (size_t)c->nreal + (size_t)k];
         gr_ckpt *ck = gr_ckpt_open(path, err);
         if (!ck)
             return err->code;
-        double *a[7] = {0};
-        size_t n = 0;
-        const char *names[] = {"lag", "n", "sx2", "sx4", "sy2", "sy4", "fall_sum"};
-        for (int i = 0; i < 7 && !rc; i++)
-            rc = exp_get_array(ck, names[i], &a[i], &n, err);
-        double *fn = NULL, *fp = NULL, *fm = NULL, *fw = NULL, *ser = NULL, *grid = NULL;
-        size_t fnn = 0, nser = 0, ng = 0, nw = 0;
-        if (!rc) rc = exp_get_array(ck, "field_num", &fn, &fnn, err);
-        if (!rc) rc = exp_get_array(ck, "field_py", &fp, &fnn, err);
-        if (!rc) rc = exp_get_array(ck, "field_mass", &fm, &fnn, err);
-        if (!rc) rc = exp_get_array(ck, "field_wsum", &fw, &nw, err);
-        if (!rc) rc = exp_get_array(ck, "field_grid", &grid, &ng, err);
-        if (!rc) rc = exp_get_array(ck, "series", &ser, &nser, err);
-        if (!rc && (n != ns || nw != nt))
-            rc = gr_fail(err, GR_EINPUT, "%s: part does not match the options", path);
-        if (!rc && !num) {
-            nc = fnn / nt;
-            memcpy(r->grid, grid, sizeof r->grid);
-            num = calloc(fnn, sizeof *num), py = calloc(fnn, sizeof *py), mass = calloc(fnn, sizeof *mass);
-            r->wsum = calloc(nt, sizeof *r->wsum);
-            if (!num || !py || !mass || !r->wsum)
-                rc = gr_fail(err, GR_ERUN, "out of memory");
-        }
-        for (size_t i = 0; !rc && i < nt * nc; i++)
-            num[i] += fn[i], py[i] += fp[i], mass[i] += fm[i];
-        for (size_t j = 0; !rc && j < nt; j++)
-            r->wsum[j] += fw[j];
-        for (size_t s = 0; !rc && s < ns; s++) {
-            if (a[1][s] <= 0)
-                continue;
-            if (isnan(r->msd->lag[s]))
-                r->msd->lag[s] = a[0][s];
-            r->msd->n[s] += a[1][s], r->msd->sx2[s] += a[2][s], r->msd->sx4[s] += a[3][s];
-            r->msd->sy2[s] += a[4][s], r->msd->sy4[s] += a[5][s];
-            r->fall[s] += a[6][s];
-        }
-        if (!rc) {
-            char nm[128];
-            double *raw = malloc(ns * 7 * sizeof *raw);
-            for (size_t s = 0; raw && s < ns; s++)
-                for (int i = 0; i < 7; i++)
-                    raw[s * 7 + (size_t)i] = a[i][s];
-            snprintf(nm, sizeof nm, "D%g/r%02d/msd_sums", r->D, k);
-            rc = raw ? exp_put_result(h, nm, ns, 7, "lag,n,sum_dx2,sum_dx4,sum_dy2,sum_dy4,sum_fall",
-                           "per-slot sums of this discharge", raw, err)
-                     : gr_fail(err, GR_ERUN, "out of memory");
-            free(raw);
-            snprintf(nm, sizeof nm, "D%g/r%02d/series", r->D, k);
-            if (!rc && nser >= 3)
-                rc = exp_put_result(h, nm, nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", ser, err);
-            double cost[5];
-            exp_get_cost(ck, cost);
-            for (int q = 0; q < 5; q++)
-                r->cost[q] += cost[q] / (double)c->nreal;
-            snprintf(nm, sizeof nm, "D%g/r%02d/cost", r->D, k);
-            if (!rc)
-                rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the filling, of the run, and its steps", cost, err);
-            double meta[4] = {(double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
-                              exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps")};
-            snprintf(nm, sizeof nm, "D%g/r%02d/meta", r->D, k);
-            if (!rc)
-                rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, top height, steps run", meta, err);
-        }
-        for (int i = 0; i < 7; i++)
-            free(a[i]);
-        free(fn), free(fp), free(fm), free(fw), free(grid), free(ser);
+        ss_part p = {0};
+        rc = read_part(ck, path, ns, nt, &p, err);
+        if (!rc)
+            rc = add_part(&p, nt, r, &f, err);
+        if (!rc)
+            rc = write_part(c, k, ck, &p, r, h, err);
+        part_free(&p);
         gr_err ig = {0};
         gr_ckpt_close(ck, &ig);
     }
-    if (!rc) {
-        r->vy = malloc((nt * nc + 1) * sizeof *r->vy);
-        if (!r->vy)
-            rc = gr_fail(err, GR_ERUN, "out of memory");
-        for (size_t i = 0; !rc && i < nt * nc; i++)
-            r->vy[i] = mass[i] > 0 ? py[i] / mass[i] : NAN;
-    }
-    free(num), free(py), free(mass);
+    if (!rc)
+        rc = mean_velocity(&f, nt, r, err);
+    free(f.num), free(f.py), free(f.mass);
     return rc;
 }
 
