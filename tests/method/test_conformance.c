@@ -87,6 +87,7 @@ static void advance(gr_sim *s, double t_end)
 /* Everything a run shows: the snapshot, the observables, the counters. */
 typedef struct {
     gr_particles *p;
+    gr_contacts *net; /* methods that give contact networks */
     gr_obs o;
     size_t nc;
     gr_counter c[GR_MAX_COUNTERS];
@@ -104,6 +105,10 @@ static outcome look(gr_sim *s)
         r.p = gr_particles_create(0, &e);
         assert_int_equal(gr_sim_snapshot(s, r.p, &e), GR_OK);
     }
+    if (gr_sim_type(s)->contacts) {
+        r.net = gr_contacts_create(0, &e);
+        assert_int_equal(gr_sim_contacts(s, r.net, &e), GR_OK);
+    }
     return r;
 }
 
@@ -113,6 +118,14 @@ static void same_outcome(const outcome *a, const outcome *b)
     assert_int_equal(a->nc, b->nc);
     for (size_t k = 0; k < a->nc; k++)
         assert_true(a->c[k].value == b->c[k].value);
+    if (a->net) {
+        size_t m = a->net->n;
+        assert_int_equal(m, b->net->n);
+        assert_memory_equal(a->net->i, b->net->i, m * sizeof(int64_t));
+        assert_memory_equal(a->net->j, b->net->j, m * sizeof(int64_t));
+        assert_memory_equal(a->net->fn, b->net->fn, m * sizeof(double));
+        assert_memory_equal(a->net->ft, b->net->ft, m * sizeof(double));
+    }
     if (!a->p)
         return;
     size_t n = a->p->n;
@@ -126,7 +139,11 @@ static void same_outcome(const outcome *a, const outcome *b)
     assert_memory_equal(a->p->id, b->p->id, n * sizeof(int64_t));
 }
 
-static void outcome_free(outcome *r) { gr_particles_free(r->p); }
+static void outcome_free(outcome *r)
+{
+    gr_particles_free(r->p);
+    gr_contacts_free(r->net);
+}
 
 /* A run with observations on the way and one without end the same. */
 static outcome run_plain(const gr_method_type *m, const gr_scene *sc, double t_end, int observe)
@@ -191,6 +208,16 @@ static void check_outcome(const gr_method_type *m, const conf_scene *cs, const o
     }
     if (!r->p)
         return;
+    /* a network names grains of the snapshot (or walls, j < 0), finite forces */
+    for (size_t k = 0; r->net && k < r->net->n; k++) {
+        int found_i = 0, found_j = r->net->j[k] < 0;
+        for (size_t q = 0; q < r->p->n; q++) {
+            found_i |= r->p->id[q] == r->net->i[k];
+            found_j |= r->p->id[q] == r->net->j[k];
+        }
+        assert_true(found_i && found_j && r->net->i[k] != r->net->j[k]);
+        assert_true(isfinite(r->net->fn[k]) && isfinite(r->net->ft[k]));
+    }
     for (size_t i = 1; i < r->p->n; i++)
         assert_true(r->p->id[i] > r->p->id[i - 1]);
     for (size_t i = 0; i < r->p->n; i++)
