@@ -80,7 +80,7 @@ static int parse_list(const char *s, long *out, int cap)
 /* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
 static int parse_args(int argc, char **argv, bc_opts *o)
 {
-    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 8.0};
+    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0};
     int given_n = 0;
     for (int a = 1; a < argc; a++) {
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
