@@ -11,6 +11,7 @@ typedef struct {
 
 /* One line per backend benchmark. */
 static const bench_entry benches[] = {
+    {"cd", bench_cd},
     {"dem", bench_dem},
     {"edmd", bench_edmd},
     {NULL, NULL},

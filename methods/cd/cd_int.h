@@ -124,7 +124,23 @@ int gr_cd_solve(gr_cd *d, gr_cd_solve_info *info, gr_err *err);
 /* Apply impulse (dn, dt) of contact c to the new velocities. */
 void gr_cd_apply(gr_cd *d, const gr_cd_contact *c, double dn, double dtn);
 
-/* cd_step.c */
+/* cd_export.c: the current step's local problem u = W r + q, dense and
+ * row-major (tests/oracle/fc2d.h), for the oracle test and the bench:
+ * contacts k[0..nc) of cur (with closed_only, those whose predicted gap
+ * closes on the current velocities: the others carry no impulse), r their
+ * impulses, u their local velocities (+ e u- with restitution e), q = u - W r. */
+typedef struct {
+    int nc;
+    size_t *k;
+    double *W, *q, *mu, *r, *u;
+} gr_cd_local;
+int gr_cd_local_export(const gr_cd *d, int closed_only, gr_cd_local *lp, gr_err *err);
+void gr_cd_local_free(gr_cd_local *lp);
+
+/* cd_step.c: gr_cd_begin is a step's start (gates, free velocities into
+ * the new-velocity arrays, contacts with zero impulses), which gr_cd_step
+ * goes on from; alone, for the oracle test and the bench. */
+int gr_cd_begin(gr_cd *d, gr_err *err);
 int gr_cd_step(gr_cd *d, gr_err *err);
 int gr_cd_advance(gr_cd *d, double t_end, uint64_t max_steps, gr_err *err);
 

@@ -129,12 +129,17 @@ static int commit(gr_cd *d, const gr_cd_solve_info *si, gr_err *err)
     return handle_exits(d, err);
 }
 
-int gr_cd_step(gr_cd *d, gr_err *err)
+int gr_cd_begin(gr_cd *d, gr_err *err)
 {
     if (!d->gates_open && d->t >= d->sc.silo.open_time)
         open_gates(d);
     double margin = free_velocities(d);
-    if (gr_cd_detect(d, margin, err))
+    return gr_cd_detect(d, margin, err);
+}
+
+int gr_cd_step(gr_cd *d, gr_err *err)
+{
+    if (gr_cd_begin(d, err))
         return err->code;
     if (d->par.warm) {
         gr_cd_warm_start(d);
