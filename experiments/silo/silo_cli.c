@@ -10,6 +10,7 @@
 
 /* a long option without a short one */
 #define OPT_METHOD 0x100
+#define OPT_PARAM 0x101
 /* room for the common options, the command's own and the end mark */
 #define MAX_OPTS 24
 
@@ -18,6 +19,7 @@ static const struct option common_opts[] = {
     {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
     {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
     {"width", required_argument, NULL, 'W'},    {"method", required_argument, NULL, OPT_METHOD},
+    {"param", required_argument, NULL, OPT_PARAM},
     {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
     {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
     {NULL, 0, NULL, 0}};
@@ -45,6 +47,19 @@ int silo_parse_long(const char *s, long lo, long *out)
     return 0;
 }
 
+/* --param KEY=VALUE as a line "KEY = VALUE" of the method's section. */
+static int add_param(const silo_cli *cli, const char *arg, silo_opts *o)
+{
+    const char *eq = strchr(arg, '=');
+    size_t used = strlen(o->params), klen = eq ? (size_t)(eq - arg) : 0;
+    if (!eq || !klen || !eq[1] || strchr(arg, '\n') || strspn(arg, "abcdefghijklmnopqrstuvwxyz_") != klen)
+        return silo_bad(cli, "--param", arg, "KEY=VALUE");
+    int w = snprintf(o->params + used, sizeof o->params - used, "%.*s = %s\n", (int)klen, arg, eq + 1);
+    if (w < 0 || (size_t)w >= sizeof o->params - used)
+        return silo_bad(cli, "--param", arg, "within the room for parameters");
+    return 0;
+}
+
 /* One common option into *o: 0 taken, 2 a bad value, 1 not a common one. */
 static int common_option(const silo_cli *cli, int ch, const char *arg, silo_opts *o)
 {
@@ -65,6 +80,7 @@ static int common_option(const silo_cli *cli, int ch, const char *arg, silo_opts
             return silo_bad(cli, "--width", arg, "a width >= 8");
         return 0;
     case OPT_METHOD: o->method = arg; return 0;
+    case OPT_PARAM: return add_param(cli, arg, o);
     case 'Q': o->quick = 1; return 0;
     case 'f': o->force = 1; return 0;
     case 'q': o->quiet = 1; return 0;
@@ -87,7 +103,7 @@ static void option_table(const silo_cli *cli, struct option *opts, char *shorts,
 
 int silo_cli_parse(const silo_cli *cli, int argc, char **argv, silo_opts *o, void *own)
 {
-    *o = (silo_opts){NULL, NULL, "dem", -1, 1, 1, -1, -1, 0, 0, 0};
+    *o = (silo_opts){NULL, NULL, "dem", -1, 1, 1, -1, -1, 0, 0, 0, ""};
     struct option opts[MAX_OPTS];
     char shorts[64];
     option_table(cli, opts, shorts, sizeof shorts);
@@ -141,6 +157,7 @@ int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, doubl
     for (size_t i = 0; i < *norif; i++)
         if (orifice[i] >= base->width - 2)
             return silo_bad(cli, "--orifices", o->orif, "narrower than the silo");
+    memcpy(base->params, o->params, sizeof base->params);
     gr_err me = {0};
     /* the silo as the units will open it */
     silo_cfg probe = *base;

@@ -14,6 +14,9 @@
 #include "particles.h"
 #include "scene.h"
 
+/* room for the --param lines of the method's section */
+#define SILO_PARAMS 512
+
 /* One silo. Lengths in grain diameters, times in tau = sqrt(d/g). */
 typedef struct {
     long n;              /* mobile grains */
@@ -30,6 +33,8 @@ typedef struct {
     double ke_tol;       /* settled when kinetic energy per grain < ke_tol (m g d) */
     double fill_max;     /* give up settling at this simulated time */
     double band_lo, band_hi; /* reinsertion band; 0: the scene default */
+    char params[SILO_PARAMS]; /* "key = value\n" lines for the method's own
+                                 section (--param), replacing its defaults */
 } silo_cfg;
 
 /* The thesis silo (section 3.1) at full size, orifice D. */
@@ -73,8 +78,13 @@ int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, gr_sim **
               gr_err *err);
 
 /* Advance exactly `steps` steps of dem, or steps * c->dt in time with
- * another method. */
+ * another method (for cd a whole number of its steps when steps is a
+ * multiple of 20, which every chunk of the silo commands is). */
 int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err);
+
+/* Append the --param lines (if any) to a unit's key in buf, so that a
+ * part made with other parameters is not reused. */
+void silo_key_params(const silo_cfg *c, char *buf, size_t n);
 
 /* Highest mobile grain of a snapshot (-INFINITY if none). */
 double silo_top(const gr_particles *p);

@@ -35,6 +35,7 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
              b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
              (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
              c->sample_every, c->lift);
+    silo_key_params(b, buf, n);
 }
 
 /* The measured blocks after the discarded transient: the grains that
@@ -172,7 +173,10 @@ static void usage(FILE *f)
         "      --grains N       mobile grains (default 5000)\n"
         "      --width W        container width in d (default 50; height 2 W)\n"
         "      --method M       the method (default dem); one without the silo's features\n"
-        "                       (walls made of fixed grains, an orifice, ...) is refused\n"
+        "                       (walls made of fixed grains, an orifice, ...) is refused.\n"
+        "                       Steps stay dem's (1.25e-4 tau); cd runs its own dt\n"
+        "                       (2.5e-3 tau, 20 steps) on rigid disks, mu 0.5, e = 0\n"
+        "      --param K=V      a key of the method's section (repeatable), e.g. tol=1e-4\n"
         "  -Q, --quick          900 grains in a 24 d x 48 d silo filled without hopper,\n"
         "                       7 orifices, 16 blocks of 2000 steps: a smoke test\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -237,7 +241,9 @@ int cmd_silo_flow(int argc, char **argv)
     c.discard = w.discard >= 0 ? w.discard : quick ? 8000 : 10000;
     c.block = w.bsteps > 0 ? w.bsteps : quick ? 2000 : 10000;
     c.nblocks = (int)(w.blocks > 0 ? w.blocks : quick ? 16 : 100);
-    c.sample_every = c.block >= 500 ? c.block / 20 : c.block;
+    /* 20 samples a block unless the block is shorter than 0.0625 tau (500
+     * steps of dem) */
+    c.sample_every = c.block >= lround(0.0625 / c.base.dt) ? c.block / 20 : c.block;
     c.lift = 6;
     c.split = 9;
     char dir[1024];
