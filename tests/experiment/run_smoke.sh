@@ -75,5 +75,20 @@ p = f["particles/trajectory/position/value"]
 assert p.shape[0] >= 2 and np.all(np.isfinite(p[:]))
 PY
 then ok "a killed run leaves a readable file"; else notok "killed run readable"; fi
+# The shipped cd scene: a settling pile with its contact network.
+if "$GRANO" run "$SRC/experiments/scenes/pile.ini" --method cd --until 3 --out "$tmp/pile.h5" -q 2>"$tmp/err" &&
+   $PY - "$tmp/pile.h5" >>"$tmp/err" 2>&1 <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+c = f["contacts"]
+n = c["count"][:]
+assert len(n) == len(f["particles/trajectory/position/time"]) and n[-1] > 0
+ids = set(f["particles/trajectory/id"][:].tolist())
+start = int(n[:-1].sum())
+i, j = c["i"][start:], c["j"][start:]
+assert set(i.tolist()) <= ids and all(x < 0 or x in ids for x in j.tolist())
+assert np.all(np.isfinite(c["force"][:])) and np.all(c["force"][start:, 0] >= 0)
+PY
+then ok "pile.ini on cd writes its contact network"; else notok "pile.ini on cd: $(cat "$tmp/err")"; fi
 echo "1..$n"
 exit $((fails > 0))
