@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "ckpt.h"
+#include "contacts.h"
 #include "err.h"
 #include "observe.h"
 #include "particles.h"
@@ -245,6 +246,11 @@ void gr_dem_predict_gear(gr_dem *d, int p, int q);
 void gr_dem_correct_gear(gr_dem *d, int q);
 
 /* dem_balance.c (dem_eval.h): runs of strips per thread. */
+
+/* dem_network.c: the contact network at the current state (the law at
+ * this state's positions and velocities, springs as the last step left
+ * them), rows sorted by ids; reads the state only. */
+int gr_dem_contacts(const gr_dem *d, gr_contacts *out, gr_err *err);
 
 /* dem_force.c: the force evaluation. */
 /* Forces on the positions and velocities of parity q at time

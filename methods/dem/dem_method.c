@@ -29,6 +29,8 @@ static int m_snapshot(void *s, gr_particles *out, gr_err *err) { return gr_dem_s
 
 static int m_observe(void *s, gr_obs *o, gr_err *err) { return gr_dem_observe(s, o, err); }
 
+static int m_contacts(void *s, gr_contacts *out, gr_err *err) { return gr_dem_contacts(s, out, err); }
+
 static void m_reset_window(void *s) { gr_dem_reset_window(s); }
 
 static size_t m_counters(const void *s, gr_counter *out, size_t cap)
@@ -63,4 +65,5 @@ const gr_method_type gr_dem_method = {
     .snapshot = m_snapshot,
     .counters = m_counters,
     .reset_window = m_reset_window,
+    .contacts = m_contacts,
 };
