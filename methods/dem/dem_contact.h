@@ -17,6 +17,33 @@ typedef struct {
     int clip;
 } dem_law;
 
+/* Grain at (px, py) of radius r against the segment from (ax, ay) along
+ * (ex, ey): 0 when apart, else 1 with the overlap and the unit normal from
+ * the segment to the grain (the segment's own normal when the centre lies
+ * on it). One geometry for the force loop and the contact network. */
+DEM_INLINE int dem_seg_contact(double ax, double ay, double ex, double ey, double px, double py,
+                               double r, double *xi, double *nx, double *ny)
+{
+    double l2 = ex * ex + ey * ey;
+    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
+    u = u < 0 ? 0 : u > 1 ? 1 : u;
+    double dx = px - (ax + u * ex), dy = py - (ay + u * ey);
+    double d2 = dx * dx + dy * dy;
+    if (d2 >= r * r)
+        return 0;
+    double dist = sqrt(d2);
+    if (dist > 0) {
+        *nx = dx / dist;
+        *ny = dy / dist;
+    } else {
+        double le = sqrt(l2);
+        *nx = -ey / le;
+        *ny = ex / le;
+    }
+    *xi = r - dist;
+    return 1;
+}
+
 /* History slot lookup for the pair (owner index, partner key) at the force
  * evaluation numbered E; returns the slot or -1 when the table is full. */
 DEM_INLINE long dem_hist_slot(gr_dem_hist *h, size_t own, int32_t key, uint64_t E, int *fresh)

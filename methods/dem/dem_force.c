@@ -103,25 +103,9 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t 
     const gr_dem_seg *sg = &c->d->seg[k];
     double off = c->seg_off[k];
     double ax = sg->x0, ay = sg->y0 + off, bx = sg->x1, by = sg->y1 + off;
-    double px = c->x[i], py = c->y[i], r = c->rad[i];
-    double ex = bx - ax, ey = by - ay;
-    double l2 = ex * ex + ey * ey;
-    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
-    u = u < 0 ? 0 : u > 1 ? 1 : u;
-    double dx = px - (ax + u * ex), dy = py - (ay + u * ey);
-    double d2 = dx * dx + dy * dy;
-    if (d2 >= r * r)
+    double r = c->rad[i], xi, nx, ny;
+    if (!dem_seg_contact(ax, ay, bx - ax, by - ay, c->x[i], c->y[i], r, &xi, &nx, &ny))
         return;
-    double dist = sqrt(d2), nx, ny;
-    if (dist > 0) {
-        nx = dx / dist;
-        ny = dy / dist;
-    } else {
-        double le = sqrt(l2);
-        nx = -ey / le;
-        ny = ex / le;
-    }
-    double xi = r - dist;
     double dvx = c->ux[i], dvy = c->uy[i] - c->seg_vy[k];
     double wsum = TL != GR_TANG_NONE ? c->uw[i] * r : 0.0;
     double Fx, Fy, Ft, zeta = 0.0;

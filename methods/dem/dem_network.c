@@ -99,26 +99,13 @@ static int net_wall(net_ctx *c, size_t i, int k, double off, double vy, gr_err *
 {
     const gr_dem *d = c->d;
     const gr_dem_seg *sg = &d->seg[k];
-    double ax = sg->x0, ay = sg->y0 + off, ex = sg->x1 - ax, ey = sg->y1 + off - ay;
-    double px = c->x[i], py = c->y[i], r = d->rad[i];
-    double l2 = ex * ex + ey * ey;
-    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
-    u = u < 0 ? 0 : u > 1 ? 1 : u;
-    double dx = px - (ax + u * ex), dy = py - (ay + u * ey);
-    double d2 = dx * dx + dy * dy;
-    if (d2 >= r * r)
+    double ax = sg->x0, ay = sg->y0 + off, r = d->rad[i], xi, nx, ny;
+    if (!dem_seg_contact(ax, ay, sg->x1 - ax, sg->y1 + off - ay, c->x[i], c->y[i], r, &xi, &nx, &ny))
         return GR_OK;
-    double dist = sqrt(d2), nx, ny;
-    if (dist > 0) {
-        nx = dx / dist, ny = dy / dist;
-    } else {
-        double le = sqrt(l2);
-        nx = -ey / le, ny = ex / le;
-    }
     double wsum = d->rot ? c->w[i] * r : 0.0;
     double zeta = d->hist_on ? stretch(d, i, (int32_t)(d->ntag + (size_t)k)) : 0.0;
     double Fx, Fy, Ft, el;
-    dem_law_eval(&c->law, (int)d->normal, (int)d->tang, r - dist, nx, ny, c->vx[i], c->vy[i] - vy,
+    dem_law_eval(&c->law, (int)d->normal, (int)d->tang, xi, nx, ny, c->vx[i], c->vy[i] - vy,
                  wsum, &zeta, 0.0, &Fx, &Fy, &Ft, &el);
     return push_row(c, d->tag_id[d->tag[i]], -1 - (int64_t)k, Fx * nx + Fy * ny, Ft, err);
 }
