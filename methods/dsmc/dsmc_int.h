@@ -1,0 +1,77 @@
+/* DSMC backend (Bird's no-time-counter scheme, inelastic smooth disks):
+ * internal interface shared by the backend's files and its tests. */
+#ifndef GR_DSMC_INT_H
+#define GR_DSMC_INT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "ckpt.h"
+#include "err.h"
+#include "observe.h"
+#include "params.h"
+#include "particles.h"
+#include "rng.h"
+#include "scene.h"
+
+/* The [dsmc] section (docs/methods/dsmc.md). */
+typedef struct {
+    double dt, cell, ppc_min;
+    int enskog, strict;
+} gr_dsmc_params;
+
+/* Which validity limits the scene breaks at create (bits). */
+enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4 };
+
+typedef struct gr_dsmc {
+    gr_scene sc;           /* shallow copy: pointers stay the caller's */
+    gr_dsmc_params par;
+    double alpha, alpha_w; /* grain-grain and wall normal restitution */
+    double g, W;           /* gravity; real grains per simulated particle */
+    double sigma, mass;    /* the one diameter and mass (monodisperse) */
+    double Lx, Ly;         /* domain */
+    int nx, ny;            /* cells */
+    double cw, ch;         /* cell sides */
+    size_t n;              /* particles, index = rank of id */
+    gr_particles *p;
+    double *gmax;          /* per-cell running maximum relative speed */
+    size_t *start, *order; /* particles sorted by cell (counting sort) */
+    int *cell;
+    gr_rng *pair_rng, *imp_rng, *floor_rng;
+    uint64_t step, pairs, walls, cand, lost;
+    unsigned bad;          /* GR_DSMC_BAD_* at create */
+    double t;
+    double wall_mom, wall_time, wall_len;
+} gr_dsmc;
+
+/* dsmc_params.c */
+extern const gr_param gr_dsmc_param_table[];
+void gr_dsmc_params_from(const gr_param_values *pv, gr_dsmc_params *p);
+
+/* dsmc_stream.c: free flight of particle i over [t, t + h] with gravity,
+ * walls and floor as for hard disks, periodic wrap, exit through open
+ * sides. */
+void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h);
+
+/* dsmc_collide.c: the collisions of one step, cell by cell. */
+int gr_dsmc_collide(gr_dsmc *d, gr_err *err);
+
+/* dsmc_step.c */
+int gr_dsmc_step(gr_dsmc *d, gr_err *err);
+int gr_dsmc_advance(gr_dsmc *d, double t_end, uint64_t max_steps, gr_err *err);
+
+/* dsmc_state.c */
+int gr_dsmc_create(const gr_scene *sc, const gr_particles *init, const gr_dsmc_params *par,
+                   gr_rng *const rng[3], gr_dsmc **out, gr_err *err);
+void gr_dsmc_free(gr_dsmc *d);
+int gr_dsmc_observe(gr_dsmc *d, gr_obs *o, gr_err *err);
+void gr_dsmc_reset_window(gr_dsmc *d);
+
+/* dsmc_ckpt.c */
+int gr_dsmc_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err);
+int gr_dsmc_load(gr_dsmc *d, gr_ckpt *ck, gr_err *err);
+
+/* Henderson's pair correlation at contact for hard disks. */
+static inline double gr_dsmc_chi(double eta) { return (1.0 - 7.0 * eta / 16.0) / ((1.0 - eta) * (1.0 - eta)); }
+
+#endif

@@ -1,0 +1,27 @@
+/* The [dsmc] section: the parameter table and its values. */
+#include <math.h>
+
+#include "dsmc_int.h"
+
+static const char *const no_yes[] = {"no", "yes", NULL};
+
+const gr_param gr_dsmc_param_table[] = {
+    {"dt", GR_PARAM_REAL, 0.01, 0, INFINITY, 1, NULL, "tau", "time step (at most half the mean free time)"},
+    {"cell", GR_PARAM_REAL, 0, 0, INFINITY, 0, NULL, "d",
+     "collision cell side in diameters; 0: half the mean free path, at least one diameter"},
+    {"ppc_min", GR_PARAM_REAL, 2, 0, INFINITY, 0, NULL, "1", "fewest mean particles per cell accepted as valid"},
+    {"enskog", GR_PARAM_CHOICE, 0, 0, 0, 0, no_yes, "",
+     "multiply the collision rate by Henderson's chi(eta) of the cell (no collisional transfer)"},
+    {"strict", GR_PARAM_CHOICE, 0, 0, 0, 0, no_yes, "",
+     "a validity limit broken at create is an input error instead of a counted warning"},
+    {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL},
+};
+
+void gr_dsmc_params_from(const gr_param_values *pv, gr_dsmc_params *p)
+{
+    p->dt = gr_param_get(pv, "dt");
+    p->cell = gr_param_get(pv, "cell");
+    p->ppc_min = gr_param_get(pv, "ppc_min");
+    p->enskog = (int)gr_param_get(pv, "enskog") == 1;
+    p->strict = (int)gr_param_get(pv, "strict") == 1;
+}

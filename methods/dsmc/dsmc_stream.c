@@ -1,0 +1,182 @@
+/* Free flight over a step: exact parabolas under gravity, and the walls and
+ * floor met on the way treated as hard disks meet them (edmd's rules:
+ * v'_n = (1 + e) V_p - e v_n with the floor's velocity V_p), so that DSMC
+ * and edmd see the same boundaries. Calls no other file of the backend. */
+#include <math.h>
+
+#include "dsmc_int.h"
+#include "geom.h"
+
+/* Bounces in one step after which the particle is taken to rest on the
+ * wall: an inelastic bounce under gravity otherwise accumulates without end
+ * (the inelastic collapse edmd guards against). */
+#define MAX_BOUNCES 64
+
+/* The first t > 0 at which f(t) = c0 + c1 t + c2 t^2 crosses zero going
+ * down (f >= 0 is inside), or INFINITY. */
+static double first_exit(double c0, double c1, double c2)
+{
+    if (c0 < 0 && c1 <= 0)
+        return 0.0;
+    if (c2 == 0.0)
+        return c1 < 0 ? fmax(0.0, -c0 / c1) : INFINITY;
+    double disc = c1 * c1 - 4 * c2 * c0;
+    if (disc < 0)
+        return INFINITY;
+    double q = -0.5 * (c1 + copysign(sqrt(disc), c1));
+    double r1 = q / c2, r2 = q != 0.0 ? c0 / q : r1;
+    double lo = fmin(r1, r2), hi = fmax(r1, r2);
+    double t = c2 > 0 ? lo : hi;
+    return t > 0 ? t : INFINITY;
+}
+
+/* The moving floor's gap y(t) - r - offset(t) over [0, h] from time t0:
+ * scanned at a twentieth of the period, then bisected; a gap that closes
+ * and opens again within one scan interval is missed (docs). */
+static double floor_exit(const gr_dsmc *d, double y, double vy, double r, double t0, double h)
+{
+    const gr_floor *f = &d->sc.floor;
+    double step = fmin(h, 2 * M_PI / f->omega / 20);
+    double a = 0, fa = y - r - gr_floor_offset(f, t0);
+    if (fa < 0 && vy <= gr_floor_velocity(f, t0))
+        return 0.0;
+    for (double b = step; a < h; b = fmin(h, b + step)) {
+        double fb = y + vy * b - 0.5 * d->g * b * b - r - gr_floor_offset(f, t0 + b);
+        if (fb < 0 && fa >= 0) {
+            for (int k = 0; k < 60; k++) {
+                double m = 0.5 * (a + b);
+                double fm = y + vy * m - 0.5 * d->g * m * m - r - gr_floor_offset(f, t0 + m);
+                if (fm < 0) b = m; else a = m;
+            }
+            return b;
+        }
+        a = b, fa = fb;
+    }
+    return INFINITY;
+}
+
+/* High-frequency sine floor: the phase met is weighted by the approach
+ * speed (the flux of collisions), as edmd draws it. */
+static double hf_sine_velocity(gr_dsmc *d, double vy)
+{
+    double V0 = d->sc.floor.amplitude * d->sc.floor.omega;
+    if (V0 <= 0.0 || vy >= 0.0)
+        return 0.0;
+    for (int k = 0; k < 1000; k++) {
+        double vp = V0 * cos(2.0 * M_PI * gr_rng_uniform(d->floor_rng));
+        if (gr_rng_uniform(d->floor_rng) * (V0 - vy) < vp - vy)
+            return vp;
+    }
+    return 0.0;
+}
+
+static double floor_velocity(gr_dsmc *d, double t, double vy)
+{
+    const gr_floor *f = &d->sc.floor;
+    switch (f->motion) {
+    case GR_FLOOR_SINE_HF: return hf_sine_velocity(d, vy);
+    case GR_FLOOR_SAWTOOTH_HF: return f->amplitude * f->omega;
+    default: return gr_floor_velocity(f, t);
+    }
+}
+
+/* Earliest wall met within h: its side and time. */
+static int next_wall(const gr_dsmc *d, size_t i, double t0, double h, double *tw)
+{
+    const gr_particles *p = d->p;
+    const gr_bc *s = d->sc.side;
+    double r = p->radius[i], x = p->x[i], y = p->y[i], vx = p->vx[i], vy = p->vy[i], g = d->g;
+    double tt[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
+    if (s[GR_LEFT] == GR_BC_WALL) tt[GR_LEFT] = first_exit(x - r, vx, 0);
+    if (s[GR_RIGHT] == GR_BC_WALL) tt[GR_RIGHT] = first_exit(d->Lx - r - x, -vx, 0);
+    if (s[GR_TOP] == GR_BC_WALL) tt[GR_TOP] = first_exit(d->Ly - r - y, -vy, 0.5 * g);
+    if (s[GR_BOTTOM] == GR_BC_WALL) {
+        int moving = d->sc.floor.motion == GR_FLOOR_SINE || d->sc.floor.motion == GR_FLOOR_SAWTOOTH;
+        tt[GR_BOTTOM] = moving ? floor_exit(d, y, vy, r, t0, h) : first_exit(y - r, vy, -0.5 * g);
+    }
+    int w = -1;
+    *tw = h;
+    for (int k = 0; k < 4; k++)
+        if (tt[k] <= *tw)
+            *tw = tt[k], w = k;
+    return w;
+}
+
+static void fly(gr_dsmc *d, size_t i, double h)
+{
+    gr_particles *p = d->p;
+    p->x[i] += p->vx[i] * h;
+    p->y[i] += p->vy[i] * h - 0.5 * d->g * h * h;
+    p->vy[i] -= d->g * h;
+}
+
+/* The wall's impulse, with infinite mass; its normal part feeds the wall
+ * pressure (times W: each particle stands for W grains). */
+static void bounce(gr_dsmc *d, size_t i, int w, double t)
+{
+    gr_particles *p = d->p;
+    double nx = w == GR_LEFT ? 1 : w == GR_RIGHT ? -1 : 0, ny = w == GR_BOTTOM ? 1 : w == GR_TOP ? -1 : 0;
+    double Vn = w == GR_BOTTOM ? floor_velocity(d, t, p->vy[i]) : 0.0;
+    double gn = p->vx[i] * nx + p->vy[i] * ny - Vn;
+    if (gn >= 0)
+        return;
+    double J = -(1.0 + d->alpha_w) * p->mass[i] * gn;
+    p->vx[i] += J * nx / p->mass[i];
+    p->vy[i] += J * ny / p->mass[i];
+    d->wall_mom += J * d->W;
+    d->walls++;
+}
+
+/* Periodic wrap and exit through an open side (the centre leaves). */
+static void boundaries(gr_dsmc *d, size_t i)
+{
+    gr_particles *p = d->p;
+    const gr_bc *s = d->sc.side;
+    if (s[GR_LEFT] == GR_BC_PERIODIC)
+        p->x[i] -= d->Lx * floor(p->x[i] / d->Lx);
+    if (s[GR_BOTTOM] == GR_BC_PERIODIC)
+        p->y[i] -= d->Ly * floor(p->y[i] / d->Ly);
+    double x = p->x[i], y = p->y[i];
+    if ((x < 0 && s[GR_LEFT] == GR_BC_OPEN) || (x > d->Lx && s[GR_RIGHT] == GR_BC_OPEN) ||
+        (y < 0 && s[GR_BOTTOM] == GR_BC_OPEN) || (y > d->Ly && s[GR_TOP] == GR_BC_OPEN)) {
+        p->flags[i] |= GR_PF_GONE;
+        d->lost++;
+    }
+}
+
+/* Too many bounces in one step: the particle rests on the wall (its normal
+ * velocity is the wall's, zero) and slides along it for the rest of the
+ * step, kept inside the domain. */
+static void settle(gr_dsmc *d, size_t i, int w, double left)
+{
+    gr_particles *p = d->p;
+    double r = p->radius[i];
+    if (w == GR_BOTTOM || w == GR_TOP)
+        p->vy[i] = 0.0, p->x[i] += p->vx[i] * left;
+    else
+        p->vx[i] = 0.0, p->y[i] += p->vy[i] * left;
+    p->x[i] = fmin(fmax(p->x[i], r), d->Lx - r);
+    p->y[i] = fmin(fmax(p->y[i], r), d->Ly - r);
+}
+
+void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h)
+{
+    gr_particles *p = d->p;
+    if (p->flags[i] & GR_PF_GONE)
+        return;
+    double left = h;
+    for (int k = 0; left > 0; k++) {
+        double tw;
+        int w = next_wall(d, i, t, left, &tw);
+        fly(d, i, tw);
+        t += tw, left -= tw;
+        if (w < 0)
+            break;
+        if (k == MAX_BOUNCES) {
+            settle(d, i, w, left);
+            break;
+        }
+        bounce(d, i, w, t);
+    }
+    boundaries(d, i);
+}
