@@ -9,6 +9,7 @@
 #include "dem.h"
 #include "dem_contact.h"
 #include "geom.h"
+#include "grid.h"
 
 typedef struct {
     int64_t i, j;
@@ -21,16 +22,8 @@ typedef struct {
     dem_law law;
     net_row *row;
     size_t n, cap;
+    gr_err *err;
 } net_ctx;
-
-/* Cells of the current positions: the force loop's own cells and lists
- * were built for earlier positions (with a skin), so they cannot be
- * trusted to hold every contact of this instant. */
-typedef struct {
-    int nc[2], per[2];
-    double lo[2], w[2];
-    int32_t *start, *idx;
-} net_grid;
 
 static int push_row(net_ctx *c, int64_t i, int64_t j, double fn, double ft, gr_err *err)
 {
@@ -83,14 +76,18 @@ static int net_pair(net_ctx *c, size_t a, size_t b, double dx, double dy, gr_err
     return push_row(c, d->tag_id[d->tag[a]], d->tag_id[d->tag[b]], Fx * nx + Fy * ny, Ft, err);
 }
 
-static int net_pair_ordered(net_ctx *c, size_t i, size_t j, gr_err *err)
+/* A pair closer than the largest contact distance, i < j internally with
+ * (dx, dy) from i to j (common/grid.h): skipped for two fixed grains, as
+ * the force loop does; passed on with the smaller id first. */
+static int net_pair_found(size_t i, size_t j, double dx, double dy, void *user)
 {
+    net_ctx *c = user;
     const gr_dem *d = c->d;
-    double dx = gr_min_image(c->x[j] - c->x[i], d->Lx);
-    double dy = gr_min_image(c->y[j] - c->y[i], d->Ly);
+    if ((d->flags[i] & GR_PF_FIXED) && (d->flags[j] & GR_PF_FIXED))
+        return GR_OK;
     if (d->tag_id[d->tag[i]] < d->tag_id[d->tag[j]])
-        return net_pair(c, i, j, dx, dy, err);
-    return net_pair(c, j, i, -dx, -dy, err);
+        return net_pair(c, i, j, dx, dy, c->err);
+    return net_pair(c, j, i, -dx, -dy, c->err);
 }
 
 /* Grain i against segment k, as the force loop sees it: n from the wall to
@@ -110,111 +107,46 @@ static int net_wall(net_ctx *c, size_t i, int k, double off, double vy, gr_err *
     return push_row(c, d->tag_id[d->tag[i]], -1 - (int64_t)k, Fx * nx + Fy * ny, Ft, err);
 }
 
-/* One axis of the grid: periodic over [0, L), else over the grains' span. */
-static void grid_axis(net_grid *g, int a, const double *p, size_t n, double L, double h)
+/* One axis of the grid of the current positions (the force loop's cells
+ * and lists were built for earlier positions, with a skin, so they cannot
+ * be trusted to hold every contact of this instant): periodic over
+ * [0, L), else over the grains' span. */
+static void grid_span(const double *p, size_t n, double L, double h, double *lo, double *len)
 {
-    g->per[a] = L > 0;
     if (L > 0) {
-        g->lo[a] = 0.0;
-        g->nc[a] = L / h >= 1.0 ? (int)(L / h) : 1;
-        g->w[a] = L / g->nc[a];
+        *lo = 0.0, *len = L;
         return;
     }
-    double lo = p[0], hi = p[0];
+    double a = p[0], b = p[0];
     for (size_t i = 1; i < n; i++)
-        lo = fmin(lo, p[i]), hi = fmax(hi, p[i]);
-    g->lo[a] = lo;
-    g->w[a] = h;
-    g->nc[a] = (int)((hi - lo) / h) + 1;
+        a = fmin(a, p[i]), b = fmax(b, p[i]);
+    *lo = a, *len = fmax(b - a, h);
 }
 
-static int cell_of(const net_grid *g, int a, double p)
-{
-    double u = p - g->lo[a];
-    if (g->per[a])
-        u -= g->w[a] * g->nc[a] * floor(u / (g->w[a] * g->nc[a]));
-    int k = (int)(u / g->w[a]);
-    return k < 0 ? 0 : k >= g->nc[a] ? g->nc[a] - 1 : k;
-}
-
-static int grid_build(net_grid *g, const net_ctx *c, gr_err *err)
+/* Every overlapping pair once, through the shared cell grid. */
+static int net_pairs(net_ctx *c, gr_err *err)
 {
     const gr_dem *d = c->d;
     size_t n = d->n;
-    double h = 0.0;
+    double h = 0.0, x0, y0, lx, ly;
     for (size_t i = 0; i < n; i++)
         h = fmax(h, 2.0 * d->rad[i]);
-    /* sparse grains (a gas, or far apart): coarser cells keep the grid small */
-    do {
-        grid_axis(g, 0, c->x, n, d->Lx, h);
-        grid_axis(g, 1, c->y, n, d->Ly, h);
-        h *= 2.0;
-    } while ((double)g->nc[0] * g->nc[1] > 4.0 * (double)n + 64.0);
-    size_t nc = (size_t)g->nc[0] * (size_t)g->nc[1];
-    g->start = calloc(nc + 1, sizeof *g->start);
-    g->idx = malloc((n ? n : 1) * sizeof *g->idx);
-    int32_t *cell = malloc((n ? n : 1) * sizeof *cell), *pos = malloc(nc * sizeof *pos);
-    if (!g->start || !g->idx || !cell || !pos) {
-        free(cell), free(pos);
-        return gr_fail(err, GR_ERUN, "out of memory in the contact network");
+    grid_span(c->x, n, d->Lx, h, &x0, &lx);
+    grid_span(c->y, n, d->Ly, h, &y0, &ly);
+    /* sparse grains (a gas, or far apart): cells no smaller than needed
+     * to keep the grid within a few cells per grain */
+    double cell = h;
+    while ((lx / cell) * (ly / cell) > 4.0 * (double)n + 64.0)
+        cell *= 2.0;
+    gr_grid *g = gr_grid_create(x0, y0, lx, ly, cell, d->Lx > 0, d->Ly > 0, err);
+    if (!g || gr_grid_build(g, c->x, c->y, n, NULL, err)) {
+        gr_grid_free(g);
+        return err->code;
     }
-    for (size_t i = 0; i < n; i++) {
-        cell[i] = cell_of(g, 1, c->y[i]) * g->nc[0] + cell_of(g, 0, c->x[i]);
-        g->start[cell[i] + 1]++;
-    }
-    for (size_t k = 0; k < nc; k++)
-        g->start[k + 1] += g->start[k];
-    for (size_t k = 0; k < nc; k++)
-        pos[k] = g->start[k];
-    for (size_t i = 0; i < n; i++)
-        g->idx[pos[cell[i]]++] = (int32_t)i;
-    free(cell), free(pos);
-    return GR_OK;
-}
-
-/* The distinct cells around (cx, cy), itself included: with one or two
- * cells along a periodic axis the offsets -1 and +1 name the same cell. */
-static int around(const net_grid *g, int cx, int cy, int32_t out[9])
-{
-    int m = 0;
-    for (int oy = -1; oy <= 1; oy++) {
-        for (int ox = -1; ox <= 1; ox++) {
-            int x = cx + ox, y = cy + oy;
-            if ((x < 0 || x >= g->nc[0]) && !g->per[0])
-                continue;
-            if ((y < 0 || y >= g->nc[1]) && !g->per[1])
-                continue;
-            x = (x + g->nc[0]) % g->nc[0], y = (y + g->nc[1]) % g->nc[1];
-            int32_t k = y * g->nc[0] + x, seen = 0;
-            for (int q = 0; q < m; q++)
-                seen |= out[q] == k;
-            if (!seen)
-                out[m++] = k;
-        }
-    }
-    return m;
-}
-
-/* Every overlapping pair once (internal i < j), skipping two fixed grains
- * as the force loop does. */
-static int net_pairs(net_ctx *c, const net_grid *g, gr_err *err)
-{
-    const gr_dem *d = c->d;
-    for (size_t i = 0; i < d->n; i++) {
-        int fi = (d->flags[i] & GR_PF_FIXED) != 0;
-        int32_t nb[9];
-        int m = around(g, cell_of(g, 0, c->x[i]), cell_of(g, 1, c->y[i]), nb);
-        for (int q = 0; q < m; q++) {
-            for (int32_t b = g->start[nb[q]]; b < g->start[nb[q] + 1]; b++) {
-                size_t j = (size_t)g->idx[b];
-                if (j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
-                    continue;
-                if (net_pair_ordered(c, i, j, err))
-                    return err->code;
-            }
-        }
-    }
-    return GR_OK;
+    c->err = err;
+    int rc = gr_grid_pairs(g, c->x, c->y, h, net_pair_found, c);
+    gr_grid_free(g);
+    return rc;
 }
 
 /* Mobile grains against the segments still closed at time t. */
@@ -251,14 +183,10 @@ int gr_dem_contacts(const gr_dem *d, gr_contacts *out, gr_err *err)
         .d = d, .x = d->f[F_X][p], .y = d->f[F_Y][p], .vx = d->f[F_VX][p], .vy = d->f[F_VY][p],
         .w = d->f[F_W][p], .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
     };
-    net_grid g = {0};
     out->n = 0;
-    int rc = d->n ? grid_build(&g, &c, err) : GR_OK;
-    if (!rc && d->n)
-        rc = net_pairs(&c, &g, err);
+    int rc = d->n ? net_pairs(&c, err) : GR_OK;
     if (!rc)
         rc = net_walls(&c, err);
-    free(g.start), free(g.idx);
     /* sorted by ids: the same rows whatever the internal order (restarts) */
     if (!rc && c.n)
         qsort(c.row, c.n, sizeof *c.row, row_order);
