@@ -138,6 +138,8 @@ void gr_sim_reset_window(gr_sim *s);
 int gr_sim_snapshot(gr_sim *s, gr_particles *out, gr_err *err);
 int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err);
 size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap);
+/* The counter of that name: 1 and its value, or 0 when the method has none. */
+int gr_sim_counter(const gr_sim *s, const char *name, uint64_t *value);
 int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err);
 /* GR_EINPUT if the backend lacks any of ops (GR_OP_*): "<who> needs <op>,
  * which method '<name>' does not give". */

@@ -168,6 +168,19 @@ int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err)
     return gr_field_add(f, s->scratch, GR_PF_FIXED | GR_PF_GONE, w, err);
 }
 
+int gr_sim_counter(const gr_sim *s, const char *name, uint64_t *value)
+{
+    gr_counter c[GR_MAX_COUNTERS];
+    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
+    for (size_t k = 0; k < n; k++) {
+        if (!strcmp(c[k].name, name)) {
+            *value = c[k].value;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err)
 {
     if (!s->type->contacts)

@@ -43,14 +43,8 @@ int course_sim(const char *text, const course_opts *o, const gr_particles *init,
 
 int course_pairs(const gr_sim *s, const char *who, uint64_t *pairs, gr_err *err)
 {
-    gr_counter c[GR_MAX_COUNTERS];
-    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
-    for (size_t k = 0; k < n; k++) {
-        if (!strcmp(c[k].name, "pair_collisions")) {
-            *pairs = c[k].value;
-            return GR_OK;
-        }
-    }
+    if (gr_sim_counter(s, "pair_collisions", pairs))
+        return GR_OK;
     return gr_fail(err, GR_EINPUT,
                    "%s counts disk-disk collisions (the counter 'pair_collisions'), which method '%s' "
                    "does not give",

@@ -67,13 +67,10 @@ static inline const gr_cd_contact *ct_contact(const gr_cd *d, int64_t i, int64_t
 
 static inline uint64_t ct_counter(gr_sim *s, const char *name)
 {
-    gr_counter c[GR_MAX_COUNTERS];
-    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
-    for (size_t k = 0; k < n; k++)
-        if (!strcmp(c[k].name, name))
-            return c[k].value;
-    fail_msg("no counter %s", name);
-    return 0;
+    uint64_t v = 0;
+    if (!gr_sim_counter(s, name, &v))
+        fail_msg("no counter %s", name);
+    return v;
 }
 
 #endif

@@ -42,13 +42,10 @@ static void run_to(gr_sim *s, double t)
 
 static uint64_t counter(gr_sim *s, const char *name)
 {
-    gr_counter c[GR_MAX_COUNTERS];
-    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
-    for (size_t k = 0; k < n; k++)
-        if (!strcmp(c[k].name, name))
-            return c[k].value;
-    fail_msg("no counter %s", name);
-    return 0;
+    uint64_t v = 0;
+    if (!gr_sim_counter(s, name, &v))
+        fail_msg("no counter %s", name);
+    return v;
 }
 
 /* a2 = <v^4> / (2 <v^2>^2) - 1 of the peculiar velocities (2-D). */
