@@ -20,7 +20,7 @@ int gr_param_index(const gr_param *table, const char *name)
     return -1;
 }
 
-void gr_params_defaults(const gr_param *table, gr_param_values *pv)
+static void defaults(const gr_param *table, gr_param_values *pv)
 {
     memset(pv, 0, sizeof *pv);
     pv->table = table;
@@ -35,12 +35,6 @@ double gr_param_get(const gr_param_values *pv, const char *name)
     if (k < 0)
         abort();
     return pv->v[k];
-}
-
-int gr_param_given(const gr_param_values *pv, const char *name)
-{
-    int k = gr_param_index(pv->table, name);
-    return k >= 0 && pv->given[k];
 }
 
 void gr_param_format(const gr_param *p, double v, char *buf, size_t n)
@@ -111,7 +105,7 @@ static int read_one(const gr_scene *sc, const char *section, const gr_param *p, 
 int gr_params_read(const gr_scene *sc, const char *section, const gr_param *table,
                    gr_param_values *pv, gr_err *err)
 {
-    gr_params_defaults(table, pv);
+    defaults(table, pv);
     const char *names[GR_MAX_PARAMS + 1];
     for (int k = 0; k < pv->n; k++)
         names[k] = table[k].name;
@@ -121,7 +115,6 @@ int gr_params_read(const gr_scene *sc, const char *section, const gr_param *tabl
     for (int k = 0; k < pv->n; k++) {
         if (!gr_scene_find(sc, section, table[k].name))
             continue;
-        pv->given[k] = 1;
         if (read_one(sc, section, &table[k], &pv->v[k], err))
             return err->code;
     }

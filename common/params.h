@@ -35,7 +35,6 @@ typedef struct {
     const gr_param *table;
     int n;
     double v[GR_MAX_PARAMS];
-    unsigned char given[GR_MAX_PARAMS];
 } gr_param_values;
 
 /* Every key of [section] must be in the table (else file:line, the key and
@@ -43,15 +42,12 @@ typedef struct {
  * range (else file:line, the key and the range). */
 int gr_params_read(const gr_scene *sc, const char *section, const gr_param *table,
                    gr_param_values *pv, gr_err *err);
-/* Defaults only (no scene). */
-void gr_params_defaults(const gr_param *table, gr_param_values *pv);
 int gr_params_count(const gr_param *table);
 /* Index of name in the table, or -1. */
 int gr_param_index(const gr_param *table, const char *name);
 /* Value of a parameter the table must hold: asking for a name outside it
  * is a programming error and aborts. */
 double gr_param_get(const gr_param_values *pv, const char *name);
-int gr_param_given(const gr_param_values *pv, const char *name);
 /* A table that contradicts itself (default outside its range, unnamed or
  * repeated names, a choice without words, no doc): GR_EINPUT naming it. */
 int gr_params_check_table(const char *section, const gr_param *table, gr_err *err);

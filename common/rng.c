@@ -56,13 +56,3 @@ int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err)
 {
     return gr_ckpt_get_bytes(ck, name, gsl_rng_state(r->g), gsl_rng_size(r->g), err);
 }
-
-static const gr_stream_info streams[] = {
-    {GR_STREAM_INIT, "init", "initial positions, diameters and velocities (common/init.c)"},
-    {GR_STREAM_DEM_REINSERT, "dem_rng_reinsert", "dem: where a grain that left is reinserted"},
-    {GR_STREAM_EDMD, "edmd.rng", "edmd: phase of a high-frequency floor at each collision"},
-    {GR_STREAM_SILO_START, "silo_start", "silo-start: the seeds of independent discharges"},
-    {0, NULL, NULL},
-};
-
-const gr_stream_info *gr_stream_table(void) { return streams; }

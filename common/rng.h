@@ -26,9 +26,9 @@ unsigned long gr_rng_below(gr_rng *r, unsigned long n); /* [0, n) */
 int gr_rng_save(const gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
 int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
 
-/* Every random stream of the code, in one table so that no two draw the
- * same numbers: a stream is the pair (scene seed, id). The name is also the
- * stream's dataset in checkpoints. */
+/* Every random stream id of the code, in one place so that no two draw
+ * the same numbers: a stream is the pair (scene seed, id). A backend's own
+ * streams are GR_STREAM_METHOD_BASE + k, handed out by gr_sim_stream. */
 enum {
     GR_STREAM_INIT = 0x1417,           /* initial positions and velocities */
     GR_STREAM_DEM_REINSERT = 0xD3E1,   /* dem: reinsertion spots */
@@ -37,12 +37,4 @@ enum {
     GR_STREAM_METHOD_BASE = 0x10000    /* first of the streams a backend
                                           numbers itself (gr_sim_stream) */
 };
-typedef struct {
-    uint64_t id;
-    const char *name;
-    const char *doc;
-} gr_stream_info;
-/* The table, ended by a NULL name. */
-const gr_stream_info *gr_stream_table(void);
-
 #endif

@@ -126,7 +126,6 @@ void gr_sim_free(gr_sim *s);
 
 const gr_method_type *gr_sim_type(const gr_sim *s);
 const gr_scene *gr_sim_scene(const gr_sim *s);
-const gr_param_values *gr_sim_params(const gr_sim *s);
 /* The backend's state: for its own per-method bench and tests only. */
 void *gr_sim_state(gr_sim *s);
 

@@ -121,7 +121,6 @@ void gr_sim_free(gr_sim *s)
 
 const gr_method_type *gr_sim_type(const gr_sim *s) { return s->type; }
 const gr_scene *gr_sim_scene(const gr_sim *s) { return s->scene; }
-const gr_param_values *gr_sim_params(const gr_sim *s) { return &s->params; }
 void *gr_sim_state(gr_sim *s) { return s->state; }
 double gr_sim_time(const gr_sim *s) { return s->type->time(s->state); }
 
