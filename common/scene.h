@@ -155,9 +155,10 @@ enum {
     GR_FEAT_MIXTURE = 1u << 11,
     GR_FEAT_HERTZ = 1u << 12,
     GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
-    GR_FEAT_WEIGHTS = 1u << 14        /* a particle stands for several grains */
+    GR_FEAT_WEIGHTS = 1u << 14,       /* a particle stands for several grains */
+    GR_FEAT_RESTITUTION = 1u << 15    /* a prescribed normal restitution */
 };
-#define GR_FEAT_COUNT 15
+#define GR_FEAT_COUNT 16
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;
