@@ -85,6 +85,14 @@ static const char *section_kind(const char *name)
     return name;
 }
 
+static int in_list(const char *const *list, const char *s)
+{
+    for (size_t i = 0; list[i]; i++)
+        if (!strcmp(list[i], s))
+            return 1;
+    return 0;
+}
+
 static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
 {
     const char *all[64];
@@ -124,8 +132,12 @@ static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
         else if (!strcmp(kind, "measure")) valid = keys_measure;
         else if (!strcmp(kind, "run")) valid = keys_run;
         /* Backend sections are checked by the backend. */
-        if (valid && gr_scene_check_keys(sc, e->section, valid, err))
-            return err->code;
+        if (valid && e->key[0] && !in_list(valid, e->key)) {
+            const char *near = gr_nearest(e->key, valid);
+            return gr_fail(err, GR_EINPUT, "%s:%d: unknown key '%s' in [%s]%s%s%s", sc->path, e->line,
+                           e->key, e->section, near ? "; did you mean '" : "", near ? near : "",
+                           near ? "'?" : "");
+        }
     }
     return GR_OK;
 }
@@ -270,10 +282,8 @@ static int read_walls(gr_scene *sc, gr_err *err)
         const char *sec = sc->entries[i].section;
         if (strcmp(section_kind(sec), "wall"))
             continue;
-        int dup = 0;
-        for (size_t j = 0; j < i; j++)
-            dup |= !strcmp(sc->entries[j].section, sec);
-        if (dup)
+        /* Once per wall: at its header, the section's first entry. */
+        if (sc->entries[i].key[0])
             continue;
         double a[2], b[2];
         int fa, fb, vib;
@@ -612,6 +622,8 @@ void gr_scene_free(gr_scene *sc)
         return;
     free(sc->text);
     free(sc->entries);
+    free(sc->parsed);
+    free(sc->index);
     free(sc->segments);
     free(sc);
 }

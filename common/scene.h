@@ -112,7 +112,8 @@ typedef struct {
 
 /* One key = value of the file, kept for messages and for backends. */
 typedef struct {
-    char section[64], key[64], value[256];
+    char section[64], key[64];
+    const char *value;      /* into the scene's parsed copy of the text */
     int line;
     int used;
 } gr_scene_entry;
@@ -137,6 +138,8 @@ typedef struct gr_scene {
     uint64_t seed;
     size_t nentries;
     gr_scene_entry *entries;
+    char *parsed;           /* the text cut into the entries' values */
+    size_t *index, index_cap; /* (section, key) -> entry + 1, open addressing */
 } gr_scene;
 
 /* Features a scene uses; a backend declares those it supports. */
