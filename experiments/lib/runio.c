@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "ckpt.h"
 #include "fields.h"
@@ -129,6 +130,34 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
     return GR_OK;
 }
 
+/* The first k with sample time t0 + k every after t. Computed, not
+ * counted: an interval far below the time step would otherwise count up
+ * for ever, or sample the same time twice. */
+static uint64_t next_index(double t, double t0, double every, double eps)
+{
+    double q = floor((t - t0 + eps) / every);
+    uint64_t k = q > 0 ? (uint64_t)q : 0;
+    while (t >= t0 + (double)k * every - eps)
+        k++;
+    return k;
+}
+
+int gr_run_check(const gr_scene *sc, gr_err *err)
+{
+    const gr_runctl *r = &sc->run;
+    const char *keys[3] = {"observe_every", "output_every", "checkpoint_every"};
+    const double every[3] = {r->observe_every, r->output_every, r->checkpoint_every};
+    for (int j = 0; j < 3; j++) {
+        if (r->until / every[j] > GR_RUN_MAX_SAMPLES) {
+            char where[1200];
+            gr_scene_where(sc, "run", keys[j], where, sizeof where);
+            return gr_fail(err, GR_EINPUT, "%s: %g asks for %.3g samples over until = %g; at most %.0e",
+                           where, every[j], r->until / every[j], r->until, GR_RUN_MAX_SAMPLES);
+        }
+    }
+    return GR_OK;
+}
+
 /* Observables every observe_every, frames and fields every output_every,
  * checkpoints every checkpoint_every; times are k * interval from the start
  * so that they do not drift and a restart lands on the same ones. */
@@ -153,7 +182,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             observed = 1;
             if (io->field && (status = gr_sim_fields(st, io->field, 1.0, err)))
                 break;
-            k[0]++;
+            k[0] = next_index(t, t0, rc->observe_every, eps);
             gr_progress_update(pg, t, "E_kin", obs.ekin_trans + obs.ekin_rot);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
@@ -166,12 +195,10 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
-            while (t >= t0 + (double)k[1] * rc->output_every - eps)
-                k[1]++;
+            k[1] = next_index(t, t0, rc->output_every, eps);
         }
         if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
-            while (t >= t0 + (double)k[2] * rc->checkpoint_every - eps)
-                k[2]++;
+            k[2] = next_index(t, t0, rc->checkpoint_every, eps);
             if (o->ckpt && (status = gr_run_save(o->ckpt, st, k, err)))
                 break;
         }
@@ -214,7 +241,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = GR_ERUN;
         goto done;
     }
-    if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
+    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
     if (sc->run.contacts && (rc = want_contacts(sc, m, &io, err)))
         goto done;
@@ -223,6 +250,11 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if (o->restart) {
         if ((rc = gr_run_load(o->restart, st, k, err)))
             goto done;
+        if (gr_sim_time(st) >= sc->run.until - 1e-9 * (sc->run.until > 1 ? sc->run.until : 1)) {
+            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, already at the end time until = %g; nothing to run",
+                         o->restart, gr_sim_time(st), sc->run.until);
+            goto done;
+        }
     }
     if (sc->run.field_nx > 0) {
         io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
@@ -234,7 +266,12 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         }
     }
     gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION};
-    if (!(io.h = gr_h5md_create(o->out, sc, &ho, err))) {
+    /* A restart continues its result file: the frames before the
+     * checkpoint stay, those after it are written again. */
+    struct stat ost;
+    int cont = o->restart && stat(o->out, &ost) == 0;
+    if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, gr_sim_time(st), err)
+                      : gr_h5md_create(o->out, sc, &ho, err))) {
         rc = err->code;
         goto done;
     }
