@@ -110,6 +110,14 @@ typedef struct {
     int contacts;           /* write the contact network with each frame */
 } gr_runctl;
 
+/* Scale limits (docs/reliability.md): a scene beyond them is refused up
+ * front with the reason. */
+#define GR_SCENE_MAX_GRAINS 10000000L
+#define GR_SCENE_MAX_WALLS 100000
+#define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_STR_(x) #x
+#define GR_STR(x) GR_STR_(x)
+
 /* One key = value of the file, kept for messages and for backends. */
 typedef struct {
     char section[64], key[64];

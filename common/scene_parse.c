@@ -351,8 +351,8 @@ int gr_scene_get_vec(const gr_scene *sc, const char *section, const char *key,
         if (end == s)
             return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': expected %d numbers, got '%s'",
                            sc->path, e->line, section, key, n, e->value);
-        if (!isfinite(v))
-            return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': '%s' holds a non-finite number",
+        if (!isfinite(v) || fabs(v) > GR_SCENE_MAX_MAGNITUDE)
+            return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': '%s' holds a non-finite number or one beyond +-1e100",
                            sc->path, e->line, section, key, e->value);
         out[i] = v;
         s = end;

@@ -77,7 +77,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 's':
             errno = 0;
             a->seed = strtoll(optarg, &end, 10);
-            if (*end || a->seed < 0 || errno) {
+            if (end == optarg || *end || a->seed < 0 || errno) {
                 fprintf(stderr, "grano run: --seed: '%s' is not a non-negative integer\n", optarg);
                 return 2;
             }
