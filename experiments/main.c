@@ -6,6 +6,7 @@
 #include <gsl/gsl_errno.h>
 
 #include "cmd.h"
+#include "h5md.h"
 
 typedef struct {
     const char *name;
@@ -49,6 +50,7 @@ int main(int argc, char **argv)
 {
     /* GSL's default handler aborts; grano checks every status instead. */
     gsl_set_error_handler_off();
+    gr_h5_no_exit_handler();
     if (argc < 2) {
         usage(stderr);
         return 2;

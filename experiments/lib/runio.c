@@ -4,7 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 
 #include "ckpt.h"
 #include "fields.h"
@@ -97,7 +99,37 @@ int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err
     return rc;
 }
 
+/* Room left for a file: the free space of its filesystem and, under a
+ * file-size limit (ulimit -f), what the limit leaves. A write that fails
+ * half-way leaves an HDF5 file unreadable, so the run stops before one
+ * that might not fit: twice the largest growth seen, and a margin. */
 typedef struct {
+    const char *path;
+    double last, grow;
+} room;
+
+static int room_check(room *r, double more, gr_err *err)
+{
+    struct stat st;
+    struct statvfs vs;
+    if (stat(r->path, &st) || statvfs(r->path, &vs))
+        return GR_OK; /* not created yet: its writer reports any failure */
+    double size = (double)st.st_size, left = (double)vs.f_bavail * (double)vs.f_frsize;
+    if (r->last > 0 && size - r->last > r->grow)
+        r->grow = size - r->last;
+    r->last = size;
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_FSIZE, &rl) && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur - size < left)
+        left = (double)rl.rlim_cur - size;
+    double need = 2 * (r->grow > more ? r->grow : more) + 131072;
+    if (left < need)
+        return gr_fail(err, GR_ERUN, "%s: the disk is nearly full (%.3g MB left, the next write needs up to %.3g MB); stopped before writing so that the file stays readable",
+                       r->path, left / 1e6, need / 1e6);
+    return GR_OK;
+}
+
+typedef struct {
+    room out_room, ckpt_room;
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
@@ -175,7 +207,8 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
         gr_obs_clear(&obs);
         int observed = 0;
         if (t >= t0 + (double)k[0] * rc->observe_every - eps) {
-            if ((status = gr_sim_observe(st, &obs, err)) || (status = gr_h5md_write_obs(io->h, &obs, err)))
+            if ((status = room_check(&io->out_room, 0, err)) || (status = gr_sim_observe(st, &obs, err)) ||
+                (status = gr_h5md_write_obs(io->h, &obs, err)))
                 break;
             /* Each sample averages its window since the previous one. */
             gr_sim_reset_window(st);
@@ -186,7 +219,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             gr_progress_update(pg, t, "E_kin", obs.ekin_trans + obs.ekin_rot);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
-            if ((!observed && (status = gr_sim_observe(st, &obs, err))) ||
+            if ((status = room_check(&io->out_room, 0, err)) || (!observed && (status = gr_sim_observe(st, &obs, err))) ||
                 (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
@@ -199,7 +232,8 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
         }
         if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
             k[2] = next_index(t, t0, rc->checkpoint_every, eps);
-            if (o->ckpt && (status = gr_run_save(o->ckpt, st, k, err)))
+            if (o->ckpt && ((status = room_check(&io->ckpt_room, io->ckpt_room.last, err)) ||
+                            (status = gr_run_save(o->ckpt, st, k, err))))
                 break;
         }
         if (t >= rc->until - eps)
@@ -232,7 +266,7 @@ static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io
 
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
-    run_io io = {0};
+    run_io io = {.out_room = {o->out, 0, 0}, .ckpt_room = {o->ckpt, 0, 0}};
     gr_sim *st = NULL;
     int rc = GR_OK;
     gr_particles *init = gr_particles_create(0, err);
