@@ -299,6 +299,11 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
             goto done;
         }
     }
+    /* A state that cannot be checkpointed is refused before the result
+     * file exists (the first save would fail mid-run); this is also the
+     * checkpoint of the initial state. */
+    if (o->ckpt && (rc = gr_run_save(o->ckpt, st, k, err)))
+        goto done;
     gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION};
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
