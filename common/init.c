@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "geom.h"
 #include "grid.h"
@@ -144,16 +145,60 @@ static int place_random(const gr_scene *sc, gr_particles *p, gr_rng *rng, gr_err
     return GR_OK;
 }
 
-static int read_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+/* The grains file must be a regular file: a device or a pipe (/dev/zero)
+ * would be read for ever. */
+static FILE *open_grains(const gr_scene *sc, gr_err *err)
 {
+    struct stat st;
+    char where[1200];
+    gr_scene_where(sc, "init", "file", where, sizeof where);
+    if (stat(sc->init.file, &st) || !S_ISREG(st.st_mode)) {
+        gr_fail(err, GR_EINPUT, "%s: '%s' is not a regular file", where, sc->init.file);
+        return NULL;
+    }
     FILE *f = fopen(sc->init.file, "r");
     if (!f)
-        return gr_fail(err, GR_EINPUT, "%s: cannot read: %s", sc->init.file, strerror(errno));
+        gr_fail(err, GR_EINPUT, "%s: cannot read '%s': %s", where, sc->init.file, strerror(errno));
+    return f;
+}
+
+/* The file's grains must lie in the domain, and number the species count
+ * when the scene gives one. */
+static int check_file_grains(const gr_scene *sc, const gr_particles *p, gr_err *err)
+{
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->x[i] >= 0 && p->x[i] <= sc->width && p->y[i] >= 0 && p->y[i] <= sc->height))
+            return gr_fail(err, GR_EINPUT, "%s: grain %zu at (%g, %g) lies outside the domain [0, %g] x [0, %g]",
+                           sc->init.file, i + 1, p->x[i], p->y[i], sc->width, sc->height);
+    if (gr_scene_find(sc, "species", "count") && (long)p->n != sc->species[0].count) {
+        char where[1200];
+        gr_scene_where(sc, "species", "count", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: %ld grains, but %s holds %zu", where, sc->species[0].count,
+                       sc->init.file, p->n);
+    }
+    return GR_OK;
+}
+
+static int read_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+{
+    FILE *f = open_grains(sc, err);
+    if (!f)
+        return err->code;
     char line[1024];
     int ln = 0;
     const gr_species *sp = &sc->species[0];
     while (fgets(line, sizeof line, f)) {
         ln++;
+        if (!strchr(line, '\n') && !feof(f)) {
+            fclose(f);
+            return gr_fail(err, GR_EINPUT, "%s:%d: line longer than %zu characters", sc->init.file, ln,
+                           sizeof line - 2);
+        }
+        if (p->n >= (size_t)GR_SCENE_MAX_GRAINS) {
+            fclose(f);
+            return gr_fail(err, GR_EINPUT, "%s:%d: more than %ld grains (docs/reliability.md)", sc->init.file,
+                           ln, GR_SCENE_MAX_GRAINS);
+        }
         char *s = line;
         while (*s == ' ' || *s == '\t')
             s++;
@@ -190,7 +235,7 @@ static int read_file(const gr_scene *sc, gr_particles *p, gr_err *err)
     fclose(f);
     if (p->n == 0)
         return gr_fail(err, GR_EINPUT, "%s: no grains in the file", sc->init.file);
-    return GR_OK;
+    return check_file_grains(sc, p, err);
 }
 
 static void draw_velocities(const gr_scene *sc, gr_particles *p, size_t from, gr_rng *rng)

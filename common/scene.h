@@ -110,9 +110,18 @@ typedef struct {
     int contacts;           /* write the contact network with each frame */
 } gr_runctl;
 
+/* Scale limits (docs/reliability.md): a scene beyond them is refused up
+ * front with the reason. */
+#define GR_SCENE_MAX_GRAINS 10000000L
+#define GR_SCENE_MAX_WALLS 100000
+#define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_STR_(x) #x
+#define GR_STR(x) GR_STR_(x)
+
 /* One key = value of the file, kept for messages and for backends. */
 typedef struct {
-    char section[64], key[64], value[256];
+    char section[64], key[64];
+    const char *value;      /* into the scene's parsed copy of the text */
     int line;
     int used;
 } gr_scene_entry;
@@ -137,6 +146,8 @@ typedef struct gr_scene {
     uint64_t seed;
     size_t nentries;
     gr_scene_entry *entries;
+    char *parsed;           /* the text cut into the entries' values */
+    size_t *index, index_cap; /* (section, key) -> entry + 1, open addressing */
 } gr_scene;
 
 /* Features a scene uses; a backend declares those it supports. */

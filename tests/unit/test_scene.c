@@ -96,7 +96,7 @@ static void structure_errors(void **s)
     (void)s;
     EXPECT(BASE "[material]\nkn = 1\nkn = 2\n", "bad.ini:10:", "'kn'", "twice", "line 9");
     EXPECT("width = 3\n", "bad.ini:1:", "outside any [section]");
-    EXPECT(BASE "[material\nkn = 1\n", "bad.ini:8:", "not a valid line");
+    EXPECT(BASE "[material\nkn = 1\n", "bad.ini:8:", "closing ']'");
     EXPECT("[domain]\nheight = 20\n", "bad.ini", "'width'");
     EXPECT(BASE "[domain.x]\n", "bad.ini");
     EXPECT("[domain]\nwidth = 20\nheight = 20\nleft = periodic\n", "bad.ini", "'right'", "periodic");
