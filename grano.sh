@@ -95,7 +95,8 @@ usage: ./grano.sh COMMAND
                   then the unit suite again under address and undefined-behaviour sanitizers
   bench ARGS      build, then grano bench ARGS (e.g. ./grano.sh bench dem); with
                   --peer lammps, Debian's lammps package is installed if missing
-  run ARGS        build, then grano ARGS (e.g. ./grano.sh run run experiments/scenes/box.ini)
+  run ARGS        build, then grano ARGS (e.g. ./grano.sh run methods,
+                  ./grano.sh run info results/demo.h5)
 USAGE
 }
 
