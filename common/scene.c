@@ -566,7 +566,7 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
     return sc;
 }
 
-gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+char *gr_scene_read_text(const char *path, gr_err *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -601,8 +601,16 @@ gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
         free(buf);
         return NULL;
     }
-    gr_scene *sc = gr_scene_parse(buf, path, extra, err);
-    free(buf);
+    return buf;
+}
+
+gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+{
+    char *text = gr_scene_read_text(path, err);
+    if (!text)
+        return NULL;
+    gr_scene *sc = gr_scene_parse(text, path, extra, err);
+    free(text);
     return sc;
 }
 

@@ -137,6 +137,7 @@ typedef struct gr_scene {
     uint64_t seed;
     size_t nentries;
     gr_scene_entry *entries;
+    int set_line0;          /* line of the first --set in text, 0: none */
 } gr_scene;
 
 /* Features a scene uses; a backend declares those it supports. */
@@ -163,6 +164,16 @@ enum {
  * caller accepts besides the common ones (the backend names), NULL ended;
  * their keys are kept for the backend to read. */
 gr_scene *gr_scene_load(const char *path, const char *const *extra_sections, gr_err *err);
+/* The file's text (malloc'd, NUL ended; a NUL byte in it is refused). */
+char *gr_scene_read_text(const char *path, gr_err *err);
+/* gr_scene_load with the n settings "section.key=value" of --set applied
+ * as if they were lines of the file (the same parser and checks): each
+ * replaces the file's key or adds it. The scene's text is the text run. A
+ * message about a setting names it ("--set material.mu: ...") instead of a
+ * line; gr_scene_name_sets does that to a later message about the scene. */
+gr_scene *gr_scene_load_set(const char *path, const char *const *extra_sections,
+                            const char *const *sets, size_t n, gr_err *err);
+void gr_scene_name_sets(const gr_scene *sc, const char *const *sets, size_t n, gr_err *err);
 /* Same, from text in memory; path is used in messages. */
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);
