@@ -105,6 +105,7 @@ typedef struct {
     double until;           /* simulated time to run to */
     double output_every;    /* time between trajectory frames */
     double observe_every;   /* time between observable samples */
+    double thermo_every;    /* time between thermo lines off a terminal, 0: none */
     double checkpoint_every;
     int field_nx, field_ny; /* coarse-graining grid, 0 = none */
     int contacts;           /* write the contact network with each frame */

@@ -152,6 +152,7 @@ static int plot(const course_opts *o, const maxwell *w, gr_err *err)
 
 static void report(const course_opts *o, const maxwell *w)
 {
+    gr_progress_finish(o->pg);
     printf("maxwell: %ld elastic disks in a %g x %g box, %ld runs, %s\n", w->n, w->L, w->L, w->runs,
            course_how(o));
     printf("  collisions/N   KS distance   chi2/dof   p-value\n");
@@ -172,8 +173,10 @@ int course_maxwell(const course_opts *o, gr_err *err)
     for (int k = 0; k < NSTAGE && !rc; k++)
         if (!(w.hist[k] = gr_hist_create(NBIN, 0.0, 3.0 * w.v0, err)))
             rc = err->code;
-    for (long r = 0; r < w.runs && !rc; r++)
+    for (long r = 0; r < w.runs && !rc; r++) {
         rc = one_run(o, &w, r, err);
+        gr_progress_update(o->pg, (double)(r + 1) / (double)w.runs, "runs done", (double)(r + 1));
+    }
     if (!rc && !(rc = distances(&w, err))) {
         report(o, &w);
         rc = write_results(o, &w, err);
