@@ -9,7 +9,7 @@ BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy
-          libsiconos-numerics-dev librandom123-dev)
+          libsiconos-numerics-dev librandom123-dev python3-ase)
 
 say() { printf 'grano.sh: %s\n' "$*" >&2; }
 
