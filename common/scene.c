@@ -26,7 +26,7 @@ static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", 
 static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       NULL};
+                                       "thermo_every", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
@@ -567,6 +567,7 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "output_every", sc->run.until / 100.0, &sc->run.output_every) ||
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
+        NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
         get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err))
         return err->code;
     return GR_OK;
@@ -596,7 +597,7 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
     return sc;
 }
 
-gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+char *gr_scene_read_text(const char *path, gr_err *err)
 {
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -631,8 +632,16 @@ gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
         free(buf);
         return NULL;
     }
-    gr_scene *sc = gr_scene_parse(buf, path, extra, err);
-    free(buf);
+    return buf;
+}
+
+gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+{
+    char *text = gr_scene_read_text(path, err);
+    if (!text)
+        return NULL;
+    gr_scene *sc = gr_scene_parse(text, path, extra, err);
+    free(text);
     return sc;
 }
 

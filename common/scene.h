@@ -105,6 +105,7 @@ typedef struct {
     double until;           /* simulated time to run to */
     double output_every;    /* time between trajectory frames */
     double observe_every;   /* time between observable samples */
+    double thermo_every;    /* time between thermo lines off a terminal, 0: none */
     double checkpoint_every;
     int field_nx, field_ny; /* coarse-graining grid, 0 = none */
     int contacts;           /* write the contact network with each frame */
@@ -148,6 +149,7 @@ typedef struct gr_scene {
     gr_scene_entry *entries;
     char *parsed;           /* the text cut into the entries' values */
     size_t *index, index_cap; /* (section, key) -> entry + 1, open addressing */
+    int set_line0;          /* line of the first --set in text, 0: none */
 } gr_scene;
 
 /* Features a scene uses; a backend declares those it supports. */
@@ -175,6 +177,16 @@ enum {
  * caller accepts besides the common ones (the backend names), NULL ended;
  * their keys are kept for the backend to read. */
 gr_scene *gr_scene_load(const char *path, const char *const *extra_sections, gr_err *err);
+/* The file's text (malloc'd, NUL ended; a NUL byte in it is refused). */
+char *gr_scene_read_text(const char *path, gr_err *err);
+/* gr_scene_load with the n settings "section.key=value" of --set applied
+ * as if they were lines of the file (the same parser and checks): each
+ * replaces the file's key or adds it. The scene's text is the text run. A
+ * message about a setting names it ("--set material.mu: ...") instead of a
+ * line; gr_scene_name_sets does that to a later message about the scene. */
+gr_scene *gr_scene_load_set(const char *path, const char *const *extra_sections,
+                            const char *const *sets, size_t n, gr_err *err);
+void gr_scene_name_sets(const gr_scene *sc, const char *const *sets, size_t n, gr_err *err);
 /* Same, from text in memory; path is used in messages. */
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);

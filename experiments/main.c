@@ -22,6 +22,7 @@ static const subcommand commands[] = {
     {"silo-start", "start of a silo discharge (thesis chapter 3)", cmd_silo_start},
     {"silo-flow", "silo outflow against orifice size (thesis chapter 4)", cmd_silo_flow},
     {"course", "the event-driven course exercises (Maxwell, pressure, cooling)", cmd_course},
+    {"export", "a result's trajectory for LAMMPS, OVITO, VMD, ASE (dump, extxyz, csv)", cmd_export},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

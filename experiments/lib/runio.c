@@ -199,6 +199,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     int frames = gr_sim_type(st)->snapshot != NULL;
     const gr_runctl *rc = &sc->run;
     gr_progress *pg = o->progress ? gr_progress_create(stderr, gr_sim_time(st), rc->until, 1.0) : NULL;
+    gr_progress_thermo(pg, rc->thermo_every);
     const double eps = 1e-9 * (rc->until > 1 ? rc->until : 1);
     int status = GR_OK;
     for (;;) {
@@ -216,7 +217,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             if (io->field && (status = gr_sim_fields(st, io->field, 1.0, err)))
                 break;
             k[0] = next_index(t, t0, rc->observe_every, eps);
-            gr_progress_update(pg, t, "E_kin", obs.ekin_trans + obs.ekin_rot);
+            gr_progress_obs(pg, &obs);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
             if ((status = room_check(&io->out_room, 0, err)) || (!observed && (status = gr_sim_observe(st, &obs, err))) ||

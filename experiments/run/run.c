@@ -37,6 +37,7 @@ static void usage(FILE *f)
         "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE;\n"
         "                       an existing --out is continued (frames after CKPT dropped)\n"
         "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
+        "      --set S.K=V      set key K of section S as a scene line would (repeatable)\n"
         "  -q, --quiet          no progress line\n"
         "  -h, --help           this help\n\n"
         "A checkpoint <out>.ckpt is written every [run] checkpoint_every and at the end;\n"
@@ -46,6 +47,8 @@ static void usage(FILE *f)
 
 typedef struct {
     const char *scene, *method, *out, *restart, *snapshot;
+    const char *sets[64];
+    size_t nsets;
     double until;
     long long seed;
     int force, quiet;
@@ -58,7 +61,8 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"seed", required_argument, NULL, 's'},   {"out", required_argument, NULL, 'o'},
         {"force", no_argument, NULL, 'f'},        {"restart", required_argument, NULL, 'r'},
         {"snapshot", required_argument, NULL, 'P'}, {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+        {"help", no_argument, NULL, 'h'},         {"set", required_argument, NULL, 'S'},
+        {NULL, 0, NULL, 0}};
     *a = (run_args){.method = "dem", .until = NAN, .seed = -1};
     int c;
     opterr = 0;
@@ -87,6 +91,13 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 'r': a->restart = optarg; break;
         case 'P': a->snapshot = optarg; break;
         case 'q': a->quiet = 1; break;
+        case 'S':
+            if (a->nsets == sizeof a->sets / sizeof a->sets[0]) {
+                fprintf(stderr, "grano run: --set: at most %zu settings\n", a->nsets);
+                return 2;
+            }
+            a->sets[a->nsets++] = optarg;
+            break;
         case 'h': usage(stdout); exit(0);
         case ':':
             fprintf(stderr, "grano run: option '%s' needs a value\n", argv[optind - 1]);
@@ -146,7 +157,7 @@ int cmd_run(int argc, char **argv)
     }
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
-    gr_scene *sc = gr_scene_load(a.scene, names, &e);
+    gr_scene *sc = gr_scene_load_set(a.scene, names, a.sets, a.nsets, &e);
     if (!sc)
         return fail_msg(&e);
     if (a.seed >= 0)
@@ -171,6 +182,7 @@ int cmd_run(int argc, char **argv)
     gr_run_opts ro = {.out = out, .ckpt = ckpt, .restart = a.restart, .force = a.force,
                       .progress = !a.quiet, .snapshot = a.snapshot};
     rc = gr_run_scene(sc, m, &ro, &e);
+    gr_scene_name_sets(sc, a.sets, a.nsets, &e);
     if (rc)
         fail_msg(&e);
     else if (!a.quiet)
