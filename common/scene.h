@@ -167,6 +167,11 @@ gr_scene *gr_scene_load(const char *path, const char *const *extra_sections, gr_
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);
 void gr_scene_free(gr_scene *sc);
+/* A copy of scene text (malloc'd) with key of section set to value: the
+ * key's line replaced, or the key added at the end of its section, or the
+ * section added at the end. For sweeps over a scene's parameters. */
+char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
+                        gr_err *err);
 
 unsigned gr_scene_features(const gr_scene *sc);
 const char *gr_feature_name(unsigned feature_bit);
