@@ -20,6 +20,7 @@ static const subcommand commands[] = {
     {"silo-start", "start of a silo discharge (thesis chapter 3)", cmd_silo_start},
     {"silo-flow", "silo outflow against orifice size (thesis chapter 4)", cmd_silo_flow},
     {"course", "the event-driven course exercises (Maxwell, pressure, cooling)", cmd_course},
+    {"compare", "the same scenes on every method: speed against error", cmd_compare},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
