@@ -71,25 +71,30 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
     FILE *gp = gr_plot_open_saved(png, 900, 620, err);
     if (!gp)
         return err->code;
-    int nrow = 0;
+    int nrow = 0, has[CMP_MAXROWS] = {0};
     for (int r = 0; c->rows[r].method; r++) {
         fprintf(gp, "$r%d << EOD\n", r);
         for (size_t i = 0; i < n; i++)
-            if (pts[i].row == &c->rows[r] && pts[i].nok > 0)
+            if (pts[i].row == &c->rows[r] && pts[i].nok > 0) {
                 fprintf(gp, "%.6g %.6g %.6g \"%s\"\n", fmax(pts[i].error, floor_err), pts[i].wall,
                         pts[i].error_sem, pts[i].value[0] ? pts[i].value : "");
+                has[r] = 1;
+            }
         fprintf(gp, "EOD\n");
         nrow++;
     }
     fprintf(gp, "set title \"%s: %s\"\nset logscale xy\nset format x '10^{%%T}'\n"
-                "set xlabel 'relative error of %s (errors below 1e-16 drawn at 1e-16)'\n"
+                "set xlabel \"relative error of %s (errors below 1e-16 drawn at 1e-16)\"\n"
                 "set ylabel 'wall time per run / s'\nset key outside right\nset grid\n",
             c->name, c->quantity, c->quantity);
     fprintf(gp, "plot ");
-    for (int r = 0; r < nrow; r++)
-        fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 t '%s%s%s', $r%d u 1:2:4 w labels offset 0.8,0.8 font ',9' notitle",
-                r ? ", " : "", r, c->rows[r].label, c->rows[r].knob ? " by " : "",
-                c->rows[r].knob ? c->rows[r].knob : "", r);
+    for (int r = 0, first = 1; r < nrow; r++)
+        if (has[r]) {
+            fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 t '%s%s%s', $r%d u 1:2:4 w labels offset 0.8,0.8 font ',9' "
+                        "notitle", first ? "" : ", ", r, c->rows[r].label, c->rows[r].knob ? " by " : "",
+                    c->rows[r].knob ? c->rows[r].knob : "", r);
+            first = 0;
+        }
     fprintf(gp, "\n");
     return gr_plot_close_saved(gp, png, err);
 }

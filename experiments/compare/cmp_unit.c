@@ -149,6 +149,6 @@ void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n)
     for (const char *t = sc ? sc->text : ""; *t; t++)
         h = h * 33 + (unsigned char)*t;
     gr_scene_free(sc);
-    snprintf(key, n, "compare v1 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
+    snprintf(key, n, "compare v2 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
              pl->quick ? "quick" : "full", h);
 }
