@@ -26,6 +26,7 @@ typedef struct {
     const char *full;    /* comma-separated values of the full comparison */
     const char *quick;   /* those of --quick */
     const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
+    int ref;             /* 1: this row's result is the case's reference (a long run) */
 } cmp_row;
 
 /* What a measurement gives: the quantity, its statistical error from
@@ -39,7 +40,8 @@ typedef struct {
 typedef struct cmp_case cmp_case;
 /* Measure on a fresh instance of the scene. */
 typedef int (*cmp_measure_fn)(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
-/* The reference value (and aux's reference in *aux_ref) for the scene. */
+/* The reference value (and aux's reference in *aux_ref) for the scene;
+ * NULL: the pooled result of the case's row marked ref. */
 typedef double (*cmp_ref_fn)(const gr_scene *sc, double *aux_ref);
 /* The initial grains (NULL: the scene's [init]). */
 typedef int (*cmp_prepare_fn)(const gr_scene *sc, gr_particles *p, gr_err *err);
@@ -72,6 +74,8 @@ int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_mea
 double cmp_ref_column(const gr_scene *sc, double *aux_ref);
 int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 double cmp_ref_eos(const gr_scene *sc, double *aux_ref);
+int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 
 /* The runs of a comparison: one per (case, row, knob value, seed). */
 typedef struct {

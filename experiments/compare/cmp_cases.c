@@ -11,8 +11,9 @@
  * (the dsmc-cell rows show it).
  *
  * lgca (lattice gas, fields only) is not in any row yet: its rows (knob:
- * the lattice resolution) go into the vibrated-bed and silo cases when
- * those cases and the backend land (docs/comparison.md). */
+ * the lattice resolution) go into the vibrated and silo cases when the
+ * backend lands (docs/comparison.md); their measurements read snapshots
+ * and outflow, which a lattice backend must give as fields and outflow. */
 #include <stddef.h>
 
 #include "cmp.h"
@@ -65,6 +66,23 @@ static const cmp_case cases[] = {
          {"edmd", "edmd", NULL, "", "", NULL},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,2.5e-4", NULL},
          {"dsmc", "dsmc", "dsmc.dt", "0.1,0.05,0.02", "0.1,0.02", "dsmc.cell=8"},
+     }},
+    {.name = "vibrated", .scene = "vibrated.ini", .quantity = "mean height", .aux = "mean temperature",
+     .quick_set = "run.until=60", .seeds_full = 8, .seeds_quick = 4, .tol_edmd = 0,
+     .measure = cmp_measure_bed, .reference = NULL,
+     .rows = {
+         {"edmd", "edmd-long", "run.until", "2000", "300", NULL, 1},
+         {"dem", "dem", "dem.dt", "1e-3,5e-4,2.5e-4", "1e-3,2.5e-4", NULL, 0},
+         {"dsmc", "dsmc", "dsmc.dt", "0.01,0.005,0.0025", "0.01,0.0025", "dsmc.cell=4", 0},
+     }},
+    {.name = "silo", .scene = "silo.ini", .quantity = "outflow rate", .aux = "kinetic energy per grain",
+     .quick_set = "run.until=20", .seeds_full = 3, .seeds_quick = 1, .tol_edmd = 0,
+     .measure = cmp_measure_silo, .reference = NULL,
+     .rows = {
+         {"dem", "dem-long", "run.until", "200", "40", "dem.dt=1.25e-4", 1},
+         {"dem", "dem", "dem.dt", "5e-4,2.5e-4", "5e-4", NULL, 0},
+         {"cd", "cd", "cd.tol", "1e-2,1e-3,1e-4", "1e-2,1e-3", "cd.dt=2e-3", 0},
+         {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-4", "edmd.collapse=tc", 0},
      }},
     {.name = NULL},
 };

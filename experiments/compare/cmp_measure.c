@@ -302,3 +302,65 @@ double cmp_ref_eos(const gr_scene *sc, double *aux_ref)
     *aux_ref = packing(sc, free_area(sc));
     return 1;
 }
+
+/* --------------------------------------------------------- vibrated bed */
+
+#define BED_SAMPLES 20 /* snapshots per window */
+
+/* After the first fifth of the run, in NBLOCKS windows of BED_SAMPLES
+ * snapshots: the mean height of the grains (the first moment of the
+ * density profile) and their mean granular temperature (aux). */
+int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
+{
+    (void)c;
+    double H[NBLOCKS], T[NBLOCKS], t0 = sc->run.until / 5, sem;
+    gr_particles *p = gr_particles_create(0, err);
+    int rc = !p || gr_sim_advance(s, t0, 0, err);
+    for (int b = 0; b < NBLOCKS && !rc; b++) {
+        H[b] = T[b] = 0;
+        for (int k = 1; k <= BED_SAMPLES && !rc; k++) {
+            double t = t0 + (sc->run.until - t0) * (b * BED_SAMPLES + k) / (NBLOCKS * BED_SAMPLES);
+            gr_obs o;
+            if ((rc = gr_sim_advance(s, t, 0, err) || gr_sim_snapshot(s, p, err)))
+                break;
+            gr_obs_from_particles(p, sc->gravity, &o);
+            H[b] += o.epot_grav / (sc->gravity * (double)o.n_mobile) / BED_SAMPLES;
+            T[b] += o.temperature / BED_SAMPLES;
+        }
+    }
+    gr_particles_free(p);
+    if (rc)
+        return err->code ? err->code : GR_ERUN;
+    gr_block_average(H, NBLOCKS, 1, NULL, &out->value, &out->sem);
+    gr_block_average(T, NBLOCKS, 1, NULL, &out->aux, &sem);
+    return steps_done(s, &out->steps, err);
+}
+
+/* ------------------------------------------------------------------ silo */
+
+/* The outflow rate (grains per tau) in NBLOCKS windows from 5 tau after
+ * the orifice opens to the end of the run; aux: the mean kinetic energy per
+ * grain over the windows' ends. */
+int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
+{
+    (void)c;
+    double W[NBLOCKS], K[NBLOCKS], t0 = sc->silo.open_time + 5, sem;
+    if (!(t0 < sc->run.until))
+        return gr_fail(err, GR_EINPUT, "%s: the silo case needs [silo] open_time + 5 < [run] until", sc->path);
+    gr_obs o;
+    int rc = gr_sim_advance(s, t0, 0, err) || gr_sim_observe(s, &o, err);
+    uint64_t last = o.outflow;
+    for (int b = 0; b < NBLOCKS && !rc; b++) {
+        double t1 = t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS;
+        if ((rc = gr_sim_advance(s, t1, 0, err) || gr_sim_observe(s, &o, err)))
+            break;
+        W[b] = (double)(o.outflow - last) / ((sc->run.until - t0) / NBLOCKS);
+        K[b] = o.ekin_trans / (double)(o.n_mobile ? o.n_mobile : 1);
+        last = o.outflow;
+    }
+    if (rc)
+        return err->code ? err->code : GR_ERUN;
+    gr_block_average(W, NBLOCKS, 1, NULL, &out->value, &out->sem);
+    gr_block_average(K, NBLOCKS, 1, NULL, &out->aux, &sem);
+    return steps_done(s, &out->steps, err);
+}

@@ -62,7 +62,7 @@ gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
         rc = apply_settings(&text, u->c->quick_set, "the case's quick settings", err);
     if (!rc && u->row->fixed)
         rc = apply_settings(&text, u->row->fixed, "the row's settings", err);
-    if (!rc && u->row->knob) {
+    if (!rc && u->row->knob && u->value[0]) {
         snprintf(set, sizeof set, "%s=%s", u->row->knob, u->value);
         rc = apply_settings(&text, set, "the row's knob", err);
     }

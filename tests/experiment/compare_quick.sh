@@ -8,13 +8,7 @@
 set -u
 GRANO=$1
 PY=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); [ -f "$tmp/err" ] && sed 's/^/# /' "$tmp/err"; }
-check() { if [ "$1" = 0 ]; then ok "$2"; else notok "$2"; fi; }
+. "$(dirname "$0")/tap.sh"
 
 "$GRANO" compare --help >"$tmp/out" 2>&1 && grep -q "usage: grano compare" "$tmp/out"
 check $? "compare --help"
