@@ -191,6 +191,12 @@ void gr_scene_name_sets(const gr_scene *sc, const char *const *sets, size_t n, g
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);
 void gr_scene_free(gr_scene *sc);
+/* A copy of scene text (malloc'd) with key of section set to value, as
+ * --set does it (scene_set.c): the key's line commented out and
+ * "[section]\nkey = value" appended, so every other line keeps its number.
+ * For sweeps over a scene's parameters. */
+char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
+                        gr_err *err);
 
 unsigned gr_scene_features(const gr_scene *sc);
 const char *gr_feature_name(unsigned feature_bit);

@@ -110,6 +110,21 @@ static void rename_lines(const char *path, int line0, const setting *st, size_t 
     }
 }
 
+char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
+                        gr_err *err)
+{
+    setting st;
+    if (strlen(section) >= sizeof st.section || strlen(key) >= sizeof st.key || strlen(value) >= sizeof st.value) {
+        gr_fail(err, GR_EINPUT, "%s.%s: name or value too long", section, key);
+        return NULL;
+    }
+    snprintf(st.section, sizeof st.section, "%s", section);
+    snprintf(st.key, sizeof st.key, "%s", key);
+    snprintf(st.value, sizeof st.value, "%s", value);
+    int line0;
+    return apply("scene text", text, &st, 1, &line0, err);
+}
+
 static int split_all(const char *const *sets, size_t n, setting *st, gr_err *err)
 {
     for (size_t i = 0; i < n; i++) {

@@ -23,6 +23,7 @@ static const subcommand commands[] = {
     {"silo-flow", "silo outflow against orifice size (thesis chapter 4)", cmd_silo_flow},
     {"course", "the event-driven course exercises (Maxwell, pressure, cooling)", cmd_course},
     {"export", "a result's trajectory for LAMMPS, OVITO, VMD, ASE (dump, extxyz, csv)", cmd_export},
+    {"compare", "the same scenes on every method: speed against error", cmd_compare},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 
