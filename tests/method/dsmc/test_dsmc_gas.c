@@ -53,9 +53,9 @@ static double a2_of(const gr_dsmc *d)
 {
     double mx = 0, my = 0, s2 = 0, s4 = 0, n = (double)d->n;
     for (size_t i = 0; i < d->n; i++)
-        mx += d->p->vx[i] / n, my += d->p->vy[i] / n;
+        mx += d->vx[i] / n, my += d->vy[i] / n;
     for (size_t i = 0; i < d->n; i++) {
-        double ux = d->p->vx[i] - mx, uy = d->p->vy[i] - my, u2 = ux * ux + uy * uy;
+        double ux = d->vx[i] - mx, uy = d->vy[i] - my, u2 = ux * ux + uy * uy;
         s2 += u2 / n, s4 += u2 * u2 / n;
     }
     return s4 / (2 * s2 * s2) - 1;
@@ -186,9 +186,9 @@ static void hcs_a2(double alpha, double *got, double *err)
          * momentum collisions conserve) would grow by f every time */
         double f = 1.0 / sqrt(temp(s)), mx = 0, my = 0;
         for (size_t i = 0; i < d->n; i++)
-            mx += d->p->vx[i] / (double)d->n, my += d->p->vy[i] / (double)d->n;
+            mx += d->vx[i] / (double)d->n, my += d->vy[i] / (double)d->n;
         for (size_t i = 0; i < d->n; i++)
-            d->p->vx[i] = (d->p->vx[i] - mx) * f, d->p->vy[i] = (d->p->vy[i] - my) * f;
+            d->vx[i] = (d->vx[i] - mx) * f, d->vy[i] = (d->vy[i] - my) * f;
         /* the running maximum is a bound, not a measurement: recomputed
          * from the fastest particle after the rescaling */
         d->gmax[0] = 0.0;
@@ -233,7 +233,7 @@ static void test_barometric(void **st)
         run_to(s, 100 + k * 0.5);
         Tsum += temp(s);
         for (size_t i = 0; i < d->n; i++) {
-            int b = (int)floor((d->p->y[i] - 0.5) / dy);
+            int b = (int)floor((d->y[i] - 0.5) / dy);
             if (b >= 0 && b < NB)
                 h[b] += 1;
         }
