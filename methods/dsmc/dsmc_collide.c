@@ -93,6 +93,43 @@ static void sort_cells(gr_dsmc *d)
     d->cell = d->rank, d->rank = cell;
 }
 
+/* A partner displaced through a wall is put back on it (at a radius from
+ * it: the next flight bounces it); through a periodic side, wrapped. */
+static void keep_inside(gr_dsmc *d, size_t i)
+{
+    const gr_bc *s = d->sc.side;
+    double r = 0.5 * d->sigma;
+    if (s[GR_LEFT] == GR_BC_PERIODIC)
+        d->x[i] -= d->Lx * floor(d->x[i] / d->Lx);
+    if (s[GR_BOTTOM] == GR_BC_PERIODIC)
+        d->y[i] -= d->Ly * floor(d->y[i] / d->Ly);
+    if (s[GR_LEFT] == GR_BC_WALL && d->x[i] < r)
+        d->x[i] = r;
+    if (s[GR_RIGHT] == GR_BC_WALL && d->x[i] > d->Lx - r)
+        d->x[i] = d->Lx - r;
+    if (s[GR_BOTTOM] == GR_BC_WALL && d->y[i] < r)
+        d->y[i] = r;
+    if (s[GR_TOP] == GR_BC_WALL && d->y[i] > d->Ly - r)
+        d->y[i] = d->Ly - r;
+}
+
+/* The Enskog displacement (the consistent Boltzmann algorithm of
+ * Alexander, Garcia and Alder, PRL 74, 5212 (1995)): after the collision
+ * the partners jump apart along the normal, i by -delta n and j by
+ * +delta n. Carrying their new momenta, the jump moves momentum
+ * delta (p_j' - p_i').n = delta m alpha g_n across the pair, which equals
+ * the collisional transfer sigma J = sigma m (1 + alpha) g_n / 2 of hard
+ * disks for delta = sigma (1 + alpha) / (2 alpha) (sigma when elastic, as
+ * in the paper). */
+static void displace(gr_dsmc *d, size_t i, size_t j, double nx, double ny)
+{
+    double delta = d->sigma * (1.0 + d->alpha) / (2.0 * d->alpha);
+    d->x[i] -= delta * nx, d->y[i] -= delta * ny;
+    d->x[j] += delta * nx, d->y[j] += delta * ny;
+    keep_inside(d, i);
+    keep_inside(d, j);
+}
+
 /* The inelastic smooth-disk rule for equal masses: the normal n makes the
  * angle asin(b / sigma) with the relative velocity, b uniform; the normal
  * relative velocity is reversed and scaled by alpha, momentum is kept. */
@@ -105,6 +142,8 @@ static void collide_pair(gr_dsmc *d, cell_rng *r, size_t i, size_t j, double gx,
     d->vx[i] -= k * nx, d->vy[i] -= k * ny;
     d->vx[j] += k * nx, d->vy[j] += k * ny;
     d->virial += d->sigma * d->mass * k;
+    if (d->par.enskog)
+        displace(d, i, j, nx, ny);
 }
 
 /* Speed bound for a cell whose running maximum is still zero: twice its

@@ -33,6 +33,15 @@ static int set_law(gr_dsmc *d, const gr_scene *sc, gr_err *err)
     }
     d->alpha = isnan(m->restitution) ? 1.0 : m->restitution;
     d->alpha_w = isnan(m->wall_restitution) ? d->alpha : m->wall_restitution;
+    /* the Enskog displacement sigma (1 + alpha) / (2 alpha) (dsmc_collide.c) */
+    if (d->par.enskog && d->alpha < 0.2) {
+        char where[1200];
+        gr_scene_where(sc, "dsmc", "enskog", where, sizeof where);
+        return gr_fail(err, GR_EINPUT,
+                       "%s: [dsmc] enskog = yes needs a restitution of at least 0.2 (it is %g): the partners' "
+                       "displacement sigma (1 + alpha) / (2 alpha) grows without bound",
+                       where, d->alpha);
+    }
     d->g = sc->gravity;
     d->W = sc->species[0].weight > 0 ? sc->species[0].weight : 1.0;
     d->Lx = sc->width, d->Ly = sc->height;
@@ -207,6 +216,7 @@ void gr_dsmc_reset_window(gr_dsmc *d)
 {
     d->wall_mom = 0;
     d->wall_time = 0;
+    d->virial = 0;
 }
 
 double gr_dsmc_bytes_per_particle(const gr_dsmc *d)
