@@ -1,8 +1,7 @@
 /* Save and load the full state: particles in their (cell) order with
- * their ranks, counters, the
- * window and the per-cell running maxima of the relative speed (without
- * which a restart would draw other candidate counts). Calls no other file
- * of the backend. */
+ * their ranks, counters and the window. The collisions' random numbers are
+ * counted by step and cell, so no generator state is needed. Calls no
+ * other file of the backend. */
 #include "dsmc_int.h"
 
 enum { M_N, M_STEP, M_PAIRS, M_WALLS, M_CAND, M_LOST, M_NCELL, M_COUNT };
@@ -18,7 +17,7 @@ int gr_dsmc_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err)
     if (gr_ckpt_put_i64(ck, "dsmc_meta", meta, M_COUNT, err) || gr_ckpt_put_f64(ck, "dsmc_real", real, R_COUNT, err) ||
         gr_ckpt_put_f64(ck, "dsmc_x", d->x, n, err) || gr_ckpt_put_f64(ck, "dsmc_y", d->y, n, err) ||
         gr_ckpt_put_f64(ck, "dsmc_vx", d->vx, n, err) || gr_ckpt_put_f64(ck, "dsmc_vy", d->vy, n, err) ||
-        gr_ckpt_put_u32(ck, "dsmc_rank", d->rank, n, err) || gr_ckpt_put_f64(ck, "dsmc_gmax", d->gmax, nc, err))
+        gr_ckpt_put_u32(ck, "dsmc_rank", d->rank, n, err))
         return err->code;
     return GR_OK;
 }
@@ -35,7 +34,7 @@ int gr_dsmc_load(gr_dsmc *d, gr_ckpt *ck, gr_err *err)
                        (long long)meta[M_N], (long long)meta[M_NCELL], n, nc);
     if (gr_ckpt_get_f64(ck, "dsmc_x", d->x, n, err) || gr_ckpt_get_f64(ck, "dsmc_y", d->y, n, err) ||
         gr_ckpt_get_f64(ck, "dsmc_vx", d->vx, n, err) || gr_ckpt_get_f64(ck, "dsmc_vy", d->vy, n, err) ||
-        gr_ckpt_get_u32(ck, "dsmc_rank", d->rank, n, err) || gr_ckpt_get_f64(ck, "dsmc_gmax", d->gmax, nc, err))
+        gr_ckpt_get_u32(ck, "dsmc_rank", d->rank, n, err))
         return err->code;
     d->step = (uint64_t)meta[M_STEP], d->pairs = (uint64_t)meta[M_PAIRS], d->walls = (uint64_t)meta[M_WALLS];
     d->cand = (uint64_t)meta[M_CAND], d->lost = (uint64_t)meta[M_LOST];

@@ -46,7 +46,6 @@ typedef struct gr_dsmc {
     double *x, *y, *vx, *vy, *tmp; /* tmp: the sort's gather buffer */
     uint32_t *rank, *cell, *order; /* cell: also the gather buffer of rank */
     int64_t *ids;          /* ids by rank (sorted) */
-    double *gmax;          /* per-cell running maximum relative speed */
     uint32_t *start;       /* first particle of each cell; nc + 1: the gone */
     uint64_t key;          /* the collisions' counter-based stream (Philox) */
     gr_rng *floor_rng;

@@ -14,7 +14,7 @@ void gr_dsmc_free(gr_dsmc *d)
     gr_particles_free(d->view);
     free(d->x), free(d->y), free(d->vx), free(d->vy), free(d->tmp);
     free(d->rank), free(d->cell), free(d->order), free(d->ids);
-    free(d->gmax), free(d->start);
+    free(d->start);
     free(d);
 }
 
@@ -141,8 +141,8 @@ static int make_cells(gr_dsmc *d, gr_err *err)
     d->ny = (int)fmax(1.0, fmin(4096.0, floor(d->Ly / side)));
     d->cw = d->Lx / d->nx, d->ch = d->Ly / d->ny;
     size_t nc = (size_t)d->nx * (size_t)d->ny;
-    d->gmax = calloc(nc, sizeof *d->gmax), d->start = calloc(nc + 2, sizeof *d->start);
-    if (!d->gmax || !d->start)
+    d->start = calloc(nc + 2, sizeof *d->start);
+    if (!d->start)
         return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
     double T = temperature(d), tau = 1.0 / (2.0 * sqrt(M_PI) * n * d->sigma * sqrt(T / d->mass));
     double ppc = (double)d->n / (double)nc;
@@ -223,5 +223,5 @@ double gr_dsmc_bytes_per_particle(const gr_dsmc *d)
 {
     double per = 5.0 * sizeof *d->x + 3.0 * sizeof *d->rank + sizeof *d->ids;
     double nc = (double)d->nx * (double)d->ny;
-    return per * (double)(d->n + 1) / (double)d->n + nc * (sizeof *d->gmax + sizeof *d->start) / (double)d->n;
+    return per * (double)(d->n + 1) / (double)d->n + (nc + 2) * sizeof *d->start / (double)d->n;
 }

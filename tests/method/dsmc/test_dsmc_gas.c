@@ -125,9 +125,6 @@ static void hcs_a2(double alpha, double *got, double *err)
             mx += d->vx[i] / (double)d->n, my += d->vy[i] / (double)d->n;
         for (size_t i = 0; i < d->n; i++)
             d->vx[i] = (d->vx[i] - mx) * f, d->vy[i] = (d->vy[i] - my) * f;
-        /* the running maximum is a bound, not a measurement: recomputed
-         * from the fastest particle after the rescaling */
-        d->gmax[0] = 0.0;
         if (k > 10)
             sum += ds_a2(d);
     }
