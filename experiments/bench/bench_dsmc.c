@@ -17,6 +17,13 @@
 #include "opts.h"
 #include "scene.h"
 
+/* edmd's cell side in the dilute scenes (diameters): at packing 0.01 its
+ * fastest, 4 times faster than its default of one diameter, which spends
+ * its events on cell crossings (cells of 1, 3, 6, 12, 24, 48: CPU ratio
+ * to dsmc 40, 16, 11, 9.5, 17, 35 at N = 2e4). */
+#define EDMD_CELL 12.0
+
+
 static void usage(FILE *f)
 {
     fprintf(f,
@@ -35,28 +42,45 @@ static void usage(FILE *f)
             "  RATIO method=dsmc peer=edmd n=N cpu_ratio=X t_ratio=Y\n"
             "(edmd's CPU time over dsmc's; dsmc's final temperature over edmd's). Defaults --n 1e4,1e5;\n"
             "--quick: --n 2000, one round.\n"
+            "--sweep: speed against error on the cooling of --compare with N real grains (default 4e4,\n"
+            "--quick 4000), edmd the reference, R seeds each (--rounds, default 3; --quick 2): dsmc with dt\n"
+            "0.05 to 2 mean free times, cells of 0.25 to 4 mean free paths, weights W = 1 to 64; per row\n"
+            "  SWEEP method=dsmc knob=K value=V n=N cpu_s=C T_over_T0=T stderr=S error=E\n"
             "--rng: draws per second of the generators the backend could use (GSL's mt19937 and others\n"
             "through gsl_rng_uniform, Random123's Philox and Threefry).\n");
 }
 
-/* The bench scene as a file would give it. */
-static gr_scene *bench_scene(long n, double eta, double alpha, double dtf, double ppc, int seed, gr_err *err)
+/* The bench scene as a file would give it: n simulated particles of
+ * weight W at packing fraction eta of the real grains, dt and the cell
+ * side (0: the method's default) in absolute units. */
+static gr_scene *bench_scene(long n, double eta, double alpha, double dt, double cell, double W, int seed,
+                             const char *enskog, gr_err *err)
 {
-    double L = sqrt((double)n * M_PI / 4.0 / eta), nd = (double)n / (L * L);
-    double tau = 1.0 / (2.0 * sqrt(M_PI) * nd), cell = sqrt(ppc / nd);
+    double L = sqrt((double)n * W * M_PI / 4.0 / eta);
     long side = (long)ceil(sqrt((double)n));
-    char text[1400];
+    double spacing = L / ((double)side + 0.01);
+    char init[160], text[1400];
+    /* a lattice is fastest to lay out; the scene format takes spacings up
+     * to 10 d, beyond which random placement is as quick (dilute) */
+    if (spacing <= 10)
+        snprintf(init, sizeof init, "kind = lattice\nspacing = %.17g", spacing);
+    else
+        snprintf(init, sizeof init, "kind = random");
     snprintf(text, sizeof text,
              "[scene]\nname = bench-dsmc\nseed = %d\n"
              "[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"
              "bottom = periodic\ntop = periodic\n[material]\nrestitution = %.17g\n"
-             "[species]\ndiameter = 1\ncount = %ld\n"
-             "[init]\nkind = lattice\nspacing = %.17g\nvelocity = gaussian\nv0 = 1\n"
-             "[dsmc]\ndt = %.17g\ncell = %.17g\n",
-             seed, L, L, alpha, n, L / ((double)side + 0.01), dtf * tau, cell);
+             "[species]\ndiameter = 1\ncount = %ld\nweight = %.17g\n"
+             "[init]\n%s\nvelocity = gaussian\nv0 = 1\n"
+             "[dsmc]\ndt = %.17g\ncell = %.17g\nenskog = %s\n[edmd]\ncell = %g\n",
+             seed, L, L, alpha, n, W, init, dt, cell, enskog, EDMD_CELL);
     const char *extra[] = {"dsmc", "edmd", NULL};
     return gr_scene_parse(text, "(bench dsmc)", extra, err);
 }
+
+/* Mean free time and path of the real grains at packing eta, T = 1. */
+static double tau_of(double eta) { return 1.0 / (2.0 * sqrt(M_PI) * eta * 4.0 / M_PI); }
+static double lambda_of(double eta) { return 1.0 / (2.0 * M_SQRT2 * eta * 4.0 / M_PI); }
 
 static gr_sim *bench_sim(const char *method, const gr_scene *sc, gr_err *err)
 {
@@ -79,7 +103,8 @@ static uint64_t counter(const gr_sim *s, const char *name)
 static int throughput(long n, double eta, double dtf, double ppc)
 {
     gr_err err = {0};
-    gr_scene *sc = bench_scene(n, eta, 1.0, dtf, ppc, 1, &err);
+    double nd = eta * 4.0 / M_PI;
+    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, "no", &err);
     gr_sim *s = sc ? bench_sim("dsmc", sc, &err) : NULL;
     long steps = (long)fmax(5.0, ceil(2e7 / (double)n));
     int rc = !s || gr_sim_advance(s, INFINITY, 3, &err);
@@ -106,11 +131,13 @@ static int throughput(long n, double eta, double dtf, double ppc)
     return 0;
 }
 
-/* One cooling run to t_end: CPU seconds and T(t_end) / T(0). */
-static int cool(const char *method, long n, int seed, double *cpu, double *tr, gr_err *err)
+/* One cooling run (restitution 0.9, packing 0.01) to t_end, where Haff's
+ * law gives T0/4: CPU seconds and T(t_end) / T(0). */
+static int cool(const char *method, long n, double dt, double cell, double W, const char *enskog, int seed,
+                double *cpu, double *tr, gr_err *err)
 {
     const double alpha = 0.9, eta = 0.01;
-    gr_scene *sc = bench_scene(n, eta, alpha, 0.2, 8, seed, err);
+    gr_scene *sc = bench_scene(n, eta, alpha, dt, cell, W, seed, enskog, err);
     gr_sim *s = sc ? bench_sim(method, sc, err) : NULL;
     gr_obs o0, o1;
     int rc = !s || gr_sim_observe(s, &o0, err);
@@ -135,7 +162,9 @@ static int compare(const double *ns, size_t nn, int rounds)
         for (int r = 0; r < rounds; r++) {
             gr_err err = {0};
             double a, b, ta, tb;
-            if (cool("dsmc", n, 1 + r, &a, &ta, &err) || cool("edmd", n, 1 + r, &b, &tb, &err)) {
+            double dt = 0.2 * tau_of(0.01), cell = sqrt(8 / (0.01 * 4 / M_PI));
+            if (cool("dsmc", n, dt, cell, 1, "no", 1 + r, &a, &ta, &err) ||
+                cool("edmd", n, dt, cell, 1, "no", 1 + r, &b, &tb, &err)) {
                 fprintf(stderr, "grano bench dsmc --compare: N = %ld: %s\n", n, err.msg);
                 return err.code ? err.code : 1;
             }
@@ -148,6 +177,70 @@ static int compare(const double *ns, size_t nn, int rounds)
         fflush(stdout);
     }
     return 0;
+}
+
+/* One knob setting: R seeds of dsmc, their mean T/T0 and CPU seconds. */
+static int sweep_row(const char *knob, double value, long n, double dt, double cell, double W, const char *enskog,
+                     int R, double ref)
+{
+    double cpu = 0, sum = 0, sum2 = 0;
+    for (int r = 0; r < R; r++) {
+        gr_err err = {0};
+        double c, tr;
+        if (cool("dsmc", n, dt, cell, W, enskog, 1 + r, &c, &tr, &err)) {
+            fprintf(stderr, "grano bench dsmc --sweep: %s = %g: %s\n", knob, value, err.msg);
+            return err.code ? err.code : 1;
+        }
+        cpu += c, sum += tr, sum2 += tr * tr;
+    }
+    double m = sum / R, se = R > 1 ? sqrt(fmax(0, sum2 / R - m * m) / (R - 1)) : NAN;
+    double ppc = (double)n * cell * cell / (n * W * M_PI / 4 / 0.01);
+    printf("SWEEP method=dsmc knob=%s value=%g enskog=%s n=%ld ppc=%.3g cpu_s=%.4g T_over_T0=%.5f stderr=%.5f "
+           "error=%.4f\n",
+           knob, value, enskog, n, ppc, cpu / R, m, se, fabs(m / ref - 1));
+    fflush(stdout);
+    return 0;
+}
+
+/* Speed against error: the cooling of --compare with N real grains, edmd
+ * the reference (R seeds), then dsmc with one knob moved at a time from
+ * dt = 0.2 mean free times, cells of half a mean free path, W = 1: dt in
+ * mean free times, the cell side in mean free paths, the weight W (N / W
+ * simulated particles). */
+static int sweep(long n, int R)
+{
+    double tau = tau_of(0.01), lam = lambda_of(0.01), ref = 0, cref = 0;
+    for (int r = 0; r < R; r++) {
+        gr_err err = {0};
+        double c, tr;
+        if (cool("edmd", n, 1, 0, 1, "no", 1 + r, &c, &tr, &err)) {
+            fprintf(stderr, "grano bench dsmc --sweep: edmd: %s\n", err.msg);
+            return err.code ? err.code : 1;
+        }
+        ref += tr / R, cref += c / R;
+    }
+    printf("# HCS, alpha 0.9, packing 0.01, N = %ld, to Haff's T0/4; %d seeds per row; error = |T/T0 / edmd's - 1|\n",
+           n, R);
+    printf("SWEEP method=edmd knob=reference value=0 n=%ld cpu_s=%.4g T_over_T0=%.5f stderr=nan error=0\n", n, cref,
+           ref);
+    const double dts[] = {0.05, 0.1, 0.2, 0.5, 1.0, 2.0}, cells[] = {0.25, 0.5, 1, 2, 4}, ws[] = {1, 4, 16, 64};
+    int rc = 0;
+    /* both rates: Boltzmann's leaves out chi(0.01) = 1.016 of edmd's
+     * hard disks, which sets its error floor; the Enskog mode has it */
+    for (int e = 0; e < 2 && !rc; e++) {
+        const char *ens = e ? "yes" : "no";
+        for (int k = 0; k < 6 && !rc; k++)
+            rc = sweep_row("dt", dts[k], n, dts[k] * tau, 0.5 * lam, 1, ens, R, ref);
+        for (int k = 0; k < 5 && !rc; k++)
+            rc = sweep_row("cell", cells[k], n, 0.2 * tau, cells[k] * lam, 1, ens, R, ref);
+        /* W: N / W simulated particles, in cells kept at 8 of them on
+         * average (a pair alone in its cell collides again and again) */
+        for (int k = 0; k < 4 && !rc; k++) {
+            double cell = sqrt(8.0 * n * M_PI / 4 / 0.01 / (n / ws[k]));
+            rc = sweep_row("W", ws[k], (long)(n / ws[k]), 0.2 * tau, cell, ws[k], ens, R, ref);
+        }
+    }
+    return rc;
 }
 
 int bench_dsmc(int argc, char **argv)
@@ -164,6 +257,8 @@ int bench_dsmc(int argc, char **argv)
             quick = 1;
         } else if (!strcmp(argv[a], "--compare")) {
             cmp = 1;
+        } else if (!strcmp(argv[a], "--sweep")) {
+            cmp = 2;
         } else if (!strcmp(argv[a], "--rng")) {
             return bench_rng_draws();
         } else if (a + 1 < argc && !strcmp(argv[a], "--n")) {
@@ -185,6 +280,8 @@ int bench_dsmc(int argc, char **argv)
             return 2;
         }
     }
+    if (cmp == 2)
+        return sweep(given ? (long)ns[0] : quick ? 4000 : 40000, quick ? 2 : rounds);
     if (cmp) {
         double cn[2] = {1e4, 1e5}, qn[1] = {2000};
         return given ? compare(ns, nn, quick ? 1 : rounds)
