@@ -21,7 +21,7 @@ typedef struct {
 } gr_dsmc_params;
 
 /* Which validity limits the scene breaks at create (bits). */
-enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4 };
+enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4, GR_DSMC_BAD_ENSKOG_CELL = 8 };
 
 /* A particle's rank (the order of its id) with this bit set has left the
  * domain through an open side. */
