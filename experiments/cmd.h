@@ -16,6 +16,7 @@ int cmd_compare(int argc, char **argv);
 /* Backend-specific benchmarks, called by cmd_bench with argv[0] = method. */
 int bench_cd(int argc, char **argv);
 int bench_dem(int argc, char **argv);
+int bench_dsmc(int argc, char **argv);
 int bench_edmd(int argc, char **argv);
 
 #endif
