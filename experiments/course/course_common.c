@@ -1,6 +1,6 @@
 /* What the course exercises share: building an instance from scene text,
  * counting pair collisions through the method's named counter, the result
- * file, the Enskog factor. */
+ * file. */
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -84,10 +84,4 @@ const char *course_how(const course_opts *o)
     if (strcmp(o->m->name, "edmd"))
         return o->m->name;
     return o->naive ? "algorithm naive (v1.0)" : "algorithm tree";
-}
-
-double course_chi(double eta)
-{
-    double u = 1 - eta;
-    return (1 - 7 * eta / 16) / (u * u) - eta * eta * eta / (128 * u * u * u * u);
 }

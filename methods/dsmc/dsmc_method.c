@@ -64,7 +64,7 @@ const gr_method_type gr_dsmc_method = {
     .summary = "direct simulation Monte Carlo (Bird's no-time-counter): inelastic smooth disks",
     .repr = GR_REPR_PARTICLES,
     .features = GR_FEAT_GRAVITY | GR_FEAT_PERIODIC | GR_FEAT_OPEN_SIDE | GR_FEAT_VIBRATING_FLOOR |
-                GR_FEAT_HF_FLOOR | GR_FEAT_WEIGHTS,
+                GR_FEAT_HF_FLOOR | GR_FEAT_WEIGHTS | GR_FEAT_RESTITUTION,
     .params = gr_dsmc_param_table,
     .create = m_create,
     .advance = m_advance,
