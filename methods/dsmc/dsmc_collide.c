@@ -161,8 +161,8 @@ static double cell_bound(const gr_dsmc *d, size_t a, size_t m)
         mx += d->vx[i], my += d->vy[i];
     mx /= (double)m, my /= (double)m;
     for (size_t i = a; i < a + m; i++) {
-        double ux = d->vx[i] - mx, uy = d->vy[i] - my;
-        v2 = fmax(v2, ux * ux + uy * uy);
+        double ux = d->vx[i] - mx, uy = d->vy[i] - my, u2 = ux * ux + uy * uy;
+        v2 = u2 > v2 ? u2 : v2; /* not fmax: a libm call here (NaN rules) */
     }
     return 2.0 * sqrt(v2);
 }

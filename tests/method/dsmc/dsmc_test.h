@@ -1,6 +1,6 @@
 /* Helpers shared by the DSMC validation tests: an instance from INI text
  * (dsmc, or edmd as the reference on the same scene), advancing, the
- * temperature, a2, counters. */
+ * temperature, a2, counters; the reference laws from experiments/lib/refs.h. */
 #ifndef GR_DSMC_TEST_H
 #define GR_DSMC_TEST_H
 
@@ -14,6 +14,7 @@
 #include "dsmc/dsmc_int.h"
 #include "init.h"
 #include "method.h"
+#include "refs.h"
 
 /* An instance of method `m` ("dsmc" or "edmd") on the scene; *scp gets the
  * scene, for gr_scene_free after gr_sim_free. */
@@ -76,8 +77,5 @@ static inline double ds_a2(const gr_dsmc *d)
     }
     return s4 / (2 * s2 * s2) - 1;
 }
-
-/* Henderson's equation of state of hard disks, Z = (1 + eta^2/8)/(1 - eta)^2. */
-static inline double ds_henderson_z(double eta) { return (1 + eta * eta / 8) / ((1 - eta) * (1 - eta)); }
 
 #endif

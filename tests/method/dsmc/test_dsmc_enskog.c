@@ -42,8 +42,8 @@ static void test_eos_virial(void **st)
     double A = d->Lx * d->Ly, n = d->n / A, T = Tsum / 40;
     double Z = 1 + d->W * d->virial / (2 * A * d->wall_time * n * T);
     print_message("# EOS from the collisional transfer, eta %.2f: Z %.4f, Henderson %.4f, ratio %.4f\n", eta, Z,
-                  ds_henderson_z(eta), Z / ds_henderson_z(eta));
-    assert_true(fabs(Z / ds_henderson_z(eta) - 1) < 0.02);
+                  exp_z_henderson(eta), Z / exp_z_henderson(eta));
+    assert_true(fabs(Z / exp_z_henderson(eta) - 1) < 0.02);
     gr_sim_free(s);
     gr_scene_free(sc);
 }
@@ -88,7 +88,7 @@ static void test_eos_walls(void **st)
     double eta = 4000 * M_PI / 4 / (4000 * M_PI / 4 / 0.3 + 1 - 2 * sqrt(4000 * M_PI / 4 / 0.3));
     print_message("# closed box, Enskog: p A / (N T + virial) %.4f; p A / (N T) %.4f (Henderson at "
                   "N / A: %.4f)\n",
-                  r, z, ds_henderson_z(eta));
+                  r, z, exp_z_henderson(eta));
     print_message("# closed box, rate alone (enskog = no): p A / (N T) %.4f (ideal gas 1)\n", r0);
     assert_true(fabs(r - 1) < 0.02);
     assert_true(fabs(r0 - 1) < 0.02);

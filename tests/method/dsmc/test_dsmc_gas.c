@@ -71,13 +71,6 @@ static void test_maxwell(void **st)
     gr_scene_free(sc);
 }
 
-/* van Noije and Ernst's first-Sonine a2 for d = 2. */
-static double a2_sonine(double a)
-{
-    double d = 2;
-    return 16 * (1 - a) * (1 - 2 * a * a) / (9 + 24 * d - a * (41 - 8 * d) + 30 * (1 - a) * a * a);
-}
-
 /* Haff's law in one cell (no spatial correlations, so no clustering):
  * T(t) = T0 / (1 + zeta0 t / 2)^2 with the first-Sonine zeta0, to 2 %
  * while T falls to T0 / 10. */
@@ -87,7 +80,7 @@ static void test_haff(void **st)
     double alpha = 0.9;
     gr_scene *sc;
     gr_sim *s = box(9, alpha, "gaussian", 0.05, 1000, "no", &sc);
-    double T0 = ds_temp(s), a2 = a2_sonine(alpha);
+    double T0 = ds_temp(s), a2 = exp_sonine_a2(alpha);
     double z0 = sqrt(M_PI) * (1 - alpha * alpha) * 0.4 * sqrt(T0) * (1 + 3 * a2 / 16);
     double worst = 0;
     for (int k = 1; k <= 8; k++) {

@@ -8,13 +8,6 @@
 
 static int slow;
 
-/* van Noije and Ernst's first-Sonine a2 for d = 2. */
-static double a2_sonine(double a)
-{
-    double d = 2;
-    return 16 * (1 - a) * (1 - 2 * a * a) / (9 + 24 * d - a * (41 - 8 * d) + 30 * (1 - a) * a * a);
-}
-
 #define GAS                                                                                                            \
     "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"                 \
     "bottom = periodic\ntop = periodic\n[material]\nrestitution = %g\n[species]\ncount = %d\n"                         \
@@ -95,7 +88,7 @@ static void test_hcs_a2(void **st)
     const double *al = slow ? all : quick;
     int K = slow ? 20000 : 2000, na = slow ? 7 : 3;
     for (int k = 0; k < na; k++) {
-        double a2, err, sl, want = a2_sonine(al[k]);
+        double a2, err, sl, want = exp_sonine_a2(al[k]);
         scaled_hcs(al[k], 4000, 0.07, K, &a2, &err, &sl);
         double sw = (1 - al[k] * al[k]) / 2 * (1 + 3 * a2 / 16) / (1 - a2 / 16);
         print_message("# HCS alpha %.2f: a2 %.5f +- %.5f (blocks of 20), first Sonine %.5f; cooling per collision "
@@ -157,7 +150,7 @@ static void test_free_a2_edmd(void **st)
         free_a2("edmd", al[k], n, seeds, &b, &be);
         print_message("# free cooling alpha %.2f, eta 0.005: a2 dsmc %.5f +- %.5f, edmd %.5f +- %.5f, first Sonine "
                       "%.5f\n",
-                      al[k], a, ae, b, be, a2_sonine(al[k]));
+                      al[k], a, ae, b, be, exp_sonine_a2(al[k]));
         assert_true(fabs(a - b) < 3 * sqrt(ae * ae + be * be));
     }
 }
