@@ -12,16 +12,30 @@
 #include "plot.h"
 #include "table.h"
 
-#define NCOL 13
-static const char *const columns =
-    "row,knob_value,runs,finished,wall_s,steps,value,value_sem,reference,rel_error,rel_error_sem,aux,aux_reference";
+#define NCOL 14
+static const char *const columns = "row,knob_value,runs,finished,wall_s,steps,value,value_sem,reference,rel_error,"
+                                   "rel_error_sem,aux,aux_reference,analytic";
 
 /* Errors below this are drawn at it on the log axis (exact methods). */
 static const double floor_err = 1e-16;
 
-static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n, double ref, double aux_ref)
+/* Which row, if any, is the case's reference. */
+static const char *ref_label(const cmp_case *c)
 {
-    fprintf(f, "\n== %s: %s (reference %.8g), %s (reference %.6g)\n", c->name, c->quantity, ref, c->aux, aux_ref);
+    for (const cmp_row *r = c->rows; r->method; r++)
+        if (r->role == CMP_REFERENCE)
+            return r->label;
+    return NULL;
+}
+
+static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref)
+{
+    const char *rl = ref_label(c);
+    fprintf(f, "\n== %s: %s: reference %.8g +- %.2g (%s)", c->name, c->quantity, ref->value, ref->sem,
+            rl ? rl : "analytic");
+    if (rl && isfinite(ref->analytic))
+        fprintf(f, ", analytic %.8g", ref->analytic);
+    fprintf(f, "; %s: reference %.6g\n", c->aux, ref->aux);
     fprintf(f, "%-9s %-14s %-9s %5s %9s %11s %-24s %-20s %12s %s\n", "method", "knob", "value", "runs", "wall/s",
             "steps", "measured +- error bar", "relative error", c->aux, "");
     for (size_t i = 0; i < n; i++) {
@@ -32,14 +46,15 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
         fprintf(f, "%-9s %-14s %-9s %2d/%-2d %9.3g %11.4g %-24s %-20s %12.5g %s\n", p->row->label,
                 p->row->knob ? p->row->knob : "-", p->value[0] ? p->value : "-", p->nok, p->n, p->wall, p->steps,
                 meas, er, p->aux,
-                p->nok < p->n ? "FAILED" : (p->error > 2 * p->error_sem ? "" : "(within the error bar)"));
+                p->nok < p->n ? "FAILED"
+                : p->row->role == CMP_REFERENCE ? "(reference)"
+                : p->error > 2 * p->error_sem ? "" : "(within the error bar)");
         if (p->msg[0])
             fprintf(f, "          %s\n", p->msg);
     }
 }
 
-static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n, double ref, double aux_ref,
-                   gr_err *err)
+static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref, gr_err *err)
 {
     double *v = malloc((n ? n : 1) * NCOL * sizeof *v);
     if (!v)
@@ -52,7 +67,8 @@ static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
         double row[NCOL] = {(double)(p->row - c->rows), p->value[0] ? atof(p->value) : NAN, p->n, p->nok,
-                            p->wall, p->steps, p->mean, p->sem, ref, p->error, p->error_sem, p->aux, aux_ref};
+                            p->wall, p->steps, p->mean, p->sem, ref->value, p->error, p->error_sem, p->aux,
+                            ref->aux, ref->analytic};
         memcpy(v + i * NCOL, row, sizeof row);
     }
     char name[128];
@@ -151,18 +167,18 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
 static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h,
                     cmp_point **pts, size_t *n, int *bad, gr_err *err)
 {
-    double ref, aux_ref;
+    cmp_refs ref;
     *pts = malloc((pl->nunits ? pl->nunits : 1) * sizeof **pts);
     if (!*pts)
         return gr_fail(err, GR_ERUN, "out of memory");
-    if (cmp_collect(pl, parts, c, *pts, n, &ref, &aux_ref, err))
+    if (cmp_collect(pl, parts, c, *pts, n, &ref, err))
         return err->code;
     if (!*n)
         return GR_OK;
-    text_case(stdout, c, *pts, *n, ref, aux_ref);
-    text_case(txt, c, *pts, *n, ref, aux_ref);
-    *bad += cmp_check(c, *pts, *n);
-    if (h5_case(h, c, *pts, *n, ref, aux_ref, err) || plot_case(pl->out, c, *pts, *n, err))
+    text_case(stdout, c, *pts, *n, &ref);
+    text_case(txt, c, *pts, *n, &ref);
+    *bad += cmp_check(c, *pts, *n, &ref);
+    if (h5_case(h, c, *pts, *n, &ref, err) || plot_case(pl->out, c, *pts, *n, err))
         return err->code;
     return GR_OK;
 }
