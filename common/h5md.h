@@ -69,7 +69,7 @@ typedef struct {
     const char *name;
     const char *unit;     /* H5MD unit string, e.g. "1", "d tau-1" */
     int nx, ny;
-    int ncomp;            /* 1: scalar field, 2: vector field */
+    int ncomp;            /* 1: scalar field, 2: vector field, 4: 2x2 tensor (xx xy yx yy) */
     double x0, y0;        /* origin: lower-left corner of the grid */
     double dx, dy;        /* cell size */
 } gr_field_desc;

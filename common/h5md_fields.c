@@ -65,7 +65,7 @@ static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double 
 {
     if (!gr_h5_valid_name(f->name) || strchr(f->name, '/'))
         return gr_fail(err, GR_ERUN, "invalid field name '%s'", f->name ? f->name : "");
-    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 2 || !(f->dx > 0) || !(f->dy > 0) ||
+    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 4 || !(f->dx > 0) || !(f->dy > 0) ||
         !isfinite(f->dx) || !isfinite(f->dy) || !isfinite(f->x0) || !isfinite(f->y0))
         return gr_fail(err, GR_ERUN, "field '%s': invalid grid %dx%d (ncomp %d, cell %g x %g)",
                        f->name, f->nx, f->ny, f->ncomp, f->dx, f->dy);

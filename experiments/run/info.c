@@ -117,7 +117,7 @@ static int print_fields(gr_h5md_reader *r, gr_err *err)
             !(rc = gr_h5md_series_info(r, path, &samples, &t0, &t1, err)))
             printf("%-12s %s: %d x %d cells of %g x %g d%s, %zu samples, t = %g .. %g\n",
                    i ? "" : "fields", names[i], f.nx, f.ny, f.dx, f.dy,
-                   f.ncomp > 1 ? ", vector" : "", samples, t0, t1);
+                   f.ncomp == 2 ? ", vector" : f.ncomp == 4 ? ", 2x2 tensor" : "", samples, t0, t1);
     }
     gr_h5md_names_free(names, n);
     return rc;
