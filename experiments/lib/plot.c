@@ -155,9 +155,11 @@ int gr_plot_snapshot(const char *png, const gr_particles *p, double width, doubl
         }
     fprintf(gp, "EOD\n");
     char full[300], q[620];
-    snprintf(full, sizeof full, "%s, t = %.4g {/Symbol t}", title, t);
+    int len = snprintf(full, sizeof full, "%s, t = %.4g {/Symbol t}", title, t) - 10;
     gr_plot_quote(full, q, sizeof q);
-    fprintf(gp, "set title %s\n", q);
+    /* a long title in a narrow figure: a smaller font, not a clipped line */
+    double fs = 11.0, fit = 1.7 * (double)w / (double)(len > 1 ? len : 1);
+    fprintf(gp, "set title %s font ',%.3g'\n", q, fit < fs ? (fit > 6 ? fit : 6) : fs);
     fprintf(gp, "set size ratio -1\nset xrange [0:%g]\nset yrange [0:%g]\n", width, height);
     fprintf(gp, "set xlabel 'x / d'\nset ylabel 'y / d'\n");
     fprintf(gp, "set cblabel '|v| / (g d)^{1/2}'\nset cbrange [0:%g]\n", vmax > 0 ? vmax : 1);
