@@ -172,5 +172,8 @@ int gr_h5md_read_field(gr_h5md_reader *r, const char *name, size_t sample,
  * caller frees; v may be NULL to get the shape only). */
 int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows,
                         size_t *cols, double **v, gr_err *err);
+/* Its description and column names (", " between), "" when absent. */
+int gr_h5md_result_text(gr_h5md_reader *r, const char *name, char *desc, size_t n, char *cols,
+                        size_t m, gr_err *err);
 
 #endif
