@@ -3,16 +3,11 @@
 # prints its tables (no box of nan), and maxwell.dat holds its two tables
 # as gnuplot's data sets (index 0 and 1, two blank lines between). TAP.
 set -u
+. "$(dirname "$0")/tap.sh"
 GRANO=$1
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); sed 's/^/# /' "$tmp/err"; }
 
 if ! "$GRANO" course maxwell --quick --out "$tmp/c" >"$tmp/err" 2>&1; then
-    notok "grano course maxwell --quick"; echo "1..$n"; exit 1
+    notok "grano course maxwell --quick"; finish
 fi
 "$GRANO" info "$tmp/c/maxwell.h5" >"$tmp/info" 2>"$tmp/err"
 rc=$?
@@ -30,5 +25,4 @@ if command -v gnuplot >/dev/null; then
     if [ "$recs" = "5 24 1" ]; then ok "maxwell.dat: gnuplot reads 5 rows at index 0, 24 at index 1"
     else notok "maxwell.dat data sets for gnuplot (got '$recs')"; fi
 fi
-echo "1..$n"
-exit $((fails > 0))
+finish

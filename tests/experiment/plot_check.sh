@@ -3,14 +3,9 @@
 # an apostrophe survives; GRANO_FIGURES=svg,pdf adds those formats; without
 # gnuplot the run says so and how to install it, and keeps the script. TAP.
 set -u
+. "$(dirname "$0")/tap.sh"
 GRANO=$1
 SRC=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); sed 's/^/# /' "$tmp/err"; }
 if ! command -v gnuplot >/dev/null; then echo "1..0 # SKIP gnuplot is not installed"; exit 0; fi
 scene=$SRC/experiments/scenes/box.ini
 run() { "$GRANO" run "$scene" --until 0.05 --set "scene.name=it's a box" --out "$tmp/r.h5" --force -q "$@"; }
@@ -34,5 +29,4 @@ if [ $rc = 1 ] && grep -q "gnuplot is not installed" "$tmp/err" && grep -q "apt-
    [ -s "$tmp/c.gp" ] && [ ! -e "$tmp/c.png" ]; then
     ok "without gnuplot: says so and how to install it, keeps the script"
 else notok "without gnuplot (exit $rc)"; fi
-echo "1..$n"
-exit $((fails > 0))
+finish

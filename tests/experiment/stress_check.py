@@ -20,6 +20,8 @@ import sys
 import h5py
 import numpy as np
 
+from tap import Tap
+
 SCENE = """[scene]
 name = stack
 [domain]
@@ -47,17 +49,8 @@ output_every = 1
 stress = yes
 """
 
-n = 0
-fails = 0
-
-
-def check(ok, what, detail=""):
-    global n, fails
-    n += 1
-    print("%s %d - %s" % ("ok" if ok else "not ok", n, what))
-    if not ok:
-        fails += 1
-        print("# %s" % detail)
+TAP = Tap()
+check = TAP.check
 
 
 def main():
@@ -97,8 +90,7 @@ def main():
                             "--force", "-q"], capture_output=True, text=True)
         check(r.returncode == 2 and "[run] key 'stress' = yes needs contact networks" in r.stderr,
               "%s refuses [run] stress by name" % method, r.stderr)
-    print("1..%d" % n)
-    return 1 if fails else 0
+    return TAP.finish()
 
 
 if __name__ == "__main__":
