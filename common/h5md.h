@@ -74,7 +74,7 @@ typedef struct {
     const char *name;
     const char *unit;     /* H5MD unit string, e.g. "1", "d tau-1" */
     int nx, ny;
-    int ncomp;            /* 1: scalar field, 2: vector field */
+    int ncomp;            /* 1: scalar field, 2: vector field, 4: 2x2 tensor (xx xy yx yy) */
     double x0, y0;        /* origin: lower-left corner of the grid */
     double dx, dy;        /* cell size */
 } gr_field_desc;
@@ -177,5 +177,8 @@ int gr_h5md_read_field(gr_h5md_reader *r, const char *name, size_t sample,
  * caller frees; v may be NULL to get the shape only). */
 int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows,
                         size_t *cols, double **v, gr_err *err);
+/* Its description and column names (", " between), "" when absent. */
+int gr_h5md_result_text(gr_h5md_reader *r, const char *name, char *desc, size_t n, char *cols,
+                        size_t m, gr_err *err);
 
 #endif

@@ -26,7 +26,7 @@ static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", 
 static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       "thermo_every", NULL};
+                                       "thermo_every", "stress", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
@@ -568,7 +568,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
         NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
-        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err))
+        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
+        get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
         return err->code;
     return GR_OK;
 }

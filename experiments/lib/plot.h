@@ -1,5 +1,8 @@
-/* Figures through gnuplot (pngcairo): data go inline as datablocks, so no
- * temporary files are left behind. */
+/* Figures through gnuplot (pngcairo): data go inline as datablocks into a
+ * script saved beside the figure (fig.png's is fig.gp, so `gnuplot fig.gp`
+ * remakes it, restyled as one likes). GRANO_FIGURES=svg,pdf in the
+ * environment also writes fig.svg / fig.pdf. Without gnuplot the script is
+ * still saved and the error says how to install it. */
 #ifndef GR_PLOT_H
 #define GR_PLOT_H
 
@@ -17,6 +20,9 @@ int gr_plot_close(FILE *gp, const char *png, gr_err *err);
  * `gnuplot X.gp` again redraws the figure. */
 FILE *gr_plot_open_saved(const char *png, int w, int h, gr_err *err);
 int gr_plot_close_saved(FILE *gp, const char *png, gr_err *err);
+/* s as a gnuplot single-quoted string ('' for each quote) into buf; text
+ * from users (scene names, paths) goes through it. */
+void gr_plot_quote(const char *s, char *buf, size_t n);
 
 /* Grains as disks coloured by speed (fixed grains grey), the box outlined. */
 int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,

@@ -14,6 +14,7 @@
 #include "init.h"
 #include "plot.h"
 #include "progress.h"
+#include "stress.h"
 
 void gr_run_ckpt_path(const char *out, char *buf, size_t n)
 {
@@ -133,9 +134,27 @@ typedef struct {
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
-    gr_contacts *net;  /* [run] contacts = yes */
+    gr_contacts *net;  /* [run] contacts = yes or stress = yes */
     double *buf;
+    double *sbuf;      /* [run] stress = yes: nx * ny * 4 on the field grid */
 } run_io;
+
+/* [run] stress = yes: the contact stress of the frame's network over the
+ * domain (fields/stress_global, one cell) and on the field grid. */
+static int write_stress(run_io *io, const gr_scene *sc, uint64_t step, double t, gr_err *err)
+{
+    double g[4];
+    int nx = sc->run.field_nx, ny = sc->run.field_ny;
+    if (gr_stress_contacts(sc, io->snap, io->net, t, nx, ny, g, io->sbuf, err))
+        return err->code;
+    gr_field_desc d = {"stress_global", "m tau-2", 1, 1, 4, 0, 0, sc->width, sc->height};
+    if (gr_h5md_write_field(io->h, &d, step, t, g, err))
+        return err->code;
+    if (!io->sbuf)
+        return GR_OK;
+    d = (gr_field_desc){"stress", "m tau-2", nx, ny, 4, 0, 0, sc->width / nx, sc->height / ny};
+    return gr_h5md_write_field(io->h, &d, step, t, io->sbuf, err);
+}
 
 static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
 {
@@ -225,7 +244,9 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
             if (io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
-                            (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))))
+                            (sc->run.contacts &&
+                             (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))) ||
+                            (sc->run.stress && (status = write_stress(io, sc, obs.steps, t, err)))))
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
@@ -252,16 +273,21 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     return status;
 }
 
-/* `[run] contacts = yes` asks the method for its contact network with each
- * frame: refused up front, naming the line, if the method has none. */
+/* `[run] contacts = yes` (or stress = yes) asks the method for its contact
+ * network with each frame: refused up front, naming the line, if the method
+ * has none. The stress also needs the grains' positions: snapshots. */
 static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io, gr_err *err)
 {
     char where[1200], who[1300];
-    gr_scene_where(sc, "run", "contacts", where, sizeof where);
+    gr_scene_where(sc, "run", sc->run.contacts ? "contacts" : "stress", where, sizeof where);
     snprintf(who, sizeof who, "%s = yes", where);
-    if (gr_sim_require(m, GR_OP_CONTACTS, who, err))
+    if (gr_sim_require(m, GR_OP_CONTACTS, who, err) ||
+        (sc->run.stress && gr_sim_require(m, GR_OP_SNAPSHOT, who, err)))
         return err->code;
     io->net = gr_contacts_create(0, err);
+    if (io->net && sc->run.stress && sc->run.field_nx > 0 &&
+        !(io->sbuf = malloc((size_t)sc->run.field_nx * (size_t)sc->run.field_ny * 4 * sizeof *io->sbuf)))
+        return gr_fail(err, GR_ERUN, "out of memory");
     return io->net ? GR_OK : err->code;
 }
 
@@ -278,7 +304,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     }
     if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
-    if (sc->run.contacts && (rc = want_contacts(sc, m, &io, err)))
+    if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
     double t0 = gr_sim_time(st);
@@ -338,6 +364,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
 done:
     gr_h5md_free(io.h);
     free(io.buf);
+    free(io.sbuf);
     gr_field_free(io.field);
     gr_contacts_free(io.net);
     gr_sim_free(st);

@@ -33,6 +33,10 @@ static size_t count_lines(const char *s)
 
 static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
 {
+    if (!in->nframes && !(isfinite(in->box[0]) && isfinite(in->box[1]))) {
+        printf("trajectory   none: a file of result tables (below), e.g. of grano course\n");
+        return GR_OK;
+    }
     printf("box          %g x %g d; boundaries x %s, y %s\n", in->box[0], in->box[1],
            in->periodic[0] ? "periodic" : "none", in->periodic[1] ? "periodic" : "none");
     if (!in->nframes) {
@@ -117,10 +121,35 @@ static int print_fields(gr_h5md_reader *r, gr_err *err)
             !(rc = gr_h5md_series_info(r, path, &samples, &t0, &t1, err)))
             printf("%-12s %s: %d x %d cells of %g x %g d%s, %zu samples, t = %g .. %g\n",
                    i ? "" : "fields", names[i], f.nx, f.ny, f.dx, f.dy,
-                   f.ncomp > 1 ? ", vector" : "", samples, t0, t1);
+                   f.ncomp == 2 ? ", vector" : f.ncomp == 4 ? ", 2x2 tensor" : "", samples, t0, t1);
     }
     gr_h5md_names_free(names, n);
     return rc;
+}
+
+/* A result's description and columns, and its values when it is small
+ * (a course exercise's table, a fit). */
+static int print_table(gr_h5md_reader *r, const char *name, size_t rows, size_t cols, gr_err *err)
+{
+    char desc[512], names[512];
+    double *v = NULL;
+    int rc = gr_h5md_result_text(r, name, desc, sizeof desc, names, sizeof names, err);
+    printf("%s%s\n", desc[0] ? ": " : "", desc);
+    if (!rc && names[0])
+        printf("%-12s   columns: %s\n", "", names);
+    size_t nc = cols ? cols : 1;
+    if (rc || rows * nc > 120 || nc > 10)
+        return rc;
+    if ((rc = gr_h5md_read_result(r, name, &rows, &cols, &v, err)))
+        return rc;
+    for (size_t i = 0; i < rows; i++) {
+        printf("%-12s  ", "");
+        for (size_t j = 0; j < nc; j++)
+            printf(" %11.5g", v[i * nc + j]);
+        printf("\n");
+    }
+    free(v);
+    return GR_OK;
 }
 
 /* results/ may hold subgroups: walk them. */
@@ -139,10 +168,11 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
             continue;
         }
         if (cols)
-            printf("%-12s %s [%zu x %zu]\n", *shown ? "" : "results", path + 8, rows, cols);
+            printf("%-12s %s [%zu x %zu]", *shown ? "" : "results", path + 8, rows, cols);
         else
-            printf("%-12s %s [%zu]\n", *shown ? "" : "results", path + 8, rows);
+            printf("%-12s %s [%zu]", *shown ? "" : "results", path + 8, rows);
         (*shown)++;
+        rc = print_table(r, path + 8, rows, cols, err);
     }
     gr_h5md_names_free(names, n);
     return rc;
@@ -187,9 +217,11 @@ int cmd_info(int argc, char **argv)
     printf("method       %s, seed %llu\n", in->method[0] ? in->method : "?",
            (unsigned long long)in->seed);
     int rc = print_frames(r, in, &err);
-    if (!rc)
+    /* a table file (no trajectory, no series) has no observables or fields to list */
+    int series = in->nframes || in->nobs;
+    if (!rc && series)
         rc = print_obs(r, in, &err);
-    if (!rc)
+    if (!rc && series)
         rc = print_fields(r, &err);
     int shown = 0;
     if (!rc)

@@ -38,7 +38,7 @@ static void usage(FILE *f)
         "                       an existing --out is continued (frames after CKPT dropped)\n"
         "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
         "      --set S.K=V      set key K of section S as a scene line would (repeatable)\n"
-        "  -q, --quiet          no progress line\n"
+        "  -q, --quiet          no progress line (terminal) or thermo lines (otherwise)\n"
         "  -h, --help           this help\n\n"
         "A checkpoint <out>.ckpt is written every [run] checkpoint_every and at the end;\n"
         "a run that goes unstable stops with a diagnostic, exit code 1, and its\n"
