@@ -280,15 +280,20 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if (sc->run.contacts && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
+    int at_end = 0;
     double t0 = gr_sim_time(st);
     if (o->restart) {
         if ((rc = gr_run_load(o->restart, st, k, err)))
             goto done;
-        if (gr_sim_time(st) >= sc->run.until - 1e-9 * (sc->run.until > 1 ? sc->run.until : 1)) {
-            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, already at the end time until = %g; nothing to run",
+        /* Past the end: refused. At the end (killed while closing): the
+         * result is reopened and closed, nothing run or written twice. */
+        double eps = 1e-9 * (sc->run.until > 1 ? sc->run.until : 1);
+        if (gr_sim_time(st) > sc->run.until + eps) {
+            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, past the end time until = %g; nothing to run",
                          o->restart, gr_sim_time(st), sc->run.until);
             goto done;
         }
+        at_end = gr_sim_time(st) >= sc->run.until - eps;
     }
     if (sc->run.field_nx > 0) {
         io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
@@ -314,7 +319,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = err->code;
         goto done;
     }
-    rc = loop(sc, st, &io, o, k, t0, err);
+    rc = at_end ? GR_OK : loop(sc, st, &io, o, k, t0, err);
     if (rc == GR_ERUN && o->ckpt) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};
