@@ -502,9 +502,10 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
     }
     if (in->kind == GR_INIT_LATTICE) {
         double a = lattice_pitch(sc, d);
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+        /* In double: the site count of a huge region overflows a long. */
+        double nx = floor((in->x1 - in->x0) / a), ny = floor((in->y1 - in->y0) / a);
+        if (nx * ny < (double)n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %.0f x %.0f = %.0f lattice sites of pitch %.4g",
                      n, nx, ny, nx * ny, a);
             return crowded_fail(sc, err, msg);
         }

@@ -144,7 +144,7 @@ def run_row(tmp, name, scene, files, args, code, frags):
         argv += ["--out", os.path.join(tmp, "out.h5")]
     argv.append("-q")
     try:
-        p = subprocess.run(argv, cwd=tmp, capture_output=True, text=True, timeout=60)
+        p = subprocess.run(argv, cwd=tmp, capture_output=True, text=True, errors="replace", timeout=60)
     except subprocess.TimeoutExpired:
         return "timed out (60 s)"
     err = p.stderr.replace(spath, "S").replace(os.path.join(tmp, "out."), "O.")
