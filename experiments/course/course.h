@@ -18,6 +18,7 @@ typedef struct {
     int naive;     /* [edmd] algorithm = naive (v1.0 of the slides) instead of the tree */
     double alpha;  /* cooling */
     unsigned long seed;
+    int force;     /* replace existing result files */
     const gr_method_type *m;
 } course_opts;
 

@@ -6,6 +6,7 @@
 
 #include "cmd.h"
 #include "h5md.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -148,30 +149,38 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
     return rc;
 }
 
+static int info_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    (void)arg;
+    if (id != 'x')
+        return gr_fail(err, GR_EINPUT, "unknown option");
+    *(int *)ctx = 1;
+    return 0;
+}
+
 int cmd_info(int argc, char **argv)
 {
-    const char *file = NULL;
-    int xdmf = 0, nfiles = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+    static const struct option opts[] = {{"xdmf", no_argument, NULL, 'x'}, {NULL, 0, NULL, 0}};
+    int xdmf = 0, first = 0;
+    gr_err perr = {0};
+    int prc = exp_getopt(argc, argv, opts, info_option, &xdmf, &first, &perr);
+    if (prc == EXP_OPT_HELP || prc == EXP_OPT_VERSION) {
+        if (prc == EXP_OPT_HELP)
             usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--xdmf")) {
-            xdmf = 1;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "grano info: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return 2;
-        } else {
-            file = argv[i];
-            nfiles++;
-        }
+        else
+            exp_print_version("info");
+        return 0;
     }
-    if (nfiles != 1) {
+    if (prc) {
+        fprintf(stderr, "grano info: %s (see grano info --help)\n", perr.msg);
+        return 2;
+    }
+    if (first != argc - 1) {
         fprintf(stderr, "grano info: expected one FILE\n");
         usage(stderr);
         return 2;
     }
+    const char *file = argv[first];
     gr_err err = {0};
     gr_h5md_reader *r = gr_h5md_open(file, &err);
     if (!r) {

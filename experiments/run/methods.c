@@ -6,6 +6,7 @@
 
 #include "cmd.h"
 #include "method.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -45,20 +46,37 @@ static void print_method(const gr_method_type *m)
     gr_params_print(stdout, m->params);
 }
 
+static int no_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    (void)ctx, (void)id, (void)arg;
+    return gr_fail(err, GR_EINPUT, "unknown option");
+}
+
 int cmd_methods(int argc, char **argv)
 {
-    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        usage(stdout);
+    static const struct option none[] = {{NULL, 0, NULL, 0}};
+    int first = 0;
+    gr_err perr = {0};
+    int prc = exp_getopt(argc, argv, none, no_option, NULL, &first, &perr);
+    if (prc == EXP_OPT_HELP || prc == EXP_OPT_VERSION) {
+        if (prc == EXP_OPT_HELP)
+            usage(stdout);
+        else
+            exp_print_version("methods");
         return 0;
     }
-    if (argc > 2) {
+    if (prc) {
+        fprintf(stderr, "grano methods: %s (see grano methods --help)\n", perr.msg);
+        return 2;
+    }
+    if (argc - first > 1) {
         usage(stderr);
         return 2;
     }
-    if (argc == 2) {
+    if (argc - first == 1) {
         const gr_method_type *m;
         gr_err err = {0};
-        if (gr_method_lookup(argv[1], "grano methods", &m, &err)) {
+        if (gr_method_lookup(argv[first], "grano methods", &m, &err)) {
             fprintf(stderr, "grano: %s\n", err.msg);
             return 2;
         }

@@ -14,6 +14,7 @@
 #include "h5md.h"
 #include "init.h"
 #include "method.h"
+#include "opts.h"
 #include "plot.h"
 #include "progress.h"
 #include "runio.h"
@@ -38,7 +39,8 @@ static void usage(FILE *f)
         "                       an existing --out is continued (frames after CKPT dropped)\n"
         "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
         "  -q, --quiet          no progress line\n"
-        "  -h, --help           this help\n\n"
+        "  -h, --help           this help\n"
+        "      --version        grano's version\n\n"
         "A checkpoint <out>.ckpt is written every [run] checkpoint_every and at the end;\n"
         "a run that goes unstable stops with a diagnostic, exit code 1, and its\n"
         "checkpoint holds the last good state. Bad input exits with code 2.\n");
@@ -58,7 +60,8 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"seed", required_argument, NULL, 's'},   {"out", required_argument, NULL, 'o'},
         {"force", no_argument, NULL, 'f'},        {"restart", required_argument, NULL, 'r'},
         {"snapshot", required_argument, NULL, 'P'}, {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+        {"help", no_argument, NULL, 'h'},         {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0}};
     *a = (run_args){.method = "dem", .until = NAN, .seed = -1};
     int c;
     opterr = 0;
@@ -88,6 +91,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 'P': a->snapshot = optarg; break;
         case 'q': a->quiet = 1; break;
         case 'h': usage(stdout); exit(0);
+        case 'V': exp_print_version("run"); exit(0);
         case ':':
             fprintf(stderr, "grano run: option '%s' needs a value\n", argv[optind - 1]);
             return 2;
