@@ -123,5 +123,40 @@ h5py.File(sys.argv[2], "r")
 PY
 check "2: full disk: exit $rc, frames and checkpoint readable" $?
 
+# Settle once, branch many (issue 19): a restart may change [run] and
+# [measure]; a physical change is refused by name unless --branch
+sed 's/^until = 0.2/until = 0.1/' rs.ini >short.ini
+"$GRANO" run short.ini -o s.h5 -q 2>err &&
+    "$GRANO" run rs.ini -o s.h5 --restart s.ckpt 2>err &&
+    grep -q "\[run\] until: '0.1' -> '0.2'" err &&
+    h5diff a.h5 s.h5 /particles /particles >>err 2>&1 && h5diff a.h5 s.h5 /observables /observables >>err 2>&1
+check "branch: a restart with a longer [run] until continues bit for bit and lists the difference" $?
+"$GRANO" run short.ini -o s2.h5 -q 2>err
+sed 's/^output_every = 0.02/output_every = 0.05/' rs.ini >coarse.ini
+"$GRANO" run coarse.ini -o s2.h5 -q --restart s2.ckpt 2>err &&
+    $PY - s2.h5 >>err 2>&1 <<'PY'
+import sys, h5py, numpy as np
+t = h5py.File(sys.argv[1], "r")["particles/trajectory/box/edges/time"][:]
+want = [0, 0.02, 0.04, 0.06, 0.08, 0.1, 0.15, 0.2]
+assert np.allclose(t, want), t
+PY
+check "branch: a restart with a new output_every: frames every 0.02 up to the checkpoint, 0.05 after" $?
+sed 's/^count = 20/count = 20\n[material]\nmu = 0.3/' rs.ini >mu.ini
+sed -i 's/^\[init\]/[init]/' mu.ini
+"$GRANO" run mu.ini -o s.h5 -q --restart s.ckpt 2>err
+rc=$?
+[ $rc = 2 ] && grep -q "'mu'" err && grep -q -- "--branch" err
+check "branch: a changed [material] mu is refused by name (exit $rc) without --branch" $?
+"$GRANO" run short.ini -o base.h5 -q 2>err &&
+    "$GRANO" run mu.ini -o br.h5 -q --restart base.ckpt --branch 2>err &&
+    $PY - br.h5 >>err 2>&1 <<'PY'
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+t = f["particles/trajectory/box/edges/time"][:]
+assert abs(t[0] - 0.1) < 1e-9 and abs(t[-1] - 0.2) < 1e-9, t
+assert "mu = 0.3" in f["parameters/scene"][()].decode()
+PY
+check "branch: --branch starts a new output at the checkpoint's time with the new mu" $?
+
 echo "1..$n"
 exit $((fails > 0))
