@@ -113,20 +113,9 @@ static int parse_args(int argc, char **argv, bc_opts *o)
         {NULL, 0, NULL, 0}};
     *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0, 0};
     int first = 0;
-    gr_err err = {0};
-    int rc = exp_getopt(argc, argv, opts, cd_option, o, &first, &err);
-    if (rc == EXP_OPT_HELP)
-        usage(stdout);
-    else if (rc == EXP_OPT_VERSION)
-        exp_print_version("bench cd");
-    if (rc == EXP_OPT_HELP || rc == EXP_OPT_VERSION)
-        return 0;
-    if (!rc && first < argc)
-        rc = gr_fail(&err, GR_EINPUT, "unexpected argument '%s'", argv[first]);
-    if (rc) {
-        fprintf(stderr, "grano bench cd: %s (see grano bench cd --help)\n", err.msg);
-        return 2;
-    }
+    int rc = exp_getopt_main("bench cd", argc, argv, opts, cd_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
     int given_n = o->given_n;
     if (o->quick && !given_n)
         o->ns[0] = 100, o->nn = 1;

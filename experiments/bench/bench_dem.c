@@ -558,20 +558,9 @@ static int parse_args(int argc, char **argv, bd_opts *o)
     *o = (bd_opts){.ns = {5000, 20000, 80000}, .nn = 3, .steps = 2000, .settle = 1000, .threads = 1, .skin = 0.2,
                    .peer = NULL, .dir = "."};
     int first = 0;
-    gr_err err = {0};
-    int rc = exp_getopt(argc, argv, opts, dem_option, o, &first, &err);
-    if (rc == EXP_OPT_HELP)
-        usage(stdout);
-    else if (rc == EXP_OPT_VERSION)
-        exp_print_version("bench dem");
-    if (rc == EXP_OPT_HELP || rc == EXP_OPT_VERSION)
-        return 0;
-    if (!rc && first < argc)
-        rc = gr_fail(&err, GR_EINPUT, "unexpected argument '%s'", argv[first]);
-    if (rc) {
-        fprintf(stderr, "grano bench dem: %s (see grano bench dem --help)\n", err.msg);
-        return 2;
-    }
+    int rc = exp_getopt_main("bench dem", argc, argv, opts, dem_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
     return -1;
 }
 

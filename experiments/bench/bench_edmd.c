@@ -216,20 +216,9 @@ static int parse_args(int argc, char **argv, be_opts *o)
     *o = (be_opts){.ns = {1e3, 1e4, 1e5, 1e6}, .etas = {0.3, 0.6}, .nn = 4, .ne = 2, .equil = 20, .measure = 10,
                    .arity = 2, .cell = 0, .queue = NULL, .sort = -1.0, .rounds = 0};
     int first = 0;
-    gr_err err = {0};
-    int rc = exp_getopt(argc, argv, opts, edmd_option, o, &first, &err);
-    if (rc == EXP_OPT_HELP)
-        usage(stdout);
-    else if (rc == EXP_OPT_VERSION)
-        exp_print_version("bench edmd");
-    if (rc == EXP_OPT_HELP || rc == EXP_OPT_VERSION)
-        return 0;
-    if (!rc && first < argc)
-        rc = gr_fail(&err, GR_EINPUT, "unexpected argument '%s'", argv[first]);
-    if (rc) {
-        fprintf(stderr, "grano bench edmd: %s (see grano bench edmd --help)\n", err.msg);
-        return 2;
-    }
+    int rc = exp_getopt_main("bench edmd", argc, argv, opts, edmd_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
     return -1;
 }
 

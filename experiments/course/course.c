@@ -98,20 +98,11 @@ static int parse(int argc, char **argv, course_opts *o, const char **ex)
     parse_ctx c = {o, "edmd"};
     gr_err err = {0};
     int first = 0;
-    int rc = exp_getopt(argc, argv, opts, one_option, &c, &first, &err);
-    if (rc == EXP_OPT_HELP || rc == EXP_OPT_VERSION) {
-        if (rc == EXP_OPT_HELP)
-            usage(stdout);
-        else
-            exp_print_version("course");
-        return -1;
-    }
-    if (rc) {
-        fprintf(stderr, "grano course: %s (see grano course --help)\n", err.msg);
-        return 2;
-    }
-    if (first != argc - 1) {
-        fprintf(stderr, "grano course: %s\n", first >= argc ? "missing EXERCISE" : "one EXERCISE expected");
+    int rc = exp_getopt_main("course", argc, argv, opts, one_option, &c, usage, 1, &first);
+    if (rc >= 0)
+        return rc ? rc : -1;
+    if (first >= argc) {
+        fprintf(stderr, "grano course: missing EXERCISE\n");
         usage(stderr);
         return 2;
     }

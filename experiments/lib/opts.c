@@ -92,3 +92,24 @@ void exp_print_version(const char *cmd)
 {
     printf("grano %s %s\n", cmd, GRANO_VERSION);
 }
+
+int exp_getopt_main(const char *cmd, int argc, char **argv, const struct option *opts, exp_opt_fn fn, void *ctx,
+                    void (*usage)(FILE *), int max_pos, int *first)
+{
+    gr_err err = {0};
+    int rc = exp_getopt(argc, argv, opts, fn, ctx, first, &err);
+    if (rc == EXP_OPT_HELP || rc == EXP_OPT_VERSION) {
+        if (rc == EXP_OPT_HELP)
+            usage(stdout);
+        else
+            exp_print_version(cmd);
+        return 0;
+    }
+    if (!rc && argc - *first > max_pos)
+        rc = gr_fail(&err, GR_EINPUT, "unexpected argument '%s'", argv[*first + max_pos]);
+    if (rc) {
+        fprintf(stderr, "grano %s: %s (see grano %s --help)\n", cmd, err.msg, cmd);
+        return 2;
+    }
+    return -1;
+}

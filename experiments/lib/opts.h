@@ -6,6 +6,7 @@
 
 #include <getopt.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "err.h"
 
@@ -32,6 +33,13 @@ typedef int (*exp_opt_fn)(void *ctx, int id, const char *arg, gr_err *err);
  * or a value fn refused. */
 int exp_getopt(int argc, char **argv, const struct option *opts, exp_opt_fn fn, void *ctx, int *first,
                gr_err *err);
+
+/* exp_getopt for a subcommand's main: prints usage (--help) or the version
+ * and returns 0 (exit 0); prints "grano CMD: ..." and returns 2 on a bad
+ * option, or on positional arguments beyond max_pos; else -1 (go on) with
+ * argv[*first..argc) the positional ones. */
+int exp_getopt_main(const char *cmd, int argc, char **argv, const struct option *opts, exp_opt_fn fn, void *ctx,
+                    void (*usage)(FILE *), int max_pos, int *first);
 
 /* Print "grano CMD VERSION" to stdout. */
 void exp_print_version(const char *cmd);

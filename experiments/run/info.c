@@ -19,7 +19,8 @@ static void usage(FILE *f)
         "options:\n"
         "  --xdmf       also (re)write the ParaView sidecar FILE.xdmf from what the file\n"
         "               holds (a killed run's sidecar may miss its last frames)\n"
-        "  -h, --help   this help\n\n"
+        "  -h, --help   this help\n"
+        "  --version    grano's version\n\n"
         "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
         "missing file, a file grano did not write, or bad usage.\n");
 }
@@ -162,19 +163,9 @@ int cmd_info(int argc, char **argv)
 {
     static const struct option opts[] = {{"xdmf", no_argument, NULL, 'x'}, {NULL, 0, NULL, 0}};
     int xdmf = 0, first = 0;
-    gr_err perr = {0};
-    int prc = exp_getopt(argc, argv, opts, info_option, &xdmf, &first, &perr);
-    if (prc == EXP_OPT_HELP || prc == EXP_OPT_VERSION) {
-        if (prc == EXP_OPT_HELP)
-            usage(stdout);
-        else
-            exp_print_version("info");
-        return 0;
-    }
-    if (prc) {
-        fprintf(stderr, "grano info: %s (see grano info --help)\n", perr.msg);
-        return 2;
-    }
+    int prc = exp_getopt_main("info", argc, argv, opts, info_option, &xdmf, usage, 1, &first);
+    if (prc >= 0)
+        return prc;
     if (first != argc - 1) {
         fprintf(stderr, "grano info: expected one FILE\n");
         usage(stderr);

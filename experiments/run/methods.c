@@ -10,7 +10,7 @@
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: grano methods [NAME]\n\n"
+    fprintf(f, "usage: grano methods [NAME] [--help] [--version]\n\n"
                "Each registered method (or only NAME): what it represents, the scene features\n"
                "it supports (a scene asking for another is refused), its optional operations,\n"
                "and the keys of its scene section with type, default, range, unit and meaning.\n");
@@ -56,19 +56,9 @@ int cmd_methods(int argc, char **argv)
 {
     static const struct option none[] = {{NULL, 0, NULL, 0}};
     int first = 0;
-    gr_err perr = {0};
-    int prc = exp_getopt(argc, argv, none, no_option, NULL, &first, &perr);
-    if (prc == EXP_OPT_HELP || prc == EXP_OPT_VERSION) {
-        if (prc == EXP_OPT_HELP)
-            usage(stdout);
-        else
-            exp_print_version("methods");
-        return 0;
-    }
-    if (prc) {
-        fprintf(stderr, "grano methods: %s (see grano methods --help)\n", perr.msg);
-        return 2;
-    }
+    int prc = exp_getopt_main("methods", argc, argv, none, no_option, NULL, usage, 1, &first);
+    if (prc >= 0)
+        return prc;
     if (argc - first > 1) {
         usage(stderr);
         return 2;
