@@ -29,6 +29,8 @@ typedef struct gr_h5md_opts {
     const char *version;  /* grano version for h5md/creator; NULL: built-in */
     const char *author;   /* h5md/author; NULL: $GRANO_AUTHOR, $USER, "unknown" */
     int no_xdmf;          /* 1: no <path>.xdmf sidecar */
+    int any_text;         /* gr_h5md_reopen: the scene text may differ (a restart
+                           * whose [run] or [measure] changed); the file keeps its own */
 } gr_h5md_opts;
 
 /* Create path. Refuses an existing path unless o->force (GR_EINPUT naming

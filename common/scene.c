@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "scene.h"
 #include "scene_impl.h"
@@ -160,7 +161,8 @@ static int read_domain(gr_scene *sc, gr_err *err)
         return entry_fail(sc, "scene", "seed", err, "must be >= 0");
     sc->seed = (uint64_t)seed;
     if (!gr_scene_find(sc, "domain", "width") || !gr_scene_find(sc, "domain", "height"))
-        return gr_fail(err, GR_EINPUT, "%s: [domain] needs 'width' and 'height'", sc->path);
+        return entry_fail(sc, "domain", gr_scene_find(sc, "domain", "width") ? "height" : "width", err,
+                          "[domain] needs 'width' and 'height'");
     if (POSITIVE("domain", "width", 0, &sc->width) || POSITIVE("domain", "height", 0, &sc->height))
         return err->code;
     for (int s = 0; s < 4; s++) {
@@ -330,7 +332,9 @@ static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
         return err->code;
     if (!gr_scene_find(sc, "silo", "height") || !gr_scene_find(sc, "silo", "orifice") ||
         !gr_scene_find(sc, "silo", "base"))
-        return gr_fail(err, GR_EINPUT, "%s: [silo] needs 'height', 'base' and 'orifice'", sc->path);
+        return entry_fail(sc, "silo", !gr_scene_find(sc, "silo", "height") ? "height"
+                                      : !gr_scene_find(sc, "silo", "base") ? "base" : "orifice",
+                          err, "[silo] needs 'height', 'base' and 'orifice'");
     if (s->orifice > s->width)
         return entry_fail(sc, "silo", "orifice", err, "the orifice is wider than the silo base");
     if (s->orifice_center - 0.5 * s->orifice < s->x0 || s->orifice_center + 0.5 * s->orifice > s->x0 + s->width)
@@ -498,9 +502,10 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
     }
     if (in->kind == GR_INIT_LATTICE) {
         double a = lattice_pitch(sc, d);
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+        /* In double: the site count of a huge region overflows a long. */
+        double nx = floor((in->x1 - in->x0) / a), ny = floor((in->y1 - in->y0) / a);
+        if (nx * ny < (double)n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %.0f x %.0f = %.0f lattice sites of pitch %.4g",
                      n, nx, ny, nx * ny, a);
             return crowded_fail(sc, err, msg);
         }
@@ -600,6 +605,11 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
 
 char *gr_scene_read_text(const char *path, gr_err *err)
 {
+    struct stat st;
+    if (stat(path, &st) == 0 && (S_ISDIR(st.st_mode) || S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))) {
+        gr_fail(err, GR_EINPUT, "%s: cannot read scene file: a directory or a device", path);
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     if (!f) {
         gr_fail(err, GR_EINPUT, "%s: cannot read scene file: %s", path, strerror(errno));
@@ -611,6 +621,12 @@ char *gr_scene_read_text(const char *path, gr_err *err)
         n += fread(buf + n, 1, cap - n - 1, f);
         if (n < cap - 1)
             break;
+        if (cap >= GR_SCENE_MAX_BYTES) {
+            fclose(f);
+            free(buf);
+            gr_fail(err, GR_EINPUT, "%s: scene file larger than %d MB", path, GR_SCENE_MAX_BYTES >> 20);
+            return NULL;
+        }
         char *q = realloc(buf, cap * 2);
         if (!q) {
             free(buf);
@@ -629,7 +645,10 @@ char *gr_scene_read_text(const char *path, gr_err *err)
     }
     buf[n] = '\0';
     if (strlen(buf) != n) {
-        gr_fail(err, GR_EINPUT, "%s: not a text file (NUL byte at offset %zu)", path, strlen(buf));
+        int line = 1;
+        for (const char *q = buf; *q; q++)
+            line += *q == '\n';
+        gr_fail(err, GR_EINPUT, "%s:%d: not a text file (NUL byte at offset %zu)", path, line, strlen(buf));
         free(buf);
         return NULL;
     }

@@ -117,6 +117,7 @@ typedef struct {
 #define GR_SCENE_MAX_GRAINS 10000000L
 #define GR_SCENE_MAX_WALLS 100000
 #define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_SCENE_MAX_BYTES (64 << 20)
 #define GR_STR_(x) #x
 #define GR_STR(x) GR_STR_(x)
 

@@ -15,6 +15,7 @@
 #include "plot.h"
 #include "progress.h"
 #include "stress.h"
+#include "restart.h"
 
 void gr_run_ckpt_path(const char *out, char *buf, size_t n)
 {
@@ -77,7 +78,26 @@ static int check_text(gr_ckpt *ck, const char *name, const char *want, const cha
     return rc;
 }
 
-int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err)
+/* The stored scene text, allocated. */
+static char *stored_text(gr_ckpt *ck, const char *path, gr_err *err)
+{
+    size_t n;
+    if (gr_ckpt_len(ck, "run_scene_text", &n, err)) {
+        gr_fail(err, GR_EINPUT, "%s: not a grano run checkpoint (no run_scene_text)", path);
+        return NULL;
+    }
+    char *s = calloc(n + 1, 1);
+    if (!s)
+        gr_fail(err, GR_ERUN, "out of memory");
+    else if (gr_ckpt_get_bytes(ck, "run_scene_text", s, n, err)) {
+        free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], const gr_run_opts *o, gr_runctl *old_run,
+                gr_err *err)
 {
     const gr_scene *sc = gr_sim_scene(sim);
     const gr_method_type *m = gr_sim_type(sim);
@@ -85,12 +105,17 @@ int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err
     if (!ck)
         return err->code;
     uint64_t seed;
-    int rc = check_text(ck, "run_scene_text", sc->text, path, "scene (its text differs)", err);
+    *old_run = sc->run;
+    char *text = stored_text(ck, path, err);
+    int rc = text ? GR_OK : err->code;
+    if (!rc && strcmp(text, sc->text))
+        rc = gr_restart_compare(sc, text, path, o->branch, o->notes, o->notes_cap, old_run, err);
+    free(text);
     if (!rc)
         rc = check_text(ck, "run_method", m->name, path, "method", err);
-    if (!rc && !(rc = gr_ckpt_get_u64(ck, "run_seed", &seed, 1, err)) && seed != sc->seed)
-        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written with seed %llu, not %llu", path,
-                     (unsigned long long)seed, (unsigned long long)sc->seed);
+    if (!rc && !(rc = gr_ckpt_get_u64(ck, "run_seed", &seed, 1, err)) && seed != sc->seed && !o->branch)
+        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written with seed %llu, not %llu (--branch starts a new output with the new seed)",
+                     path, (unsigned long long)seed, (unsigned long long)sc->seed);
     if (!rc)
         rc = gr_ckpt_get_u64(ck, "run_counters", counters, 3, err);
     if (!rc)
@@ -273,6 +298,24 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     return status;
 }
 
+/* After a restart whose intervals changed, the next sample of each kind
+ * is the first of the new interval after the checkpoint; a branch samples
+ * the checkpoint's state itself first, as a fresh run samples its start. */
+static void resume_counters(const gr_scene *sc, const gr_runctl *was, double t, double t0, int branch,
+                            uint64_t k[3])
+{
+    const gr_runctl *r = &sc->run;
+    const double now[3] = {r->observe_every, r->output_every, r->checkpoint_every};
+    const double old[3] = {was->observe_every, was->output_every, was->checkpoint_every};
+    double eps = 1e-9 * (r->until > 1 ? r->until : 1);
+    for (int j = 0; j < 3; j++) {
+        if (branch && j < 2)
+            k[j] = next_index(t - 2 * eps, t0, now[j], eps);
+        else if (now[j] != old[j])
+            k[j] = next_index(t, t0, now[j], eps);
+    }
+}
+
 /* `[run] contacts = yes` (or stress = yes) asks the method for its contact
  * network with each frame: refused up front, naming the line, if the method
  * has none. The stress also needs the grains' positions: snapshots. */
@@ -307,15 +350,22 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
+    int at_end = 0;
     double t0 = gr_sim_time(st);
     if (o->restart) {
-        if ((rc = gr_run_load(o->restart, st, k, err)))
+        gr_runctl was;
+        if ((rc = gr_run_load(o->restart, st, k, o, &was, err)))
             goto done;
-        if (gr_sim_time(st) >= sc->run.until - 1e-9 * (sc->run.until > 1 ? sc->run.until : 1)) {
-            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, already at the end time until = %g; nothing to run",
+        resume_counters(sc, &was, gr_sim_time(st), t0, o->branch, k);
+        /* Past the end: refused. At the end (killed while closing): the
+         * result is reopened and closed, nothing run or written twice. */
+        double eps = 1e-9 * (sc->run.until > 1 ? sc->run.until : 1);
+        if (gr_sim_time(st) > sc->run.until + (o->branch ? -eps : eps)) {
+            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, at or past the end time until = %g; nothing to run",
                          o->restart, gr_sim_time(st), sc->run.until);
             goto done;
         }
+        at_end = gr_sim_time(st) >= sc->run.until - eps;
     }
     if (sc->run.field_nx > 0) {
         io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
@@ -335,13 +385,14 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
     struct stat ost;
-    int cont = o->restart && stat(o->out, &ost) == 0;
+    int cont = o->restart && !o->branch && stat(o->out, &ost) == 0;
+    ho.any_text = cont;
     if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, gr_sim_time(st), err)
                       : gr_h5md_create(o->out, sc, &ho, err))) {
         rc = err->code;
         goto done;
     }
-    rc = loop(sc, st, &io, o, k, t0, err);
+    rc = at_end ? GR_OK : loop(sc, st, &io, o, k, t0, err);
     if (rc == GR_ERUN && o->ckpt) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};

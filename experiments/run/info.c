@@ -6,6 +6,7 @@
 
 #include "cmd.h"
 #include "h5md.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -18,7 +19,8 @@ static void usage(FILE *f)
         "options:\n"
         "  --xdmf       also (re)write the ParaView sidecar FILE.xdmf from what the file\n"
         "               holds (a killed run's sidecar may miss its last frames)\n"
-        "  -h, --help   this help\n\n"
+        "  -h, --help   this help\n"
+        "  --version    grano's version\n\n"
         "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
         "missing file, a file grano did not write, or bad usage.\n");
 }
@@ -178,30 +180,28 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
     return rc;
 }
 
+static int info_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    (void)arg;
+    if (id != 'x')
+        return gr_fail(err, GR_EINPUT, "unknown option");
+    *(int *)ctx = 1;
+    return 0;
+}
+
 int cmd_info(int argc, char **argv)
 {
-    const char *file = NULL;
-    int xdmf = 0, nfiles = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--xdmf")) {
-            xdmf = 1;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "grano info: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return 2;
-        } else {
-            file = argv[i];
-            nfiles++;
-        }
-    }
-    if (nfiles != 1) {
+    static const struct option opts[] = {{"xdmf", no_argument, NULL, 'x'}, {NULL, 0, NULL, 0}};
+    int xdmf = 0, first = 0;
+    int prc = exp_getopt_main("info", argc, argv, opts, info_option, &xdmf, usage, 1, &first);
+    if (prc >= 0)
+        return prc;
+    if (first != argc - 1) {
         fprintf(stderr, "grano info: expected one FILE\n");
         usage(stderr);
         return 2;
     }
+    const char *file = argv[first];
     gr_err err = {0};
     gr_h5md_reader *r = gr_h5md_open(file, &err);
     if (!r) {

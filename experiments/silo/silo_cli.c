@@ -11,6 +11,7 @@
 /* a long option without a short one */
 #define OPT_METHOD 0x100
 #define OPT_PARAM 0x101
+#define OPT_VERSION 0x102
 /* room for the common options, the command's own and the end mark */
 #define MAX_OPTS 24
 
@@ -22,7 +23,7 @@ static const struct option common_opts[] = {
     {"param", required_argument, NULL, OPT_PARAM},
     {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
     {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
-    {NULL, 0, NULL, 0}};
+    {"version", no_argument, NULL, OPT_VERSION}, {NULL, 0, NULL, 0}};
 
 void silo_unit_label(const double *orifice, int nreal, size_t unit, char *buf, size_t n)
 {
@@ -115,6 +116,10 @@ int silo_cli_parse(const silo_cli *cli, int argc, char **argv, silo_opts *o, voi
             cli->usage(stdout);
             return 0;
         }
+        if (ch == OPT_VERSION) {
+            exp_print_version(cli->name);
+            return 0;
+        }
         if (ch == ':') {
             fprintf(stderr, "grano %s: option '%s' needs a value\n", cli->name, argv[optind - 1]);
             return 2;
@@ -194,8 +199,12 @@ int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t nu
                                    sizeof summary, &t_units, &reused, &e);
     if (rc)
         fprintf(stderr, "grano %s: %s\n", cli->name, e.msg);
-    else if (!o->quiet)
-        fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s", cli->name,
-                nunits, cli->units_what, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
+    else {
+        /* Results on standard output, messages on standard error. */
+        if (!o->quiet)
+            fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n", cli->name,
+                    nunits, cli->units_what, reused, t_units, jobs, jobs > 1 ? "s" : "", dir);
+        fputs(summary, stdout);
+    }
     return rc;
 }
