@@ -15,5 +15,6 @@ int cmd_course(int argc, char **argv);
 int bench_cd(int argc, char **argv);
 int bench_dem(int argc, char **argv);
 int bench_edmd(int argc, char **argv);
+int bench_lgca(int argc, char **argv);
 
 #endif

@@ -14,6 +14,7 @@ static const bench_entry benches[] = {
     {"cd", bench_cd},
     {"dem", bench_dem},
     {"edmd", bench_edmd},
+    {"lgca", bench_lgca},
     {NULL, NULL},
 };
 

@@ -98,6 +98,8 @@ static int build_walls(lgca *L, gr_err *err)
             l.w[n++] = l.w[k];
     L->walls = l.w, L->nwalls = n;
     for (size_t k = 0; k < n; k++)
+        L->has_gates |= l.w[k].open_step != UINT64_MAX;
+    for (size_t k = 0; k < n; k++)
         L->solid[(size_t)l.w[k].j * (size_t)L->nw + (l.w[k].i >> 6)] |= (uint64_t)1 << (l.w[k].i & 63);
     return GR_OK;
 }
@@ -148,7 +150,7 @@ static int alloc_lattice(lgca *L, gr_err *err)
     L->solid = calloc(nj * nw, sizeof *L->solid);
     L->valid = calloc(nw, sizeof *L->valid);
     L->scratch = calloc(T * 6 * nw, sizeof *L->scratch);
-    L->edge = calloc(T * nw, sizeof *L->edge);
+    L->edge = calloc(T * 4 * nw, sizeof *L->edge);
     if (!L->s || !L->solid || !L->valid || !L->scratch || !L->edge)
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
     for (int i = 0; i < L->ni; i++)

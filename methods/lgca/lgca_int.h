@@ -96,6 +96,7 @@ typedef struct lgca {
     uint64_t *valid;        /* [w] nodes that exist in a lane */
     lgca_wall *walls;
     size_t nwalls;
+    int has_gates;
     uint32_t thr_p, thr_g;  /* probabilities in units of 2^-16 */
     uint64_t thr_b;         /* in units of 2^-32 */
     uint32_t key[2];
@@ -108,7 +109,7 @@ typedef struct lgca {
     uint64_t outflow, reinserted, lost;
     int nthreads;
     uint64_t *scratch;      /* per thread: 6 nw words (random bits, shifts) */
-    uint64_t *edge;         /* per thread: one plane of a block's edge lane */
+    uint64_t *edge;         /* per thread: 4 planes of a block's edge lanes */
 } lgca;
 
 /* lgca_geom.c: lattice size, walls, the initial state. */
@@ -147,8 +148,8 @@ int lgca_init_state(lgca *L, const gr_particles *init, gr_rng *rng, gr_err *err)
  * of the band in its lane (or the next lane of the silo with room). */
 void lgca_exits(lgca *L);
 
-/* lgca_step.c: one step (collision, gravity, walls, propagation, exits). */
-int lgca_step(lgca *L, gr_err *err);
+/* lgca_step.c: n steps (collision, gravity, walls, propagation, exits). */
+int lgca_steps(lgca *L, uint64_t n, gr_err *err);
 /* lgca_ref.c: the same step on one byte per node through the table, for
  * the tests (bytes[j * ni + i] in, out). */
 int lgca_ref_step(const lgca *L, uint8_t *bytes, uint64_t step, gr_err *err);

@@ -51,13 +51,15 @@ static int m_advance(void *s, double t_end, uint64_t max_steps, gr_err *err)
 {
     lgca *L = s;
     double eps = isfinite(t_end) ? 1e-12 * (1 + fabs(t_end)) : 0;
-    for (uint64_t n = 0; (double)L->step * L->par.dt < t_end - eps && (!max_steps || n < max_steps); n++)
-        if (lgca_step(L, err))
-            return err->code;
-    return GR_OK;
+    /* the first step count whose time reaches t_end */
+    double need = isfinite(t_end) ? ceil((t_end - eps) / L->par.dt) : INFINITY;
+    uint64_t n = need > (double)L->step ? (need > 1e18 ? UINT64_MAX : (uint64_t)need - L->step) : 0;
+    if (max_steps && n > max_steps)
+        n = max_steps;
+    return lgca_steps(L, n, err);
 }
 
-static int m_step(void *s, gr_err *err) { return lgca_step(s, err); }
+static int m_step(void *s, gr_err *err) { return lgca_steps(s, 1, err); }
 
 static double m_time(const void *s)
 {

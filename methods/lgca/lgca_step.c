@@ -132,18 +132,18 @@ static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_
 }
 
 /* Block [j0, j1) of thread t of T, after the barrier that follows the
- * saving of every block's edge lane: rightward channels (1, 2) take lane
+ * saving of every block's edge lanes: rightward channels (1, 2) take lane
  * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
  * before it is overwritten; the block's first (last) lane takes the edge
  * lane saved by its neighbour. */
-static uint64_t propagate_across(lgca *L, int c, int t, int T, int j0, int j1)
+static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1)
 {
     size_t nw = (size_t)L->nw;
     uint64_t lost = 0;
     if (c == 1 || c == 2) {
         for (int j = j1 - 1; j > j0; j--)
             lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + (size_t)(t > 0 ? t - 1 : T - 1) * nw;
+        const uint64_t *e = L->edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
         if (j0 > 0 || L->per_j)
             lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
         else
@@ -151,7 +151,7 @@ static uint64_t propagate_across(lgca *L, int c, int t, int T, int j0, int j1)
     } else {
         for (int j = j0; j < j1 - 1; j++)
             lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + (size_t)(t + 1 < T ? t + 1 : 0) * nw;
+        const uint64_t *e = L->edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
         if (j1 < L->nj || L->per_j)
             lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
         else
@@ -160,61 +160,77 @@ static uint64_t propagate_across(lgca *L, int c, int t, int T, int j0, int j1)
     return lost;
 }
 
-/* The block's edge lane that a neighbouring block reads: the particles
- * leaving the lattice sideways are counted there. */
-static uint64_t save_edge(lgca *L, int c, int t, int j0, int j1)
+/* The block's edge lane that a neighbouring block reads (slot q of the
+ * thread's four); particles leaving the lattice sideways are counted. */
+static uint64_t save_edge(lgca *L, int q, int c, int t, int j0, int j1)
 {
     size_t nw = (size_t)L->nw;
     int right = c == 1 || c == 2;
     int je = right ? j1 - 1 : j0;
-    memcpy(L->edge + (size_t)t * nw, plane(L, je, c), nw * sizeof *L->edge);
+    memcpy(L->edge + ((size_t)t * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
     int off = right ? je == L->nj - 1 : je == 0;
     return off && !L->per_j ? count(plane(L, je, c), nw) : 0;
 }
 
-static void step_block(lgca *L, int t, int T, uint64_t *lost)
+/* Gates whose time has come turn fluid (idempotent, so a load needs no
+ * more than the step number). */
+static void open_gates(lgca *L)
 {
-    int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
-    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->nw;
-    uint64_t n = 0;
-    collide_block(L, j0, j1, scr);
-#pragma omp barrier
-#pragma omp single
-    reflect(L);
-    for (int j = j0; j < j1; j++) {
-        n += shift_up(L, plane(L, j, 0), plane(L, j, 0));
-        n += shift_down(L, plane(L, j, 3), plane(L, j, 3));
-    }
-    static const int across[4] = {1, 2, 4, 5};
-    for (int q = 0; q < 4; q++) {
-        n += save_edge(L, across[q], t, j0, j1);
-#pragma omp barrier
-        n += propagate_across(L, across[q], t, T, j0, j1);
-#pragma omp barrier
-    }
-    lost[t] = n;
-}
-
-int lgca_step(lgca *L, gr_err *err)
-{
-    (void)err;
+    if (!L->has_gates)
+        return;
     for (size_t k = 0; k < L->nwalls; k++)
         if (L->walls[k].open_step <= L->step) {
             const lgca_wall *w = &L->walls[k];
             L->solid[(size_t)w->j * (size_t)L->nw + (w->i >> 6)] &= ~((uint64_t)1 << (w->i & 63));
         }
+}
+
+/* n steps by thread t of a team of T (four synchronisations a step). */
+static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
+{
+    int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
+    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->nw;
+    static const int across[4] = {1, 2, 4, 5};
+    for (uint64_t k = 0; k < n; k++) {
+        uint64_t out = 0;
+        collide_block(L, j0, j1, scr);
+#pragma omp barrier
+#pragma omp single
+        reflect(L);
+        for (int q = 0; q < 4; q++)
+            out += save_edge(L, q, across[q], t, j0, j1);
+        for (int j = j0; j < j1; j++) {
+            out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
+            out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
+        }
+#pragma omp barrier
+        for (int q = 0; q < 4; q++)
+            out += propagate_across(L, q, across[q], t, T, j0, j1);
+        lost[t] += out;
+#pragma omp barrier
+#pragma omp single
+        {
+            if (L->exits)
+                lgca_exits(L);
+            L->step++;
+            open_gates(L);
+        }
+    }
+}
+
+int lgca_steps(lgca *L, uint64_t n, gr_err *err)
+{
+    (void)err;
+    open_gates(L);
     int T = L->nthreads < L->nj / 2 ? L->nthreads : L->nj / 2;
     uint64_t lost[256] = {0};
-    if (T > 1) {
+    if (T > 1 && n > 0) {
         /* the team may be smaller than asked: blocks follow its size */
 #pragma omp parallel num_threads(T)
-        step_block(L, omp_get_thread_num(), omp_get_num_threads(), lost);
+        run_block(L, omp_get_thread_num(), omp_get_num_threads(), n, lost);
     } else
-        step_block(L, 0, 1, lost);
+        run_block(L, 0, 1, n, lost);
     for (int t = 0; t < 256; t++)
         L->lost += lost[t];
-    if (L->exits)
-        lgca_exits(L);
-    L->step++;
     return GR_OK;
 }
