@@ -1,12 +1,15 @@
 /* The silo's outflow and reinsertion (see lgca_int.h). */
 #include "lgca_int.h"
 
-static int reinsert(lgca *L, int j, int c)
+/* The lane to start from is drawn uniformly across the band (a function of
+ * the key, the outflow count and the step), so that reinserted particles do
+ * not fall back as a curtain over the orifice. */
+static int reinsert(lgca *L, int c)
 {
     int n = L->band_j1 - L->band_j0;
     if (n <= 0)
         return 0;
-    int start = j < L->band_j0 ? L->band_j0 : j >= L->band_j1 ? L->band_j1 - 1 : j;
+    int start = L->band_j0 + (int)(lgca_rand_u32(L->key, L->outflow, LGCA_RND_REINSERT, L->step) % (uint32_t)n);
     for (int q = 0; q < n; q++) {
         int jj = L->band_j0 + (start - L->band_j0 + q) % n;
         for (int i = L->band_i1[jj & 1] - 1; i >= L->band_i0[jj & 1]; i--)
@@ -29,7 +32,7 @@ void lgca_exits(lgca *L)
                 L->outflow++;
                 if (!L->reinsert)
                     continue;
-                if (reinsert(L, j, c))
+                if (reinsert(L, c))
                     L->reinserted++;
                 else
                     L->lost++;

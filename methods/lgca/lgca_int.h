@@ -70,7 +70,7 @@ void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, 
 
 /* ---- random bits (lgca_rand.c): Philox4x32-10 keyed by the run's key,
  * counted by word, purpose and step ---- */
-enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34 };
+enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34, LGCA_RND_REINSERT = 35 };
 uint64_t lgca_rand_word(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step);
 /* 64 bits each set with probability thr / 2^16 (thr <= 65536). */
 uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step,
@@ -145,7 +145,7 @@ int lgca_init_state(lgca *L, const gr_particles *init, gr_rng *rng, gr_err *err)
 
 /* lgca_exit.c: particles below the silo's exit height leave (counted);
  * with reinsertion each goes back, in its channel, to the highest free node
- * of the band in its lane (or the next lane of the silo with room). */
+ * of the band in a lane drawn at random (or the next lane with room). */
 void lgca_exits(lgca *L);
 
 /* lgca_step.c: n steps (collision, gravity, walls, propagation, exits). */

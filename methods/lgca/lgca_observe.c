@@ -65,9 +65,27 @@ void lgca_observe(const lgca *L, gr_obs *o)
     o->max_overlap = NAN;
 }
 
+/* The node's share of the plane, the h x a rectangle around it (these tile
+ * the plane), spread over the cells it overlaps. */
+static void add_area(gr_field *f, double x, double y, double hw, double hh, double area)
+{
+    double x0 = x - hw, x1 = x + hw, y0 = y - hh, y1 = y + hh, inv = area / (4 * hw * hh);
+    int ia = (int)floor((x0 - f->x0) / f->cx), ib = (int)floor((x1 - f->x0) / f->cx);
+    int ja = (int)floor((y0 - f->y0) / f->cy), jb = (int)floor((y1 - f->y0) / f->cy);
+    for (int iy = ja < 0 ? 0 : ja; iy <= jb && iy < f->ny; iy++)
+        for (int ix = ia < 0 ? 0 : ia; ix <= ib && ix < f->nx; ix++) {
+            double cx0 = f->x0 + ix * f->cx, cy0 = f->y0 + iy * f->cy;
+            double ox = fmin(x1, cx0 + f->cx) - fmax(x0, cx0), oy = fmin(y1, cy0 + f->cy) - fmax(y0, cy0);
+            if (ox > 0 && oy > 0)
+                f->area[(size_t)iy * (size_t)f->nx + (size_t)ix] += ox * oy * inv;
+        }
+}
+
 /* Each particle counts in the cell of its node: number, mass, momentum,
- * m v^2, and an area of one seventh of the node's (so the packing field
- * is the fraction of occupied channels, 1 on a full lattice). */
+ * m v^2; and an area of one seventh of the node's rectangle, spread over
+ * the cells it overlaps (so the packing field is the fraction of occupied
+ * channels, 1 on a full lattice, without the aliasing of lanes 0.866 d
+ * apart on cells of another width). */
 int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err)
 {
     if (!(w > 0))
@@ -85,8 +103,6 @@ int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err)
                 double x, y;
                 lgca_node_xy(L, i, j, &x, &y);
                 long cell = gr_field_cell(f, x, y);
-                if (cell < 0)
-                    continue;
                 int n = 0, moving = 0;
                 double vx = 0, vy = 0;
                 for (int k = 0; k < LGCA_CH; k++)
@@ -95,8 +111,10 @@ int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err)
                         if (k < 6)
                             moving++, vx += SX[k] * c, vy += SY[k] * c;
                     }
+                add_area(f, x, y, 0.5 * L->h, 0.5 * L->a, w * n * share);
+                if (cell < 0)
+                    continue;
                 f->num[cell] += w * n;
-                f->area[cell] += w * n * share;
                 f->mass[cell] += w * n * m;
                 f->px[cell] += w * m * vx;
                 f->py[cell] += w * m * vy;
