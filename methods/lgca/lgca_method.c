@@ -13,17 +13,17 @@ static int check(const gr_scene *sc, lgca_params *p, gr_err *err)
     char where[1200];
     if (p->rules == LGCA_RULES_FHP3 && p->p > 0) {
         gr_scene_where(sc, "lgca", "p", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [lgca] p = %g needs rules = granular (fhp3 conserves energy)", where, p->p);
+        return gr_fail(err, GR_EINPUT, "%s: p = %g needs rules = granular (fhp3 conserves energy)", where, p->p);
     }
     if (isnan(p->g))
         p->g = sc->gravity * p->dt * p->dt / gr_scene_max_diameter(sc);
     else if (p->g > 0 && !(sc->gravity > 0)) {
         gr_scene_where(sc, "lgca", "g", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [lgca] g = %g needs [domain] gravity > 0", where, p->g);
+        return gr_fail(err, GR_EINPUT, "%s: g = %g needs [domain] gravity > 0", where, p->g);
     }
     if (p->g > 1) {
         gr_scene_where(sc, "lgca", "dt", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [lgca] gravity dt^2 / d = %g exceeds 1 (a probability per step); lower dt or give g",
+        return gr_fail(err, GR_EINPUT, "%s: gravity dt^2 / d = %g exceeds 1 (a probability per step); lower dt or give g",
                        where, p->g);
     }
     return GR_OK;
