@@ -91,7 +91,8 @@ static int build_walls(lgca *L, gr_err *err)
         free(l.w);
         return gr_fail(err, GR_ERUN, "out of memory");
     }
-    qsort(l.w, l.n, sizeof *l.w, wall_cmp);
+    if (l.n)
+        qsort(l.w, l.n, sizeof *l.w, wall_cmp);
     size_t n = 0;
     for (size_t k = 0; k < l.n; k++)
         if (!n || l.w[k].i != l.w[n - 1].i || l.w[k].j != l.w[n - 1].j)

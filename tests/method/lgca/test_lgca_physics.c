@@ -23,32 +23,48 @@ static double uniform(int k, double x, double y, void *ctx)
     return k == LGCA_REST ? d[1] : d[0];
 }
 
+/* A periodic nx x ny lattice with uniform occupations. */
+static gr_sim *uniform_lattice(int nx, int ny, const char *extra, double moving, double rest,
+                               uint64_t seed, gr_scene **sc, lgca **L)
+{
+    char text[1024];
+    lgca_periodic_text(text, sizeof text, nx, ny, extra);
+    gr_sim *s = lgca_make(text, sc);
+    *L = gr_sim_state(s);
+    double d[2] = {moving, rest};
+    lgca_fill(*L, uniform, d, seed);
+    return s;
+}
+
+/* One step, after which mass and momentum are what they were. */
+static void step_exactly(gr_sim *s, const lgca *L)
+{
+    int64_t m0, x0, y0, m, x, y;
+    gr_err e = {0};
+    lgca_totals(L, &m0, &x0, &y0);
+    assert_int_equal(gr_sim_step(s, &e), GR_OK);
+    lgca_totals(L, &m, &x, &y);
+    assert_true(m == m0 && x == x0 && y == y0);
+}
+
 static void conservation_exact(void **unused)
 {
     (void)unused;
     const char *variants[] = {"rules = fhp3\n", "rules = granular\n", "rules = fhp3\nthreads = 2\n",
                               "rules = granular\nthreads = 2\n"};
     for (size_t v = 0; v < 4; v++) {
-        char text[1024];
-        lgca_periodic_text(text, sizeof text, 96, 70, variants[v]);
         gr_scene *sc;
-        gr_sim *s = lgca_make(text, &sc);
-        lgca *L = gr_sim_state(s);
-        double d[2] = {0.35, 0.2};
-        lgca_fill(L, uniform, d, 3 + v);
+        lgca *L;
+        gr_sim *s = uniform_lattice(96, 70, variants[v], 0.35, 0.2, 3 + v, &sc, &L);
         /* a net flow, so that momentum is not zero by symmetry */
         for (int j = 0; j < L->nj; j++)
             for (int i = 0; i < L->ni; i += 3)
                 lgca_put(L, i, j, 1, 1);
-        int64_t m0, x0, y0, m, x, y;
+        int64_t m0, x0, y0;
         lgca_totals(L, &m0, &x0, &y0);
         assert_true(x0 != 0 && y0 != 0);
-        gr_err e = {0};
-        for (int k = 0; k < 60; k++) {
-            assert_int_equal(gr_sim_step(s, &e), GR_OK);
-            lgca_totals(L, &m, &x, &y);
-            assert_true(m == m0 && x == x0 && y == y0);
-        }
+        for (int k = 0; k < 60; k++)
+            step_exactly(s, L);
         lgca_drop(s, sc);
     }
 }
@@ -56,26 +72,19 @@ static void conservation_exact(void **unused)
 static void granular_decay(void **unused)
 {
     (void)unused;
-    char text[1024];
-    lgca_periodic_text(text, sizeof text, 96, 96, "rules = granular\np = 0.5\n");
     gr_scene *sc;
-    gr_sim *s = lgca_make(text, &sc);
-    lgca *L = gr_sim_state(s);
-    double d[2] = {0.3, 0};
-    lgca_fill(L, uniform, d, 9);
-    int64_t m0, x0, y0, m, x, y;
+    lgca *L;
+    gr_sim *s = uniform_lattice(96, 96, "rules = granular\np = 0.5\n", 0.3, 0, 9, &sc, &L);
+    int64_t m0, x0, y0;
     lgca_totals(L, &m0, &x0, &y0);
     uint64_t mov0, rest0, mov, rest, prev;
     lgca_populations(L, &mov0, &rest0);
     prev = mov0;
-    gr_err e = {0};
     for (int k = 0; k < 200; k++) {
-        assert_int_equal(gr_sim_step(s, &e), GR_OK);
+        step_exactly(s, L);
         lgca_populations(L, &mov, &rest);
         assert_true(mov <= prev); /* nothing sets a rest particle moving */
         prev = mov;
-        lgca_totals(L, &m, &x, &y);
-        assert_true(m == m0 && x == x0 && y == y0);
     }
     printf("# granular p = 0.5: moving %llu -> %llu of %lld\n", (unsigned long long)mov0,
            (unsigned long long)mov, (long long)m0);
@@ -86,13 +95,9 @@ static void granular_decay(void **unused)
 static void fermi_dirac_equilibrium(void **unused)
 {
     (void)unused;
-    char text[1024];
-    lgca_periodic_text(text, sizeof text, 256, 256, "rules = fhp3\n");
     gr_scene *sc;
-    gr_sim *s = lgca_make(text, &sc);
-    lgca *L = gr_sim_state(s);
-    double d[2] = {0.3, 0};
-    lgca_fill(L, uniform, d, 4);
+    lgca *L;
+    gr_sim *s = uniform_lattice(256, 256, "rules = fhp3\n", 0.3, 0, 4, &sc, &L);
     int64_t m0, x0, y0;
     lgca_totals(L, &m0, &x0, &y0);
     double nodes = (double)L->ni * L->nj, want = (double)m0 / (7 * nodes), occ[LGCA_CH] = {0};
