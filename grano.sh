@@ -9,7 +9,7 @@ BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy
-          libsiconos-numerics-dev librandom123-dev)
+          libsiconos-numerics-dev librandom123-dev python3-ase)
 
 say() { printf 'grano.sh: %s\n' "$*" >&2; }
 
@@ -95,7 +95,8 @@ usage: ./grano.sh COMMAND
                   then the unit suite again under address and undefined-behaviour sanitizers
   bench ARGS      build, then grano bench ARGS (e.g. ./grano.sh bench dem); with
                   --peer lammps, Debian's lammps package is installed if missing
-  run ARGS        build, then grano ARGS (e.g. ./grano.sh run run experiments/scenes/box.ini)
+  run ARGS        build, then grano ARGS (e.g. ./grano.sh run methods,
+                  ./grano.sh run info results/demo.h5)
 USAGE
 }
 

@@ -119,7 +119,7 @@ static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_
     if (!bad && d->columns && d->cols)
         bad = gr_h5_attr_strs(ds, "columns", d->columns, d->cols, 1);
     if (!bad && d->units)
-        bad = d->cols ? gr_h5_attr_strs(ds, "units", d->units, d->cols, 1) : gr_h5_unit(ds, d->units[0]);
+        bad = d->cols ? gr_h5_attr_strs(ds, "units", d->units, d->cols, 0) : gr_h5_unit(ds, d->units[0]);
     if (!bad && d->description)
         bad = gr_h5_attr_str(ds, "description", d->description, 1);
     gr_h5_close(ds);

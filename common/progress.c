@@ -1,5 +1,7 @@
 #include "progress.h"
 
+#include <inttypes.h>
+#include <math.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -10,6 +12,9 @@ struct gr_progress {
     double t0, t1, delay;
     double wall0, last_draw;
     int drawn;
+    double thermo_every, thermo_next, thermo_wall; /* thermo lines */
+    uint64_t thermo_steps;
+    int thermo_lines;
 };
 
 double gr_wall_seconds(void)
@@ -30,6 +35,7 @@ gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double 
     p->t1 = t_end;
     p->delay = delay;
     p->wall0 = gr_wall_seconds();
+    p->thermo_next = t_begin;
     return p;
 }
 
@@ -80,4 +86,45 @@ void gr_progress_finish(gr_progress *p)
         fflush(p->out);
         p->drawn = 0;
     }
+}
+
+void gr_progress_thermo(gr_progress *p, double every)
+{
+    if (p)
+        p->thermo_every = every;
+}
+
+/* Steps per wall-clock second since the previous line (0 on the first). */
+static void thermo_line(gr_progress *p, const gr_obs *o)
+{
+    double now = gr_wall_seconds();
+    double rate = p->thermo_lines && now > p->thermo_wall
+                      ? (double)(o->steps - p->thermo_steps) / (now - p->thermo_wall) : 0.0;
+    if (!p->thermo_lines)
+        fprintf(p->out, "%12s %12s %12s %12s %12s %9s %10s\n", "Step", "Time", "KinEng", "PotEng", "Temp",
+                "Outflow", "Steps/s");
+    fprintf(p->out, "%12" PRIu64 " %12.6g %12.6g %12.6g %12.6g %9" PRIu64 " %10.4g\n", o->steps, o->t,
+            o->ekin_trans + o->ekin_rot, o->epot_grav, o->temperature, o->outflow, rate);
+    fflush(p->out);
+    p->thermo_lines++;
+    p->thermo_steps = o->steps;
+    p->thermo_wall = now;
+}
+
+void gr_progress_obs(gr_progress *p, const gr_obs *o)
+{
+    if (!p)
+        return;
+    if (p->tty) {
+        gr_progress_update(p, o->t, "E_kin", o->ekin_trans + o->ekin_rot);
+        return;
+    }
+    if (!(p->thermo_every > 0))
+        return;
+    double eps = 1e-9 * (fabs(p->t1) > 1 ? fabs(p->t1) : 1);
+    if (p->thermo_lines && o->t < p->thermo_next - eps && o->t < p->t1 - eps)
+        return;
+    thermo_line(p, o);
+    while (p->thermo_next <= o->t + eps)
+        p->thermo_next += p->thermo_every;
 }

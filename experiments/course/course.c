@@ -124,13 +124,21 @@ int cmd_course(int argc, char **argv)
     if (!rc && (all || !strcmp(ex, "maxwell"))) {
         /* the first exercise is the slides' v1.0 */
         o.naive = naive < 0 ? !strcmp(o.m->name, "edmd") : naive;
+        o.pg = gr_progress_create(stderr, 0, 1, 1.0);
         rc = course_maxwell(&o, &err);
+        gr_progress_free(o.pg);
     }
     o.naive = naive < 0 ? 0 : naive;
-    if (!rc && (all || !strcmp(ex, "pressure")))
+    if (!rc && (all || !strcmp(ex, "pressure"))) {
+        o.pg = gr_progress_create(stderr, 0, 1, 1.0);
         rc = course_pressure(&o, &err);
-    if (!rc && (all || !strcmp(ex, "cooling")))
+        gr_progress_free(o.pg);
+    }
+    if (!rc && (all || !strcmp(ex, "cooling"))) {
+        o.pg = gr_progress_create(stderr, 0, 1, 1.0);
         rc = course_cooling(&o, &err);
+        gr_progress_free(o.pg);
+    }
     if (rc) {
         fprintf(stderr, "grano course %s: %s\n", ex, err.msg);
         return rc;

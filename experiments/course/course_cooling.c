@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "course.h"
+#include "refs.h"
 #include "plot.h"
 #include "table.h"
 
@@ -71,6 +72,7 @@ static int quench(const course_opts *o, cooling *w, gr_particles *p, gr_err *err
         double C = (double)(c - c0) / n, t = gr_sim_time(s) - t0;
         double row[6] = {C, t, ob.temperature / T0, exp(-(1 - a2) * C), 1 / ((1 + t / tau) * (1 + t / tau)), tau};
         memcpy(w->tab + 6 * k, row, sizeof row);
+        gr_progress_update(o->pg, (double)k / NSAMP, "T / T0", ob.temperature / T0);
     }
     gr_sim_free(s);
     return rc;
@@ -79,6 +81,7 @@ static int quench(const course_opts *o, cooling *w, gr_particles *p, gr_err *err
 /* The table on stdout and in cooling.dat, and the largest deviations. */
 static int report(const course_opts *o, const cooling *w, double *worst_c, double *worst_t, gr_err *err)
 {
+    gr_progress_finish(o->pg);
     printf("cooling: %ld disks, packing fraction %g, alpha = %g, Enskog chi = %.4f, Haff time tau = %.4g\n", w->n,
            eta, w->alpha, w->chi, w->tab[5]);
     printf("  C/N     t          T/T0       exp(-(1-a^2)C/N)  Haff 1/(1+t/tau)^2\n");
@@ -129,7 +132,7 @@ static int plot(const course_opts *o, const cooling *w, gr_err *err)
 
 int course_cooling(const course_opts *o, gr_err *err)
 {
-    cooling w = {.n = o->quick ? 2000 : 20000, .alpha = o->alpha, .chi = course_chi(eta)};
+    cooling w = {.n = o->quick ? 2000 : 20000, .alpha = o->alpha, .chi = exp_chi_luding(eta)};
     w.L = sqrt(w.n * M_PI / 4 / eta);
     gr_particles *p = gr_particles_create((size_t)w.n, err);
     int rc = !p || warm_up(o, &w, p, err) || quench(o, &w, p, err);

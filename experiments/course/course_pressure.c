@@ -8,6 +8,7 @@
 #include <gsl/gsl_fit.h>
 
 #include "course.h"
+#include "refs.h"
 #include "plot.h"
 #include "table.h"
 
@@ -74,17 +75,21 @@ static int against_density(const course_opts *o, pressure *w, gr_err *err)
         double nd = ns[k] / (L * L), eta = nd * M_PI / 4;
         /* centres stay sigma/2 from the walls: the ideal gas of the box
          * presses n T L / (L - sigma) on them; Z(eta) adds the collisions */
-        double ideal = nd * T * L / (L - 1), eos = ideal * (1 + 2 * eta * course_chi(eta));
+        double ideal = nd * T * L / (L - 1), eos = ideal * (1 + 2 * eta * exp_chi_luding(eta));
         double row[6] = {(double)ns[k], nd, p, nd * T, ideal, eos};
         memcpy(w->A + 6 * k, row, sizeof row);
+        gr_progress_finish(o->pg);
         printf("  %-5ld  %-8.4f  %-9.5g  %-9.5g  %-7.4f  %-19.4f  %.4g\n", ns[k], nd, p, nd * T, p / (nd * T),
                eos / (nd * T), cpn);
+        fflush(stdout);
+        gr_progress_update(o->pg, (k + 1.0) / (w->nn + w->nv), "boxes done", k + 1.0);
     }
     return GR_OK;
 }
 
 static int against_v0(const course_opts *o, pressure *w, gr_err *err)
 {
+    gr_progress_finish(o->pg);
     printf("  N = %d, against V0:\n  V0     p          p / V0^2\n", NFIX);
     for (int k = 0; k < w->nv; k++) {
         double p = NAN, T = NAN, cpn = NAN;
@@ -93,7 +98,10 @@ static int against_v0(const course_opts *o, pressure *w, gr_err *err)
             return err->code;
         double row[3] = {v0s[k], p, p / (v0s[k] * v0s[k])};
         memcpy(w->B + 3 * k, row, sizeof row);
+        gr_progress_finish(o->pg);
         printf("  %-5g  %-9.5g  %.5g\n", v0s[k], p, p / (v0s[k] * v0s[k]));
+        fflush(stdout);
+        gr_progress_update(o->pg, (w->nn + k + 1.0) / (w->nn + w->nv), "boxes done", w->nn + k + 1.0);
     }
     double cov = 0, ss = 0, xx[5], yy[5];
     for (int k = 0; k < w->nv; k++)
