@@ -24,7 +24,8 @@ static const char *const keys_silo[] = {
     "hopper", "hopper_outlet", "hopper_bottom", "hopper_top", "reinsert", "reinsert_bottom",
     "reinsert_top", "exit_below", NULL};
 static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", NULL};
-static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
+static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file",
+                                        "occupation", "rest_occupation", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
                                        "thermo_every", "stress", NULL};
@@ -34,7 +35,7 @@ static const char *const normal_names[] = {"linear", "hertz", NULL};
 static const char *const tang_names[] = {"none", "coulomb", "viscous", "regularised", "spring", NULL};
 static const char *const floor_names[] = {"fixed", "sine", "sawtooth", "sine-hf", "sawtooth-hf", NULL};
 static const char *const walls_names[] = {"segments", "grains", NULL};
-static const char *const init_names[] = {"lattice", "random", "file", NULL};
+static const char *const init_names[] = {"lattice", "random", "file", "occupation", NULL};
 static const char *const vel_names[] = {"zero", "gaussian", "speed", NULL};
 static const char *const yesno_names[] = {"no", "yes", NULL};
 
@@ -516,6 +517,21 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
     return GR_OK;
 }
 
+/* kind = occupation: mean occupations of the moving and rest channels,
+ * each in [0, 1]; grains are no longer counted (the lattice holds them). */
+static int read_init_occupation(gr_scene *sc, gr_err *err)
+{
+    gr_init *in = &sc->init;
+    if (!gr_scene_find(sc, "init", "occupation"))
+        return entry_fail(sc, "init", "kind", err, "kind = occupation needs an 'occupation' key (mean occupation of a moving channel, in [0, 1])");
+    if (get_num(sc, "init", "occupation", 0.0, 0.0, 0, 1.0, &in->occupation, err) ||
+        get_num(sc, "init", "rest_occupation", in->occupation, 0.0, 0, 1.0, &in->rest_occupation, err))
+        return err->code;
+    if (gr_scene_count(sc) > 0)
+        return entry_fail(sc, "init", "kind", err, "kind = occupation places no grains; give no species count (or count = 0)");
+    return GR_OK;
+}
+
 static int read_init(gr_scene *sc, gr_err *err)
 {
     gr_init *in = &sc->init;
@@ -543,6 +559,8 @@ static int read_init(gr_scene *sc, gr_err *err)
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
     if (in->kind == GR_INIT_FILE)
         return read_init_file(sc, fe, err);
+    if (in->kind == GR_INIT_OCCUPATION)
+        return read_init_occupation(sc, err);
     return check_init_fits(sc, d, err);
 }
 

@@ -16,6 +16,7 @@ static const bench_entry benches[] = {
     {"dem", bench_dem},
     {"dsmc", bench_dsmc},
     {"edmd", bench_edmd},
+    {"lgca", bench_lgca},
     {NULL, NULL},
 };
 

@@ -209,3 +209,34 @@ int gr_plot_snapshot(const char *png, const gr_particles *p, double width, doubl
     fprintf(gp, "\n");
     return gr_plot_close(gp, png, err);
 }
+
+int gr_plot_field(const char *png, const gr_plot_grid *g, double width, double height, double t,
+                  const char *title, gr_err *err)
+{
+    /* true proportions unless the domain is a long thin strip (a pipe) */
+    int square = width < 5 * height && height < 5 * width;
+    double s = 800.0 / (width > height ? width : height);
+    int w = square ? (int)(width * s) + 200 : width < height ? 400 : 1000;
+    int h = square ? (int)(height * s) + 60 : width < height ? 1000 : 400;
+    FILE *gp = gr_plot_open(png, w, h, err);
+    if (!gp)
+        return err->code;
+    double vmax = 0;
+    fprintf(gp, "$field << EOD\n");
+    for (int iy = 0; iy < g->ny; iy++) {
+        for (int ix = 0; ix < g->nx; ix++) {
+            double v = g->v[(size_t)iy * (size_t)g->nx + (size_t)ix];
+            vmax = v > vmax ? v : vmax;
+            fprintf(gp, "%.6g %.6g %.6g\n", g->x0 + (ix + 0.5) * g->cx, g->y0 + (iy + 0.5) * g->cy, v);
+        }
+        fprintf(gp, "\n");
+    }
+    fprintf(gp, "EOD\n");
+    fprintf(gp, "set title '%s, t = %.4g {/Symbol t}'\n", title, t);
+    fprintf(gp, "%sset xrange [0:%g]\nset yrange [0:%g]\n", square ? "set size ratio -1\n" : "", width, height);
+    fprintf(gp, "set xlabel 'x / d'\nset ylabel 'y / d'\nset cblabel '%s'\n", g->label);
+    fprintf(gp, "set cbrange [0:%g]\n", vmax > 0 ? vmax : 1);
+    fprintf(gp, "set palette defined (0 '#ffffff', 0.3 '#fdbb2d', 0.7 '#b21f1f', 1 '#1a2a6c')\n");
+    fprintf(gp, "plot $field using 1:2:3 with image notitle\n");
+    return gr_plot_close(gp, png, err);
+}

@@ -28,4 +28,15 @@ void gr_plot_quote(const char *s, char *buf, size_t n);
 int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
                      double t, const char *title, gr_err *err);
 
+/* A scalar field on a grid of nx x ny cells of cx x cy from (x0, y0),
+ * row-major (index iy nx + ix), as a colour map; NaN cells stay blank. */
+typedef struct {
+    int nx, ny;
+    double x0, y0, cx, cy;
+    const double *v;
+    const char *label; /* colour bar */
+} gr_plot_grid;
+int gr_plot_field(const char *png, const gr_plot_grid *g, double width, double height, double t,
+                  const char *title, gr_err *err);
+
 #endif

@@ -334,6 +334,27 @@ static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io
     return io->net ? GR_OK : err->code;
 }
 
+/* A method without snapshots (a lattice): the picture of the final state is
+ * its packing field on cells of about one grain diameter. */
+static int plot_density(const char *png, gr_sim *st, gr_err *err)
+{
+    const gr_scene *sc = gr_sim_scene(st);
+    int nx = (int)ceil(sc->width), ny = (int)ceil(sc->height);
+    nx = nx > 1200 ? 1200 : nx < 1 ? 1 : nx, ny = ny > 1200 ? 1200 : ny < 1 ? 1 : ny;
+    gr_field *f = gr_field_create(nx, ny, 0, 0, sc->width / nx, sc->height / ny, err);
+    double *phi = f ? malloc(gr_field_ncells(f) * sizeof *phi) : NULL;
+    int rc = !f || !phi ? (err->code ? err->code : gr_fail(err, GR_ERUN, "out of memory"))
+                        : gr_sim_fields(st, f, 1.0, err);
+    if (!rc) {
+        gr_field_packing(f, phi);
+        gr_plot_grid g = {nx, ny, 0, 0, f->cx, f->cy, phi, "packing fraction (lattice: occupied channels / 7)"};
+        rc = gr_plot_field(png, &g, sc->width, sc->height, gr_sim_time(st), sc->name, err);
+    }
+    free(phi);
+    gr_field_free(f);
+    return rc;
+}
+
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
     run_io io = {.out_room = {o->out, 0, 0}, .ckpt_room = {o->ckpt, 0, 0}};
@@ -401,7 +422,9 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     } else if (rc == GR_OK && o->ckpt) {
         rc = gr_run_save(o->ckpt, st, k, err);
     }
-    if (rc == GR_OK && o->snapshot) {
+    if (rc == GR_OK && o->snapshot && !m->snapshot)
+        rc = plot_density(o->snapshot, st, err);
+    else if (rc == GR_OK && o->snapshot) {
         if (!(rc = gr_sim_snapshot(st, io.snap, err)))
             rc = gr_plot_snapshot(o->snapshot, io.snap, sc->width, sc->height, gr_sim_time(st), sc->name, err);
     }

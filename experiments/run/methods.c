@@ -31,7 +31,7 @@ static void print_method(const gr_method_type *m)
     printf("\n  not supported:");
     first = 1;
     for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
-        if (!(m->features & (1u << b))) {
+        if (!(m->features & (1u << b)) && gr_feature_known(1u << b)) {
             printf("%s %s", first ? "" : ";", gr_feature_name(1u << b));
             first = 0;
         }
