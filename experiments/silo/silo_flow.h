@@ -11,6 +11,10 @@
 
 #define SF_MAX_ORIF 48
 
+/* The orifice closed during the filling; every orifice branches from that
+ * settled state (silo_rebase). */
+#define SF_FILL_D 6.0
+
 typedef struct {
     silo_cfg base;
     int quick;
@@ -26,6 +30,12 @@ typedef struct {
     double split;       /* small / large orifices for figs. 4.2-4.3 */
     const char *dir;
 } sf_ctx;
+
+/* The fillings: one unit per realisation, before the orifices' units. */
+void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n);
+void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n);
+int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
+                 gr_err *err);
 
 void sf_label(size_t unit, void *ctx, char *buf, size_t n);
 void sf_key(size_t unit, void *ctx, char *buf, size_t n);
