@@ -258,6 +258,11 @@ static void usage(FILE *f)
         "                       Steps stay dem's (1.25e-4 tau); cd runs its own dt\n"
         "                       (2.5e-3 tau, 20 steps) on rigid disks, mu 0.5, e = 0\n"
         "      --param K=V      a key of the method's section (repeatable), e.g. tol=1e-4\n"
+        "      --peer lammps    instead of the sweep: the first orifice's silo, settled and\n"
+        "                       branched as the sweep does, run without reinsertion by dem\n"
+        "                       and by LAMMPS (lmp; apt-get install lammps) from the same\n"
+        "                       state with the same contact law; both flow rates with\n"
+        "                       their errors and CPU times in DIR/peer.dat\n"
         "  -Q, --quick          900 grains in a 24 d x 48 d silo filled without hopper,\n"
         "                       7 orifices, 16 blocks of 2000 steps: a smoke test\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -276,11 +281,12 @@ static int sf_report_any(const void *ctx, char *const *parts, char *summary, siz
 /* silo-flow's own options; a number not given is -1 */
 typedef struct {
     long blocks, bsteps, discard;
+    int peer;
 } sf_own;
 
 static const struct option sf_own_opts[] = {
     {"blocks", required_argument, NULL, 'b'}, {"block-steps", required_argument, NULL, 'B'},
-    {"discard", required_argument, NULL, 'X'}, {NULL, 0, NULL, 0}};
+    {"discard", required_argument, NULL, 'X'}, {"peer", required_argument, NULL, 'P'}, {NULL, 0, NULL, 0}};
 
 static int sf_own_option(int ch, const char *arg, void *own);
 
@@ -313,6 +319,11 @@ static int sf_own_option(int ch, const char *arg, void *own)
     case 'X':
         return silo_parse_long(arg, 0, &w->discard) ? silo_bad(&sf_cli, "--discard", arg, "a non-negative integer")
                                                     : 0;
+    case 'P':
+        if (strcmp(arg, "lammps"))
+            return silo_bad(&sf_cli, "--peer", arg, "lammps");
+        w->peer = 1;
+        return 0;
     default: return 1;
     }
 }
@@ -320,7 +331,7 @@ static int sf_own_option(int ch, const char *arg, void *own)
 int cmd_silo_flow(int argc, char **argv)
 {
     silo_opts o;
-    sf_own w = {-1, -1, -1};
+    sf_own w = {-1, -1, -1, 0};
     int rc = silo_cli_parse(&sf_cli, argc, argv, &o, &w);
     if (rc >= 0)
         return rc;
@@ -341,5 +352,15 @@ int cmd_silo_flow(int argc, char **argv)
     c.split = 9;
     char dir[1024];
     c.dir = silo_cli_dir(&sf_cli, &o, dir, sizeof dir);
+    if (w.peer) {
+        char summary[1024] = "";
+        gr_err e = {0};
+        if (sf_peer_lammps(&c, summary, sizeof summary, &e)) {
+            fprintf(stderr, "grano silo-flow: %s\n", e.msg);
+            return e.code == GR_EINPUT ? 2 : 1;
+        }
+        fprintf(stderr, "grano silo-flow --peer lammps: wrote %s/peer.dat, %s/peer/\n%s", c.dir, c.dir, summary);
+        return 0;
+    }
     return silo_cli_sweep(&sf_cli, &o, &c, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
 }

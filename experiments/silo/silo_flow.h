@@ -43,4 +43,9 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
             gr_err *err);
 int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t n, gr_err *err);
 
+/* --peer lammps (silo_peer.c): the first orifice and seed, settled and
+ * branched as the sweep does, run without reinsertion by dem and by
+ * LAMMPS's lmp from the same state; DIR/peer.dat and a summary. */
+int sf_peer_lammps(const sf_ctx *c, char *summary, size_t n, gr_err *err);
+
 #endif
