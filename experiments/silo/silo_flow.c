@@ -86,12 +86,19 @@ int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vola
     return rc;
 }
 
-/* The settled silo of realisation r from its filling part. */
-static int load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
+int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n)
 {
-    char path[1200], label[32];
+    char label[32], key[1024];
     sf_fill_label(r, NULL, label, sizeof label);
-    snprintf(path, sizeof path, "%s/parts/fill-%s.part", c->dir, label);
+    snprintf(path, n, "%s/parts/fill-%s.part", c->dir, label);
+    fill_key(c, r, key, sizeof key);
+    return exp_part_key_matches(path, key);
+}
+
+int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
+{
+    char path[1200];
+    sf_fill_path(c, r, path, sizeof path);
     *set = (silo_settled){0};
     gr_ckpt *ck = gr_ckpt_open(path, err);
     if (!ck)
@@ -186,7 +193,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     volatile double fillp = 0;
     double fill_cost[5];
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = load_fill(c, r, &fill, fill_cost, err);
+    int rc = sf_load_fill(c, r, &fill, fill_cost, err);
     if (!rc)
         rc = silo_rebase(&cfg, &fill, &set, &fillp, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;

@@ -37,6 +37,13 @@ void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n);
 int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
                  gr_err *err);
 
+/* The path of realisation r's filling part; whether it exists with the
+ * key of c's filling. */
+int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n);
+/* The settled silo of realisation r from its filling part, and the
+ * filling's cost record. */
+int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err);
+
 void sf_label(size_t unit, void *ctx, char *buf, size_t n);
 void sf_key(size_t unit, void *ctx, char *buf, size_t n);
 int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
@@ -44,7 +51,8 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
 int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t n, gr_err *err);
 
 /* --peer lammps (silo_peer.c): the first orifice and seed, settled and
- * branched as the sweep does, run without reinsertion by dem and by
+ * branched as the sweep does (its filling part reused when DIR holds
+ * one), run without reinsertion by dem and by
  * LAMMPS's lmp from the same state; DIR/peer.dat and a summary. */
 int sf_peer_lammps(const sf_ctx *c, char *summary, size_t n, gr_err *err);
 

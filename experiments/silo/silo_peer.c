@@ -160,7 +160,9 @@ int sf_peer_lammps(const sf_ctx *c, char *summary, size_t n, gr_err *err)
     fc.orifice = SF_FILL_D, fc.seed = cfg.seed = c->seed;
     cfg.orifice = c->orifice[0], cfg.reinsert = 0;
     silo_settled fill, set;
-    int rc = silo_fill(&fc, &fill, NULL, err);
+    double fill_cost[5];
+    int rc = sf_fill_path(c, 0, path, sizeof path) ? sf_load_fill(c, 0, &fill, fill_cost, err)
+                                                   : silo_fill(&fc, &fill, NULL, err);
     if (!rc)
         rc = silo_rebase(&cfg, &fill, &set, NULL, err), silo_settled_free(&fill);
     if (rc)
