@@ -6,13 +6,8 @@
 set -u
 GRANO=$1
 MPIRUN=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); [ -f "$tmp/err" ] && sed 's/^/# /' "$tmp/err"; }
-check() { if [ "$1" = 0 ]; then ok "$2"; else notok "$2"; fi; }
+# shellcheck source=tap.sh
+. "$(dirname "$0")/tap.sh"
 
 args="silo-flow --quick --orifices 6.24,10,14 --blocks 4 --realisations 2 -q"
 # shellcheck disable=SC2086
@@ -32,5 +27,4 @@ check $same "two ranks give the serial tables bit for bit"
 np=$(find "$tmp/mpi/parts" -name '*.part' | wc -l)
 [ "$np" = 8 ]
 check $? "two fillings and six orifice parts in the shared directory (found $np)"
-echo "1..$n"
-exit $((fails > 0))
+done_tap

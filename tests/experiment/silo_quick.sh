@@ -6,13 +6,8 @@
 set -u
 GRANO=$1
 PY=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); [ -f "$tmp/err" ] && sed 's/^/# /' "$tmp/err"; }
-check() { if [ "$1" = 0 ]; then ok "$2"; else notok "$2"; fi; }
+# shellcheck source=tap.sh
+. "$(dirname "$0")/tap.sh"
 if ! $PY -c 'import h5py, numpy' 2>/dev/null; then
     echo "1..0 # SKIP /usr/bin/python3 lacks h5py"
     exit 0
@@ -24,7 +19,7 @@ check $? "silo-start --help"
 "$GRANO" silo-flow --help >"$tmp/out" 2>&1 && grep -q "usage: grano silo-flow" "$tmp/out"
 check $? "silo-flow --help"
 for args in "silo-start --bogus:--bogus" "silo-start --jobs 0:--jobs" "silo-flow --orifices 3,abc:--orifices" \
-            "silo-flow --blocks x:--blocks" "silo-start --subtract mean:--subtract" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
+            "silo-flow --blocks x:--blocks" "silo-start --subtract mean:--subtract" "silo-flow --peer gromacs:--peer" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
     cmd=${args%%:*}
     flag=${args##*:}
     # shellcheck disable=SC2086
@@ -111,6 +106,9 @@ for f in silo-flow.h5 flow.dat fits.dat pdf_fluctuations.dat reduced_flow.dat fi
 done
 [ -z "$missing" ]
 check $? "silo-flow writes every table and figure${missing:+ (missing:$missing)}"
+# settle once, branch many: one filling for the 7 orifices of realisation 0
+[ -s "$F/parts/fill-r00.part" ] && [ "$(find "$F/parts" -name 'fill-*.part' | wc -l)" = 1 ]
+check $? "silo-flow fills once (parts/fill-r00.part) and branches every orifice from it"
 $PY - "$F/silo-flow.h5" >"$tmp/err" 2>&1 <<'PY'
 import sys, h5py, numpy as np
 r = h5py.File(sys.argv[1], "r")["results"]
@@ -154,5 +152,4 @@ assert 0.5 * Wd < Wc < 1.2 * Wd, (Wc, Wd)
 assert 0.7 < cd[0, 5] < 0.91, cd[0, 5]
 PY
 check $? "silo-flow --method cd: grains leave once open, rate within [0.5, 1.2] of dem's at D = 8"
-echo "1..$n"
-exit $((fails > 0))
+done_tap
