@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dist.h"
 #include "opts.h"
+#include "progress.h"
 
 /* a long option without a short one */
 #define OPT_METHOD 0x100
@@ -185,26 +187,66 @@ const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, siz
     return dir;
 }
 
-int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t nunits, const char *dir)
+/* "estimated ..." before a full run: the units' CPU seconds (the
+ * command's estimate at the rate measured unloaded) spread over the
+ * workers, phase by phase. */
+static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t nunits, int workers)
 {
+    double pre = 0, unit = 0;
+    cli->estimate(ctx, &pre, &unit);
+    if (!isfinite(pre) || !isfinite(unit))
+        return;
+    size_t w = workers > 0 ? (size_t)workers : 1;
+    double wall = (double)((npre + w - 1) / w) * pre + (double)((nunits + w - 1) / w) * unit;
+    char first[96] = "";
+    if (npre)
+        snprintf(first, sizeof first, "%zu %s of ~%.0f CPU s, then ", npre, cli->pre_what, pre);
+    fprintf(stderr,
+            "grano %s: estimated %.0f min wall on %zu worker%s: %s%zu %s of ~%.0f CPU s (at the rate measured "
+            "on an idle core; a loaded machine is slower)\n",
+            cli->name, wall / 60, w, w > 1 ? "s" : "", first, nunits, cli->units_what, unit);
+}
+
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,
+                   const char *dir)
+{
+    exp_dist d;
+    exp_dist_begin(&d);
     char pdir[1100];
     snprintf(pdir, sizeof pdir, "%s/parts", dir);
     gr_err e = {0};
-    int jobs = (int)o->jobs;
+    /* one process per rank under MPI: mpirun places the ranks on the cores */
+    int jobs = d.size > 1 ? 1 : (int)o->jobs;
     size_t reused = 0;
+    if (d.rank == 0 && !o->quiet && !o->quick && cli->estimate)
+        print_estimate(cli, ctx, npre, nunits, jobs * d.size);
+    double t0 = gr_wall_seconds();
+    int rc = GR_OK;
+    if (npre && cli->pre_unit) {
+        exp_sweep pre = {npre, jobs, pdir, cli->pre_prefix, !o->quiet, cli->pre_what, o->force};
+        rc = exp_dist_sweep(&d, &pre, cli->pre_unit, cli->pre_label, cli->pre_key, ctx, &e);
+    }
     exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force};
+    if (!rc && d.size > 1) {
+        rc = exp_dist_sweep(&d, &sw, cli->unit, cli->label, cli->key, ctx, &e);
+        sw.force = 0; /* rank 0 reads the parts every rank wrote */
+    }
     char summary[4096] = "";
     double t_units = 0;
-    int rc = exp_sweep_and_report(&sw, cli->unit, cli->label, cli->key, cli->report, ctx, summary,
+    if (!rc && d.rank == 0)
+        rc = exp_sweep_and_report(&sw, cli->unit, cli->label, cli->key, cli->report, ctx, summary,
                                    sizeof summary, &t_units, &reused, &e);
+    t_units = gr_wall_seconds() - t0;
     if (rc)
         fprintf(stderr, "grano %s: %s\n", cli->name, e.msg);
-    else {
+    else if (d.rank == 0) {
         /* Results on standard output, messages on standard error. */
         if (!o->quiet)
-            fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n", cli->name,
-                    nunits, cli->units_what, reused, t_units, jobs, jobs > 1 ? "s" : "", dir);
+            fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s%s; wrote %s/\n", cli->name,
+                    nunits, cli->units_what, d.size > 1 ? (size_t)0 : reused, t_units, jobs * d.size,
+                    jobs * d.size > 1 ? "s" : "", d.size > 1 ? " (MPI ranks)" : "", dir);
         fputs(summary, stdout);
     }
+    exp_dist_end(&d);
     return rc;
 }
