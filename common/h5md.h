@@ -35,6 +35,11 @@ typedef struct gr_h5md_opts {
  * the file and --force). The file is built as <path>.part and renamed once
  * its metadata and parameters are on disk, so a failed creation leaves
  * nothing that looks like a result. sc may not be NULL. */
+/* Call first thing in main: the HDF5 library then runs no exit handler.
+ * After a failed write (a full disk) a file cannot be closed, and the
+ * handler's second attempt at exit crashed the program. */
+void gr_h5_no_exit_handler(void);
+
 gr_h5md *gr_h5md_create(const char *path, const struct gr_scene *sc,
                         const gr_h5md_opts *o, gr_err *err);
 

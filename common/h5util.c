@@ -58,6 +58,11 @@ int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
     return code;
 }
 
+void gr_h5_no_exit_handler(void)
+{
+    H5dont_atexit();
+}
+
 hid_t gr_h5_fapl(void)
 {
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "geom.h"
 #include "grid.h"
@@ -144,6 +145,39 @@ static int place_random(const gr_scene *sc, gr_particles *p, gr_rng *rng, gr_err
     return GR_OK;
 }
 
+
+/* The file's grains must lie in the domain, and number the species count
+ * when the scene gives one. */
+static int check_file_grains(const gr_scene *sc, const gr_particles *p, gr_err *err)
+{
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->x[i] >= 0 && p->x[i] <= sc->width && p->y[i] >= 0 && p->y[i] <= sc->height))
+            return gr_fail(err, GR_EINPUT, "%s: grain %zu at (%g, %g) lies outside the domain [0, %g] x [0, %g]",
+                           sc->init.file, i + 1, p->x[i], p->y[i], sc->width, sc->height);
+    if (gr_scene_find(sc, "species", "count") && (long)p->n != sc->species[0].count) {
+        char where[1200];
+        gr_scene_where(sc, "species", "count", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: %ld grains, but %s holds %zu", where, sc->species[0].count,
+                       sc->init.file, p->n);
+    }
+    return GR_OK;
+}
+
+/* The grains file must be a regular file (a device or a pipe such as
+ * /dev/zero would be read for ever); its grains are then checked against
+ * the scene. */
+static int read_grains_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+{
+    struct stat st;
+    char where[1200];
+    gr_scene_where(sc, "init", "file", where, sizeof where);
+    if (stat(sc->init.file, &st) || !S_ISREG(st.st_mode))
+        return gr_fail(err, GR_EINPUT, "%s: '%s' is not a regular file", where, sc->init.file);
+    if (gr_init_read_file(sc->init.file, &sc->species[0], p, err))
+        return err->code;
+    return check_file_grains(sc, p, err);
+}
+
 static void draw_velocities(const gr_scene *sc, gr_particles *p, size_t from, gr_rng *rng)
 {
     const gr_init *in = &sc->init;
@@ -224,7 +258,7 @@ int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
     switch (sc->init.kind) {
     case GR_INIT_LATTICE: rc = place_lattice(sc, out, rng, err); break;
     case GR_INIT_RANDOM: rc = place_random(sc, out, rng, err); break;
-    default: rc = gr_init_read_file(sc->init.file, &sc->species[0], out, err); break;
+    default: rc = read_grains_file(sc, out, err); break;
     }
     if (!rc)
         draw_velocities(sc, out, 0, rng);

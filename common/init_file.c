@@ -26,6 +26,9 @@ static int add(reader *r, double x, double y, double vx, double vy, double w, do
 {
     if (!isfinite(x) || !isfinite(y) || !isfinite(vx) || !isfinite(vy) || !isfinite(w) || !(d > 0) || !isfinite(d))
         return gr_fail(r->err, GR_EINPUT, "%s:%d: a non-finite value or a diameter <= 0", r->path, ln);
+    if (r->p->n >= (size_t)GR_SCENE_MAX_GRAINS)
+        return gr_fail(r->err, GR_EINPUT, "%s:%d: more than %ld grains (docs/reliability.md)", r->path, ln,
+                       GR_SCENE_MAX_GRAINS);
     long i = gr_particles_push(r->p, x, y, 0.5 * d, r->sp->density * M_PI * d * d / 4, 0, 0, r->err);
     if (i < 0)
         return r->err->code;
@@ -60,6 +63,9 @@ static int read_plain(reader *r, FILE *f)
     int ln = 0;
     while (fgets(line, sizeof line, f)) {
         ln++;
+        if (!strchr(line, '\n') && !feof(f))
+            return gr_fail(r->err, GR_EINPUT, "%s:%d: line longer than %zu characters", r->path, ln,
+                           sizeof line - 2);
         double v[5] = {0, 0, 0, 0, r->sp->diameter};
         int k = numbers(line, v, 5);
         if (k == 0)
@@ -255,8 +261,15 @@ int gr_init_read_file(const char *path, const gr_species *sp, gr_particles *p, g
     long n = -1;
     int rc;
     if (fgets(first, sizeof first, f) && sscanf(first, "%ld %7s", &n, extra) == 1 && n > 0) {
+        if (n > GR_SCENE_MAX_GRAINS)
+            n = GR_SCENE_MAX_GRAINS + 1; /* refused by add() at the limit, not allocated */
         rc = read_extxyz(&r, f, n);
     } else if (rewind(f), (n = lammps_atoms(f)) > 0) {
+        if (n > GR_SCENE_MAX_GRAINS) {
+            fclose(f);
+            return gr_fail(err, GR_EINPUT, "%s: %ld atoms, more than %ld (docs/reliability.md)", path, n,
+                           GR_SCENE_MAX_GRAINS);
+        }
         rewind(f);
         rc = read_lammps_data(&r, f, n);
     } else {

@@ -49,6 +49,9 @@ static int get_num(const gr_scene *sc, const char *s, const char *k, double def,
     const gr_scene_entry *e = gr_scene_find(sc, s, k);
     if (!e)
         return GR_OK;
+    if (fabs(*out) > GR_SCENE_MAX_MAGNITUDE)
+        return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': %s is beyond +-%g (energies and products would overflow)",
+                       sc->path, e->line, s, k, e->value, GR_SCENE_MAX_MAGNITUDE);
     int bad_lo = lo_open ? !(*out > lo) : !(*out >= lo);
     if (bad_lo || *out > hi) {
         if (isinf(hi))
@@ -83,6 +86,14 @@ static const char *section_kind(const char *name)
     if (!strncmp(name, "wall.", 5))
         return "wall";
     return name;
+}
+
+static int in_list(const char *const *list, const char *s)
+{
+    for (size_t i = 0; list[i]; i++)
+        if (!strcmp(list[i], s))
+            return 1;
+    return 0;
 }
 
 static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
@@ -124,8 +135,12 @@ static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
         else if (!strcmp(kind, "measure")) valid = keys_measure;
         else if (!strcmp(kind, "run")) valid = keys_run;
         /* Backend sections are checked by the backend. */
-        if (valid && gr_scene_check_keys(sc, e->section, valid, err))
-            return err->code;
+        if (valid && e->key[0] && !in_list(valid, e->key)) {
+            const char *near = gr_nearest(e->key, valid);
+            return gr_fail(err, GR_EINPUT, "%s:%d: unknown key '%s' in [%s]%s%s%s", sc->path, e->line,
+                           e->key, e->section, near ? "; did you mean '" : "", near ? near : "",
+                           near ? "'?" : "");
+        }
     }
     return GR_OK;
 }
@@ -224,6 +239,13 @@ static int read_species(gr_scene *sc, gr_err *err)
             return err->code;
         if (sp->count < 0 || !gr_scene_find(sc, sec, "count"))
             return entry_fail(sc, sec, "count", err, "a species needs a count >= 0");
+        /* Checked one species at a time, so the sum cannot overflow. */
+        if (sp->count > GR_SCENE_MAX_GRAINS || gr_scene_count(sc) > GR_SCENE_MAX_GRAINS) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "more than %ld grains in all, the largest count grano is tested and sized for (docs/reliability.md)",
+                     (long)GR_SCENE_MAX_GRAINS);
+            return entry_fail(sc, sec, "count", err, msg);
+        }
     }
     if (sc->nspecies == 0) {
         /* No species: grains of unit diameter and mass only if the init reads a file. */
@@ -270,10 +292,8 @@ static int read_walls(gr_scene *sc, gr_err *err)
         const char *sec = sc->entries[i].section;
         if (strcmp(section_kind(sec), "wall"))
             continue;
-        int dup = 0;
-        for (size_t j = 0; j < i; j++)
-            dup |= !strcmp(sc->entries[j].section, sec);
-        if (dup)
+        /* Once per wall: at its header, the section's first entry. */
+        if (sc->entries[i].key[0])
             continue;
         double a[2], b[2];
         int fa, fb, vib;
@@ -283,6 +303,9 @@ static int read_walls(gr_scene *sc, gr_err *err)
             return entry_fail(sc, sec, fa ? "to" : "from", err, "a wall needs 'from = x y' and 'to = x y'");
         if (a[0] == b[0] && a[1] == b[1])
             return entry_fail(sc, sec, "to", err, "a wall needs two distinct end points");
+        if (sc->nsegments >= GR_SCENE_MAX_WALLS)
+            return entry_fail(sc, sec, "from", err, "more than " GR_STR(GR_SCENE_MAX_WALLS)
+                              " walls, the most grano is tested with (docs/reliability.md)");
         gr_segment s = {a[0], a[1], b[0], b[1], INFINITY, 0, sc->entries[i].line};
         if (NONNEG(sec, "open_time", INFINITY, &s.open_time) || get_yesno(sc, sec, "vibrating", 0, &vib, err))
             return err->code;
@@ -417,10 +440,13 @@ static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
         return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
     /* Relative paths are relative to the scene file. */
     const char *slash = strrchr(sc->path, '/');
+    int len;
     if (fe->value[0] == '/' || !slash)
-        snprintf(in->file, sizeof in->file, "%s", fe->value);
+        len = snprintf(in->file, sizeof in->file, "%s", fe->value);
     else
-        snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+        len = snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+    if (len < 0 || (size_t)len >= sizeof in->file)
+        return entry_fail(sc, "init", "file", err, "the path is longer than 1023 characters");
     FILE *f = fopen(in->file, "r");
     if (!f) {
         char msg[1200];
@@ -499,6 +525,8 @@ static int read_init(gr_scene *sc, gr_err *err)
         return err->code;
     if (!(r[2] > r[0]) || !(r[3] > r[1]))
         return entry_fail(sc, "init", "region", err, "the region must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+    if (found && (r[0] < 0 || r[1] < 0 || r[2] > sc->width || r[3] > sc->height))
+        return entry_fail(sc, "init", "region", err, "the region reaches outside the domain [0, width] x [0, height]");
     in->x0 = r[0], in->y0 = r[1], in->x1 = r[2], in->y1 = r[3];
     if (get_num(sc, "init", "spacing", 1.05, 1.0, 0, 10.0, &in->spacing, err))
         return err->code;
@@ -523,6 +551,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
     if (found) {
         if (!(w[2] > w[0]) || !(w[3] > w[1]))
             return entry_fail(sc, "measure", "window", err, "the window must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+        if (w[0] < 0 || w[1] < 0 || w[2] > sc->width || w[3] > sc->height)
+            return entry_fail(sc, "measure", "window", err, "the window reaches outside the domain [0, width] x [0, height]");
         sc->window.x0 = w[0], sc->window.y0 = w[1], sc->window.x1 = w[2], sc->window.y1 = w[3];
     }
     double c[2];
@@ -622,6 +652,8 @@ void gr_scene_free(gr_scene *sc)
         return;
     free(sc->text);
     free(sc->entries);
+    free(sc->parsed);
+    free(sc->index);
     free(sc->segments);
     free(sc);
 }

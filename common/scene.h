@@ -112,9 +112,18 @@ typedef struct {
     int stress;             /* write the contact stress with each frame */
 } gr_runctl;
 
+/* Scale limits (docs/reliability.md): a scene beyond them is refused up
+ * front with the reason. */
+#define GR_SCENE_MAX_GRAINS 10000000L
+#define GR_SCENE_MAX_WALLS 100000
+#define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_STR_(x) #x
+#define GR_STR(x) GR_STR_(x)
+
 /* One key = value of the file, kept for messages and for backends. */
 typedef struct {
-    char section[64], key[64], value[256];
+    char section[64], key[64];
+    const char *value;      /* into the scene's parsed copy of the text */
     int line;
     int used;
 } gr_scene_entry;
@@ -139,6 +148,8 @@ typedef struct gr_scene {
     uint64_t seed;
     size_t nentries;
     gr_scene_entry *entries;
+    char *parsed;           /* the text cut into the entries' values */
+    size_t *index, index_cap; /* (section, key) -> entry + 1, open addressing */
     int set_line0;          /* line of the first --set in text, 0: none */
 } gr_scene;
 
@@ -158,9 +169,10 @@ enum {
     GR_FEAT_MIXTURE = 1u << 11,
     GR_FEAT_HERTZ = 1u << 12,
     GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
-    GR_FEAT_WEIGHTS = 1u << 14        /* a particle stands for several grains */
+    GR_FEAT_WEIGHTS = 1u << 14,       /* a particle stands for several grains */
+    GR_FEAT_RESTITUTION = 1u << 15    /* a prescribed normal restitution */
 };
-#define GR_FEAT_COUNT 15
+#define GR_FEAT_COUNT 16
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;
@@ -180,6 +192,12 @@ void gr_scene_name_sets(const gr_scene *sc, const char *const *sets, size_t n, g
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);
 void gr_scene_free(gr_scene *sc);
+/* A copy of scene text (malloc'd) with key of section set to value, as
+ * --set does it (scene_set.c): the key's line commented out and
+ * "[section]\nkey = value" appended, so every other line keeps its number.
+ * For sweeps over a scene's parameters. */
+char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
+                        gr_err *err);
 
 unsigned gr_scene_features(const gr_scene *sc);
 const char *gr_feature_name(unsigned feature_bit);

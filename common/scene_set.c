@@ -50,6 +50,14 @@ static void comment_line(char *text, int line)
     }
 }
 
+/* What gr_scene_read_entries allocated in a scene on the stack. */
+static void free_entries(gr_scene *tmp)
+{
+    free(tmp->entries);
+    free(tmp->parsed);
+    free(tmp->index);
+}
+
 /* The file's text with the settings applied; *line0 the first added line. */
 static char *apply(const char *path, const char *text, const setting *st, size_t n, int *line0, gr_err *err)
 {
@@ -63,7 +71,7 @@ static char *apply(const char *path, const char *text, const setting *st, size_t
     }
     memcpy(out, text, len + 1);
     if (gr_scene_read_entries(&tmp, text, err)) {
-        free(tmp.entries);
+        free_entries(&tmp);
         free(out);
         return NULL;
     }
@@ -72,7 +80,7 @@ static char *apply(const char *path, const char *text, const setting *st, size_t
         if (e)
             comment_line(out, e->line);
     }
-    free(tmp.entries);
+    free_entries(&tmp);
     len = strlen(out);
     if (len && out[len - 1] != '\n')
         out[len++] = '\n', out[len] = '\0';
@@ -108,6 +116,21 @@ static void rename_lines(const char *path, int line0, const setting *st, size_t 
         int k = snprintf(at, sizeof err->msg - off, "--set %s.%s:%s", st[i].section, st[i].key, tail);
         at += k > 0 && (size_t)k < sizeof err->msg - off ? (size_t)k - strlen(tail) : strlen(at);
     }
+}
+
+char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
+                        gr_err *err)
+{
+    setting st;
+    if (strlen(section) >= sizeof st.section || strlen(key) >= sizeof st.key || strlen(value) >= sizeof st.value) {
+        gr_fail(err, GR_EINPUT, "%s.%s: name or value too long", section, key);
+        return NULL;
+    }
+    snprintf(st.section, sizeof st.section, "%s", section);
+    snprintf(st.key, sizeof st.key, "%s", key);
+    snprintf(st.value, sizeof st.value, "%s", value);
+    int line0;
+    return apply("scene text", text, &st, 1, &line0, err);
 }
 
 static int split_all(const char *const *sets, size_t n, setting *st, gr_err *err)

@@ -13,6 +13,7 @@ typedef struct {
 static const bench_entry benches[] = {
     {"cd", bench_cd},
     {"dem", bench_dem},
+    {"dsmc", bench_dsmc},
     {"edmd", bench_edmd},
     {NULL, NULL},
 };

@@ -42,10 +42,6 @@ const char *course_how(const course_opts *o);
 /* The exercise's HDF5 result file at <out>/<name>, labelled with the method. */
 gr_h5md *course_h5(const course_opts *o, const char *name, const gr_scene *sc, gr_err *err);
 
-/* The pair correlation at contact (Enskog's chi) of Luding's hard-disk
- * equation of state (Phys. Rev. E 63, 042201, 2001) at packing eta. */
-double course_chi(double eta);
-
 int course_maxwell(const course_opts *o, gr_err *err);
 int course_pressure(const course_opts *o, gr_err *err);
 int course_cooling(const course_opts *o, gr_err *err);

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "course.h"
+#include "refs.h"
 #include "plot.h"
 #include "table.h"
 
@@ -131,7 +132,7 @@ static int plot(const course_opts *o, const cooling *w, gr_err *err)
 
 int course_cooling(const course_opts *o, gr_err *err)
 {
-    cooling w = {.n = o->quick ? 2000 : 20000, .alpha = o->alpha, .chi = course_chi(eta)};
+    cooling w = {.n = o->quick ? 2000 : 20000, .alpha = o->alpha, .chi = exp_chi_luding(eta)};
     w.L = sqrt(w.n * M_PI / 4 / eta);
     gr_particles *p = gr_particles_create((size_t)w.n, err);
     int rc = !p || warm_up(o, &w, p, err) || quench(o, &w, p, err);

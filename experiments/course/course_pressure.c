@@ -8,6 +8,7 @@
 #include <gsl/gsl_fit.h>
 
 #include "course.h"
+#include "refs.h"
 #include "plot.h"
 #include "table.h"
 
@@ -74,7 +75,7 @@ static int against_density(const course_opts *o, pressure *w, gr_err *err)
         double nd = ns[k] / (L * L), eta = nd * M_PI / 4;
         /* centres stay sigma/2 from the walls: the ideal gas of the box
          * presses n T L / (L - sigma) on them; Z(eta) adds the collisions */
-        double ideal = nd * T * L / (L - 1), eos = ideal * (1 + 2 * eta * course_chi(eta));
+        double ideal = nd * T * L / (L - 1), eos = ideal * (1 + 2 * eta * exp_chi_luding(eta));
         double row[6] = {(double)ns[k], nd, p, nd * T, ideal, eos};
         memcpy(w->A + 6 * k, row, sizeof row);
         gr_progress_finish(o->pg);

@@ -4,6 +4,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 
 #include "ckpt.h"
 #include "fields.h"
@@ -97,7 +100,37 @@ int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err
     return rc;
 }
 
+/* Room left for a file: the free space of its filesystem and, under a
+ * file-size limit (ulimit -f), what the limit leaves. A write that fails
+ * half-way leaves an HDF5 file unreadable, so the run stops before one
+ * that might not fit: twice the largest growth seen, and a margin. */
 typedef struct {
+    const char *path;
+    double last, grow;
+} room;
+
+static int room_check(room *r, double more, gr_err *err)
+{
+    struct stat st;
+    struct statvfs vs;
+    if (stat(r->path, &st) || statvfs(r->path, &vs))
+        return GR_OK; /* not created yet: its writer reports any failure */
+    double size = (double)st.st_size, left = (double)vs.f_bavail * (double)vs.f_frsize;
+    if (r->last > 0 && size - r->last > r->grow)
+        r->grow = size - r->last;
+    r->last = size;
+    struct rlimit rl;
+    if (!getrlimit(RLIMIT_FSIZE, &rl) && rl.rlim_cur != RLIM_INFINITY && (double)rl.rlim_cur - size < left)
+        left = (double)rl.rlim_cur - size;
+    double need = 2 * (r->grow > more ? r->grow : more) + 131072;
+    if (left < need)
+        return gr_fail(err, GR_ERUN, "%s: the disk is nearly full (%.3g MB left, the next write needs up to %.3g MB); stopped before writing so that the file stays readable",
+                       r->path, left / 1e6, need / 1e6);
+    return GR_OK;
+}
+
+typedef struct {
+    room out_room, ckpt_room;
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
@@ -148,6 +181,34 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
     return GR_OK;
 }
 
+/* The first k with sample time t0 + k every after t. Computed, not
+ * counted: an interval far below the time step would otherwise count up
+ * for ever, or sample the same time twice. */
+static uint64_t next_index(double t, double t0, double every, double eps)
+{
+    double q = floor((t - t0 + eps) / every);
+    uint64_t k = q > 0 ? (uint64_t)q : 0;
+    while (t >= t0 + (double)k * every - eps)
+        k++;
+    return k;
+}
+
+int gr_run_check(const gr_scene *sc, gr_err *err)
+{
+    const gr_runctl *r = &sc->run;
+    const char *keys[3] = {"observe_every", "output_every", "checkpoint_every"};
+    const double every[3] = {r->observe_every, r->output_every, r->checkpoint_every};
+    for (int j = 0; j < 3; j++) {
+        if (r->until / every[j] > GR_RUN_MAX_SAMPLES) {
+            char where[1200];
+            gr_scene_where(sc, "run", keys[j], where, sizeof where);
+            return gr_fail(err, GR_EINPUT, "%s: %g asks for %.3g samples over until = %g; at most %.0e",
+                           where, every[j], r->until / every[j], r->until, GR_RUN_MAX_SAMPLES);
+        }
+    }
+    return GR_OK;
+}
+
 /* Observables every observe_every, frames and fields every output_every,
  * checkpoints every checkpoint_every; times are k * interval from the start
  * so that they do not drift and a restart lands on the same ones. */
@@ -166,18 +227,19 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
         gr_obs_clear(&obs);
         int observed = 0;
         if (t >= t0 + (double)k[0] * rc->observe_every - eps) {
-            if ((status = gr_sim_observe(st, &obs, err)) || (status = gr_h5md_write_obs(io->h, &obs, err)))
+            if ((status = room_check(&io->out_room, 0, err)) || (status = gr_sim_observe(st, &obs, err)) ||
+                (status = gr_h5md_write_obs(io->h, &obs, err)))
                 break;
             /* Each sample averages its window since the previous one. */
             gr_sim_reset_window(st);
             observed = 1;
             if (io->field && (status = gr_sim_fields(st, io->field, 1.0, err)))
                 break;
-            k[0]++;
+            k[0] = next_index(t, t0, rc->observe_every, eps);
             gr_progress_obs(pg, &obs);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
-            if ((!observed && (status = gr_sim_observe(st, &obs, err))) ||
+            if ((status = room_check(&io->out_room, 0, err)) || (!observed && (status = gr_sim_observe(st, &obs, err))) ||
                 (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
@@ -188,13 +250,12 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
-            while (t >= t0 + (double)k[1] * rc->output_every - eps)
-                k[1]++;
+            k[1] = next_index(t, t0, rc->output_every, eps);
         }
         if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
-            while (t >= t0 + (double)k[2] * rc->checkpoint_every - eps)
-                k[2]++;
-            if (o->ckpt && (status = gr_run_save(o->ckpt, st, k, err)))
+            k[2] = next_index(t, t0, rc->checkpoint_every, eps);
+            if (o->ckpt && ((status = room_check(&io->ckpt_room, io->ckpt_room.last, err)) ||
+                            (status = gr_run_save(o->ckpt, st, k, err))))
                 break;
         }
         if (t >= rc->until - eps)
@@ -232,7 +293,7 @@ static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io
 
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
-    run_io io = {0};
+    run_io io = {.out_room = {o->out, 0, 0}, .ckpt_room = {o->ckpt, 0, 0}};
     gr_sim *st = NULL;
     int rc = GR_OK;
     gr_particles *init = gr_particles_create(0, err);
@@ -241,7 +302,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = GR_ERUN;
         goto done;
     }
-    if ((rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
+    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
     if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
@@ -250,6 +311,11 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if (o->restart) {
         if ((rc = gr_run_load(o->restart, st, k, err)))
             goto done;
+        if (gr_sim_time(st) >= sc->run.until - 1e-9 * (sc->run.until > 1 ? sc->run.until : 1)) {
+            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, already at the end time until = %g; nothing to run",
+                         o->restart, gr_sim_time(st), sc->run.until);
+            goto done;
+        }
     }
     if (sc->run.field_nx > 0) {
         io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
@@ -260,8 +326,18 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
             goto done;
         }
     }
+    /* A state that cannot be checkpointed is refused before the result
+     * file exists (the first save would fail mid-run); this is also the
+     * checkpoint of the initial state. */
+    if (o->ckpt && (rc = gr_run_save(o->ckpt, st, k, err)))
+        goto done;
     gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION};
-    if (!(io.h = gr_h5md_create(o->out, sc, &ho, err))) {
+    /* A restart continues its result file: the frames before the
+     * checkpoint stay, those after it are written again. */
+    struct stat ost;
+    int cont = o->restart && stat(o->out, &ost) == 0;
+    if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, gr_sim_time(st), err)
+                      : gr_h5md_create(o->out, sc, &ho, err))) {
         rc = err->code;
         goto done;
     }

@@ -21,6 +21,12 @@ typedef struct {
 /* "<out minus .h5>.ckpt" */
 void gr_run_ckpt_path(const char *out, char *buf, size_t n);
 
+/* Samples of any one kind a run may ask for ([run] until / *_every). */
+#define GR_RUN_MAX_SAMPLES 1e8
+
+/* The [run] intervals: GR_EINPUT naming file:line:key beyond the limit. */
+int gr_run_check(const gr_scene *sc, gr_err *err);
+
 /* Returns GR_OK, GR_EINPUT (scene refused, bad restart) or GR_ERUN (the run
  * failed; the checkpoint then holds the last good state). */
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err);

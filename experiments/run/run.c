@@ -10,6 +10,7 @@
 
 #include "cmd.h"
 #include "fields.h"
+#include "files.h"
 #include "h5md.h"
 #include "init.h"
 #include "method.h"
@@ -32,8 +33,9 @@ static void usage(FILE *f)
         "  -u, --until T        simulated time to run to (default: [run] until)\n"
         "  -s, --seed S         seed of every random stream (default: [scene] seed)\n"
         "  -o, --out FILE       result file (default results/<scene>-<method>.h5)\n"
-        "  -f, --force          replace an existing result file\n"
-        "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE\n"
+        "  -f, --force          replace an existing result file and its checkpoint\n"
+        "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE;\n"
+        "                       an existing --out is continued (frames after CKPT dropped)\n"
         "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
         "      --set S.K=V      set key K of section S as a scene line would (repeatable)\n"
         "  -q, --quiet          no progress line (terminal) or thermo lines (otherwise)\n"
@@ -79,7 +81,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 's':
             errno = 0;
             a->seed = strtoll(optarg, &end, 10);
-            if (*end || a->seed < 0 || errno) {
+            if (end == optarg || *end || a->seed < 0 || errno) {
                 fprintf(stderr, "grano run: --seed: '%s' is not a non-negative integer\n", optarg);
                 return 2;
             }
@@ -112,6 +114,27 @@ static int parse_args(int argc, char **argv, run_args *a)
     }
     a->scene = argv[optind];
     return 0;
+}
+
+/* The result, its checkpoint and the snapshot: never a directory or a
+ * device; an existing one only with --force (a restart continues its own);
+ * partial files of a killed run are removed and said so. */
+static int check_outputs(const run_args *a, const char *out, const char *ckpt, gr_err *e)
+{
+    const char *tails[2] = {".tmp", ".part"};
+    const char *bases[2] = {ckpt, out};
+    for (int k = 0; k < 2; k++) {
+        char stale[1400];
+        snprintf(stale, sizeof stale, "%s%s", bases[k], tails[k]);
+        if (exp_remove_stale(stale) && !a->quiet)
+            fprintf(stderr, "grano run: removed %s, a partial file left by an interrupted run\n", stale);
+    }
+    int cont = a->restart != NULL;
+    if (exp_check_writable(out, "--out", a->force || cont, e) ||
+        exp_check_writable(ckpt, "--out (its checkpoint)", a->force || cont, e) ||
+        (a->snapshot && exp_check_writable(a->snapshot, "--snapshot", 1, e)))
+        return e->code;
+    return GR_OK;
 }
 
 static int fail_msg(const gr_err *e)
@@ -150,11 +173,11 @@ int cmd_run(int argc, char **argv)
         snprintf(out, sizeof out, "results/%s-%s.h5", sc->name, m->name);
     }
     gr_run_ckpt_path(out, ckpt, sizeof ckpt);
-    /* Refuse before any work, so bad input writes nothing. */
-    if (!a.force && access(out, F_OK) == 0) {
-        fprintf(stderr, "grano run: --out: '%s' already exists; use --force to replace it\n", out);
+    /* Refuse before any work, so bad input writes nothing. A restart
+     * continues its output and checkpoint in place. */
+    if ((rc = check_outputs(&a, out, ckpt, &e))) {
         gr_scene_free(sc);
-        return 2;
+        return fail_msg(&e);
     }
     gr_run_opts ro = {.out = out, .ckpt = ckpt, .restart = a.restart, .force = a.force,
                       .progress = !a.quiet, .snapshot = a.snapshot};

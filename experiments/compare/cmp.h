@@ -1,0 +1,115 @@
+/* grano compare: the same scenes on every method, each at several settings
+ * of its accuracy knob, cost against error (docs/comparison.md).
+ *
+ * A case is a scene file of experiments/scenes/compare/, a measurement made
+ * through the method interface, a reference, and a table of rows: one row
+ * per method line (the method, the knob, its values). Adding a method to a
+ * case is adding a row. */
+#ifndef GR_CMP_H
+#define GR_CMP_H
+
+#include <stddef.h>
+
+#include "err.h"
+#include "method.h"
+#include "particles.h"
+#include "scene.h"
+
+#define CMP_MAXV 8      /* knob values per row */
+#define CMP_MAXROWS 8   /* rows per case */
+
+/* One line of a case's plot: a method swept over one knob. */
+typedef struct {
+    const char *method;  /* registered backend */
+    const char *label;   /* line label ("dem", "dem-gear") */
+    const char *knob;    /* "section.key" set for each value; NULL: no knob */
+    const char *full;    /* comma-separated values of the full comparison */
+    const char *quick;   /* those of --quick */
+    const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
+    int ref;             /* 1: this row's result is the case's reference (a long run) */
+} cmp_row;
+
+/* What a measurement gives: the quantity, its statistical error from
+ * within the run (NaN when the run gives none), a second quantity (aux),
+ * and the steps or events done. */
+typedef struct {
+    double value, sem, aux;
+    double steps;
+} cmp_meas;
+
+typedef struct cmp_case cmp_case;
+/* Measure on a fresh instance of the scene. */
+typedef int (*cmp_measure_fn)(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+/* The reference value (and aux's reference in *aux_ref) for the scene;
+ * NULL: the pooled result of the case's row marked ref. */
+typedef double (*cmp_ref_fn)(const gr_scene *sc, double *aux_ref);
+/* The initial grains (NULL: the scene's [init]). */
+typedef int (*cmp_prepare_fn)(const gr_scene *sc, gr_particles *p, gr_err *err);
+
+struct cmp_case {
+    const char *name;
+    const char *scene;     /* file name under the scenes folder */
+    const char *quantity;  /* what value is, for tables and axes */
+    const char *aux;       /* what aux is */
+    const char *quick_set; /* settings of --quick ("section.key=value;..."), or NULL */
+    int seeds_full, seeds_quick; /* independent realisations */
+    double tol_edmd;       /* edmd's relative error must stay below this (--quick test); 0: none */
+    cmp_measure_fn measure;
+    cmp_ref_fn reference;
+    cmp_prepare_fn prepare;   /* NULL: the scene's [init] */
+    cmp_row rows[CMP_MAXROWS]; /* ended by a NULL method */
+};
+
+/* The cases, NULL-name ended (cmp_cases.c). */
+const cmp_case *cmp_cases(void);
+
+/* The measurements (cmp_measure.c). */
+int cmp_measure_collision(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+double cmp_ref_collision(const gr_scene *sc, double *aux_ref);
+int cmp_prepare_collision(const gr_scene *sc, gr_particles *p, gr_err *err);
+int cmp_measure_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+double cmp_ref_cooling(const gr_scene *sc, double *aux_ref);
+int cmp_prepare_cooling(const gr_scene *sc, gr_particles *p, gr_err *err);
+int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+double cmp_ref_column(const gr_scene *sc, double *aux_ref);
+int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+double cmp_ref_eos(const gr_scene *sc, double *aux_ref);
+int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+
+/* The runs of a comparison: one per (case, row, knob value, seed). */
+typedef struct {
+    const cmp_case *c;
+    const cmp_row *row;
+    char value[32];   /* knob value as text ("" when no knob) */
+    int seed;         /* 1, 2, ... */
+} cmp_unit;
+
+typedef struct {
+    int quick, jobs, force, progress;
+    const char *out;     /* results folder */
+    const char *scenes;  /* folder of the case scenes */
+    cmp_unit *units;
+    size_t nunits;
+    char notes[4096];    /* "case: method: not modelled: <feature>" lines */
+} cmp_plan;
+
+/* Every unit of the chosen cases and methods (comma-separated lists, NULL:
+ * all), with notes on the methods left out (cmp_plan.c). */
+int cmp_plan_build(cmp_plan *pl, const char *cases, const char *methods, gr_err *err);
+
+/* The scene of a unit: file, quick settings, the row's fixed settings,
+ * knob value and seed, parsed (cmp_unit.c). */
+gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err);
+/* The sweep runner's unit function: runs unit `unit` of the plan (ctx)
+ * and writes its part. */
+int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
+                 gr_err *err);
+void cmp_unit_label(size_t unit, void *ctx, char *label, size_t n);
+void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n);
+
+/* Tables, figures and checks from the parts (cmp_report.c): returns
+ * GR_ERUN when a --quick check fails (after writing everything). */
+int cmp_report(const cmp_plan *pl, char *const *parts, gr_err *err);
+
+#endif

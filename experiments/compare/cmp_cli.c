@@ -1,0 +1,162 @@
+/* grano compare [--quick] [--cases LIST] [--methods LIST] [--out DIR] [-j N]:
+ * the command (docs/comparison.md): options, the plan of runs, the sweep. */
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include <gsl/gsl_errno.h>
+
+#include "cmd.h"
+#include "cmp.h"
+#include "progress.h"
+#include "sweep.h"
+
+#ifndef GRANO_COMPARE_SCENES
+#define GRANO_COMPARE_SCENES "experiments/scenes/compare"
+#endif
+
+static void usage(FILE *f)
+{
+    fprintf(f, "usage: grano compare [--quick] [--cases LIST] [--methods LIST] [--out DIR] [-j N]\n\n"
+               "The same scenes on every method that models them, each at several settings of its\n"
+               "accuracy knob: wall time against the error of the case's measured quantity\n"
+               "(docs/comparison.md). Writes DIR/compare.h5, DIR/compare.txt, DIR/<case>.png and\n"
+               "DIR/summary.png (each with its gnuplot script, .gp).\n\n"
+               "options:\n"
+               "  -q, --quick          small runs and fewer settings (the meson test), ~1 minute\n"
+               "  -c, --cases LIST     comma-separated cases (default all):");
+    for (const cmp_case *c = cmp_cases(); c->name; c++)
+        fprintf(f, " %s", c->name);
+    fprintf(f, "\n"
+               "  -m, --methods LIST   comma-separated methods (default all registered)\n"
+               "  -o, --out DIR        results folder (default compare-out); runs are kept in\n"
+               "                       DIR/parts and reused by a later call with the same settings\n"
+               "  -j, --jobs N         runs at once (default 1); results do not depend on N\n"
+               "  -s, --scenes DIR     the case scenes (default %s)\n"
+               "  -f, --force          redo every run\n"
+               "      --no-progress    no progress line\n"
+               "  -h, --help           this help\n"
+               "Exit code 0; 1 when a run or a check failed; 2 for bad arguments.\n",
+            GRANO_COMPARE_SCENES);
+}
+
+typedef struct {
+    const char *cases, *methods;
+} cmp_sel;
+
+/* Every entry of list names a case (or a method): else exit code 2. */
+static int check_list(const char *flag, const char *list, int cases)
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", list);
+    for (char *save = NULL, *s = strtok_r(buf, ",", &save); s; s = strtok_r(NULL, ",", &save)) {
+        int ok = 0;
+        if (cases) {
+            for (const cmp_case *c = cmp_cases(); c->name; c++)
+                ok |= !strcmp(c->name, s);
+        } else
+            ok = gr_method_find(s) != NULL;
+        if (!ok) {
+            fprintf(stderr, "grano compare: %s: unknown %s '%s' (grano compare --help lists them)\n", flag,
+                    cases ? "case" : "method", s);
+            return 2;
+        }
+    }
+    return 0;
+}
+
+static int parse(int argc, char **argv, cmp_plan *pl, cmp_sel *sel)
+{
+    static const struct option opts[] = {
+        {"quick", no_argument, NULL, 'q'},       {"cases", required_argument, NULL, 'c'},
+        {"methods", required_argument, NULL, 'm'}, {"out", required_argument, NULL, 'o'},
+        {"jobs", required_argument, NULL, 'j'},  {"scenes", required_argument, NULL, 's'},
+        {"force", no_argument, NULL, 'f'},       {"no-progress", no_argument, NULL, 'P'},
+        {"help", no_argument, NULL, 'h'},        {NULL, 0, NULL, 0}};
+    int c;
+    opterr = 0;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, ":qc:m:o:j:s:fh", opts, NULL)) != -1) {
+        char *end;
+        switch (c) {
+        case 'q': pl->quick = 1; break;
+        case 'c': sel->cases = optarg; break;
+        case 'm': sel->methods = optarg; break;
+        case 'o': pl->out = optarg; break;
+        case 's': pl->scenes = optarg; break;
+        case 'f': pl->force = 1; break;
+        case 'P': pl->progress = 0; break;
+        case 'j':
+            errno = 0;
+            pl->jobs = (int)strtol(optarg, &end, 10);
+            if (*end || errno || pl->jobs < 1 || pl->jobs > 256) {
+                fprintf(stderr, "grano compare: -j: '%s' is not a number of jobs in [1, 256]\n", optarg);
+                return 2;
+            }
+            break;
+        case 'h': usage(stdout); return -1;
+        case ':':
+            fprintf(stderr, "grano compare: %s needs a value\n", argv[optind - 1]);
+            return 2;
+        default:
+            fprintf(stderr, "grano compare: unknown option '%s'\n", argv[optind - 1]);
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (optind < argc) {
+        fprintf(stderr, "grano compare: unexpected argument '%s'\n", argv[optind]);
+        return 2;
+    }
+    if ((sel->cases && check_list("--cases", sel->cases, 1)) ||
+        (sel->methods && check_list("--methods", sel->methods, 0)))
+        return 2;
+    return 0;
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    cmp_plan pl = {.jobs = 1, .out = "compare-out", .scenes = GRANO_COMPARE_SCENES, .progress = 1};
+    cmp_sel sel = {NULL, NULL};
+    int rc = parse(argc, argv, &pl, &sel);
+    if (rc)
+        return rc < 0 ? 0 : rc;
+    gsl_set_error_handler_off();
+    pl.progress = pl.progress && isatty(STDERR_FILENO);
+    gr_err err = {0};
+    if (cmp_plan_build(&pl, sel.cases, sel.methods, &err)) {
+        fprintf(stderr, "grano compare: %s\n", err.msg);
+        free(pl.units);
+        return err.code == GR_EINPUT ? 2 : 1;
+    }
+    char parts_dir[2048];
+    snprintf(parts_dir, sizeof parts_dir, "%s/parts", pl.out);
+    exp_sweep sw = {.nunits = pl.nunits, .jobs = pl.jobs, .dir = parts_dir, .prefix = "run",
+                    .progress = pl.progress, .what = "runs", .force = pl.force};
+    char **parts = calloc(pl.nunits, sizeof *parts);
+    size_t reused = 0;
+    printf("grano compare%s: %zu runs, %d at once, into %s\n%s", pl.quick ? " --quick" : "", pl.nunits, pl.jobs,
+           pl.out, pl.notes);
+    fflush(stdout);
+    double t0 = gr_wall_seconds();
+    rc = !parts ? gr_fail(&err, GR_ERUN, "out of memory")
+                : exp_sweep_run(&sw, cmp_run_unit, cmp_unit_label, cmp_unit_key, &pl, parts, &reused, &err);
+    if (!rc) {
+        printf("%zu runs in %.1f s (%zu reused from %s)\n", pl.nunits, gr_wall_seconds() - t0, reused, parts_dir);
+        rc = cmp_report(&pl, parts, &err);
+    }
+    for (size_t u = 0; parts && u < pl.nunits; u++)
+        free(parts[u]);
+    free(parts);
+    free(pl.units);
+    if (rc) {
+        fprintf(stderr, "grano compare: %s\n", err.msg);
+        return rc == GR_EINPUT ? 2 : 1;
+    }
+    printf("wrote %s/compare.{h5,txt}, %s/<case>.png and %s/summary.png (gnuplot scripts beside)\n", pl.out,
+           pl.out, pl.out);
+    return 0;
+}

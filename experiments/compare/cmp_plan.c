@@ -1,0 +1,105 @@
+/* The plan of a comparison: for each chosen case, every chosen method that
+ * models its scene, over its row's knob values and the case's seeds; the
+ * methods that do not model a scene, or have no row yet, are noted. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmp.h"
+
+static int listed(const char *list, const char *name)
+{
+    if (!list)
+        return 1;
+    size_t k = strlen(name);
+    for (const char *p = list; p && *p; p = strchr(p, ',') ? strchr(p, ',') + 1 : NULL)
+        if (!strncmp(p, name, k) && (p[k] == ',' || !p[k]))
+            return 1;
+    return 0;
+}
+
+static void note(cmp_plan *pl, const char *fmt, const char *a, const char *b, const char *c)
+{
+    size_t k = strlen(pl->notes);
+    snprintf(pl->notes + k, sizeof pl->notes - k, fmt, a, b, c);
+}
+
+/* Whether method m models the case's scene; notes why not. */
+static int models(cmp_plan *pl, const cmp_case *c, const gr_method_type *m, const gr_scene *sc)
+{
+    gr_err e = {0};
+    if (!gr_method_require_features(m, gr_scene_features(sc), c->scene, &e))
+        return 1;
+    note(pl, "# %s: %s: not modelled: %s\n", c->name, m->name, e.msg);
+    return 0;
+}
+
+static int push(cmp_plan *pl, size_t *cap, const cmp_unit *u, gr_err *err)
+{
+    if (pl->nunits == *cap) {
+        size_t nc = *cap ? 2 * *cap : 64;
+        cmp_unit *nu = realloc(pl->units, nc * sizeof *nu);
+        if (!nu)
+            return gr_fail(err, GR_ERUN, "out of memory");
+        pl->units = nu, *cap = nc;
+    }
+    pl->units[pl->nunits++] = *u;
+    return GR_OK;
+}
+
+/* The units of one row: each value, each seed. */
+static int row_units(cmp_plan *pl, size_t *cap, const cmp_case *c, const cmp_row *r, gr_err *err)
+{
+    char buf[256];
+    snprintf(buf, sizeof buf, "%s", pl->quick ? r->quick : r->full);
+    int seeds = pl->quick ? c->seeds_quick : c->seeds_full;
+    char *save = NULL, *v = r->knob ? strtok_r(buf, ",", &save) : buf;
+    for (int k = 0; v && k < CMP_MAXV; k++, v = r->knob ? strtok_r(NULL, ",", &save) : NULL) {
+        for (int s = 1; s <= seeds; s++) {
+            cmp_unit u = {.c = c, .row = r, .seed = s};
+            snprintf(u.value, sizeof u.value, "%.31s", r->knob ? v : "");
+            if (push(pl, cap, &u, err))
+                return err->code;
+        }
+    }
+    return GR_OK;
+}
+
+static int plan_case(cmp_plan *pl, size_t *cap, const cmp_case *c, const char *methods, gr_err *err)
+{
+    cmp_unit probe = {.c = c, .row = &c->rows[0], .seed = 1};
+    gr_scene *sc = cmp_unit_scene(pl, &probe, err);
+    if (!sc)
+        return err->code;
+    int rc = GR_OK;
+    for (const gr_method_type *const *m = gr_method_all(); *m && !rc; m++) {
+        if (!listed(methods, (*m)->name))
+            continue;
+        int rows = 0;
+        for (const cmp_row *r = c->rows; r->method; r++)
+            rows += !strcmp(r->method, (*m)->name);
+        if (!models(pl, c, *m, sc))
+            continue;
+        if (!rows)
+            note(pl, "# %s: %s: models the scene; no row in the case table yet%s\n", c->name, (*m)->name, "");
+        for (const cmp_row *r = c->rows; r->method && !rc; r++)
+            if (!strcmp(r->method, (*m)->name))
+                rc = row_units(pl, cap, c, r, err);
+    }
+    for (const cmp_row *r = c->rows; r->method; r++)
+        if (!gr_method_find(r->method))
+            note(pl, "# %s: %s: not registered in this build%s\n", c->name, r->method, "");
+    gr_scene_free(sc);
+    return rc;
+}
+
+int cmp_plan_build(cmp_plan *pl, const char *cases, const char *methods, gr_err *err)
+{
+    size_t cap = 0;
+    for (const cmp_case *c = cmp_cases(); c->name; c++)
+        if (listed(cases, c->name) && plan_case(pl, &cap, c, methods, err))
+            return err->code;
+    if (!pl->nunits)
+        return gr_fail(err, GR_EINPUT, "no method of --methods has a row in the cases of --cases");
+    return GR_OK;
+}

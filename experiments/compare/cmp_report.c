@@ -1,0 +1,145 @@
+/* grano compare's results: the runs of each (row, knob value) pooled over
+ * seeds, the error against the case's reference with its error bar, the
+ * HDF5 and text tables, the figures, and the checks of --quick. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cmp.h"
+#include "cmp_report.h"
+#include "h5md.h"
+#include "parts.h"
+#include "table.h"
+
+/* One part's result: ok, value, sem, aux, steps, wall. */
+static int read_part(const char *path, double v[6], char *msg, size_t n, gr_err *err)
+{
+    gr_ckpt *ck = gr_ckpt_open(path, err);
+    if (!ck)
+        return err->code;
+    int rc = gr_ckpt_get_f64(ck, "result", v, 6, err);
+    size_t len;
+    gr_err e = {0};
+    msg[0] = 0;
+    if (!rc && !gr_ckpt_len(ck, "message", &len, &e) && len < n)
+        gr_ckpt_get_bytes(ck, "message", msg, len, &e);
+    gr_ckpt_close(ck, &e);
+    return rc;
+}
+
+/* Pool the seeds of point *pt (units first..first+nseeds-1). */
+static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point *pt, gr_err *err)
+{
+    double sum = 0, sum2 = 0, semw = 0;
+    int nsem = 0;
+    pt->wall = pt->steps = pt->aux = 0;
+    for (size_t k = first; k < pl->nunits && pl->units[k].c == pl->units[first].c &&
+                           pl->units[k].row == pl->units[first].row &&
+                           !strcmp(pl->units[k].value, pl->units[first].value);
+         k++) {
+        double v[6];
+        char msg[600];
+        if (read_part(parts[k], v, msg, sizeof msg, err))
+            return err->code;
+        pt->n++;
+        if (!(v[0] > 0)) {
+            if (!pt->msg[0])
+                snprintf(pt->msg, sizeof pt->msg, "seed %d: %.200s", pl->units[k].seed, msg);
+            continue;
+        }
+        pt->nok++;
+        sum += v[1], sum2 += v[1] * v[1];
+        if (isfinite(v[2]))
+            semw += v[2] * v[2], nsem++;
+        pt->aux += v[3], pt->steps += v[4], pt->wall += v[5];
+    }
+    int m = pt->nok;
+    pt->mean = m ? sum / m : NAN;
+    pt->aux = m ? pt->aux / m : NAN;
+    pt->wall = m ? pt->wall / m : NAN;
+    pt->steps = m ? pt->steps / m : NAN;
+    /* independent seeds give the error bar; one run, its own (block) one */
+    if (m >= 2)
+        pt->sem = sqrt(fmax(sum2 / m - pt->mean * pt->mean, 0) * m / (m - 1) / m);
+    else
+        pt->sem = nsem ? sqrt(semw / nsem) : 0;
+    return GR_OK;
+}
+
+int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_point *pts, size_t *npts,
+                double *ref, double *aux_ref, gr_err *err)
+{
+    *npts = 0;
+    size_t first_unit = pl->nunits;
+    for (size_t u = 0; u < pl->nunits; u++) {
+        const cmp_unit *x = &pl->units[u];
+        if (x->c != c || (u > 0 && pl->units[u - 1].c == c && pl->units[u - 1].row == x->row &&
+                          !strcmp(pl->units[u - 1].value, x->value)))
+            continue;
+        if (first_unit == pl->nunits)
+            first_unit = u;
+        cmp_point *pt = &pts[(*npts)++];
+        memset(pt, 0, sizeof *pt);
+        pt->row = x->row;
+        snprintf(pt->value, sizeof pt->value, "%s", x->value);
+        if (pool(pl, parts, u, pt, err))
+            return err->code;
+    }
+    *ref = *aux_ref = NAN;
+    if (first_unit == pl->nunits)
+        return GR_OK;
+    double ref_sem = 0;
+    if (c->reference) {
+        gr_scene *sc = cmp_unit_scene(pl, &pl->units[first_unit], err);
+        if (!sc)
+            return err->code;
+        *ref = c->reference(sc, aux_ref);
+        gr_scene_free(sc);
+    } else
+        for (size_t i = 0; i < *npts; i++)
+            if (pts[i].row->ref)
+                *ref = pts[i].mean, *aux_ref = pts[i].aux, ref_sem = pts[i].row->ref ? pts[i].sem : 0;
+    for (size_t i = 0; i < *npts; i++) {
+        cmp_point *pt = &pts[i];
+        pt->error = fabs(pt->mean - *ref) / fabs(*ref);
+        /* against a measured reference the two error bars add */
+        pt->error_sem = (pt->row->ref ? 0 : hypot(pt->sem, ref_sem)) / fabs(*ref);
+        if (pt->row->ref)
+            pt->error = 0;
+    }
+    return GR_OK;
+}
+
+/* The checks of docs/comparison.md: each row's error falls as its knob is
+ * tightened (values are listed coarse to fine) until the statistical floor;
+ * edmd within the case's tolerance; every run finished with finite numbers.
+ * Failures are printed; returns how many. */
+int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n)
+{
+    int bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        const cmp_point *p = &pts[i];
+        if (p->nok < p->n || !isfinite(p->mean) || !isfinite(p->aux) || !isfinite(p->error_sem)) {
+            printf("  CHECK FAILED %s %s %s: %s\n", c->name, p->row->label, p->value,
+                   p->msg[0] ? p->msg : "a non-finite number");
+            bad++;
+        }
+        if (p->row->ref)
+            continue;
+        if (!strcmp(p->row->method, "edmd") && c->tol_edmd > 0 && !(p->error <= c->tol_edmd)) {
+            printf("  CHECK FAILED %s edmd: error %.3g above the tolerance %.3g\n", c->name, p->error, c->tol_edmd);
+            bad++;
+        }
+        if (i + 1 < n && pts[i + 1].row == p->row) {
+            const cmp_point *q = &pts[i + 1];
+            double slack = 2 * hypot(p->error_sem, q->error_sem) + 1e-9;
+            if (!(q->error <= 1.1 * p->error + slack)) {
+                printf("  CHECK FAILED %s %s: error rose from %.3g (%s) to %.3g (%s), beyond the error bars\n",
+                       c->name, p->row->label, p->error, p->value, q->error, q->value);
+                bad++;
+            }
+        }
+    }
+    return bad;
+}
