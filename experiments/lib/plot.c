@@ -128,43 +128,9 @@ int gr_plot_close(FILE *gp, const char *png, gr_err *err)
     return rc;
 }
 
-/* <png minus .png>.gp */
-static void script_path(const char *png, char *buf, size_t n)
-{
-    size_t k = strlen(png);
-    if (k > 4 && !strcmp(png + k - 4, ".png"))
-        k -= 4;
-    snprintf(buf, n, "%.*s.gp", (int)k, png);
-}
-
-FILE *gr_plot_open_saved(const char *png, int w, int h, gr_err *err)
-{
-    char path[2048];
-    script_path(png, path, sizeof path);
-    FILE *gp = fopen(path, "w");
-    if (!gp) {
-        gr_fail(err, GR_ERUN, "%s: cannot write", path);
-        return NULL;
-    }
-    fprintf(gp, "# redraw with: gnuplot %s\n", path);
-    fprintf(gp, "set terminal pngcairo size %d,%d enhanced font 'DejaVu Sans,11'\n", w, h);
-    fprintf(gp, "set output '%s'\n", png);
-    return gp;
-}
-
-int gr_plot_close_saved(FILE *gp, const char *png, gr_err *err)
-{
-    char path[2048];
-    script_path(png, path, sizeof path);
-    fprintf(gp, "unset output\n");
-    if (fclose(gp))
-        return gr_fail(err, GR_ERUN, "%s: write failed", path);
-    FILE *run = popen("gnuplot", "w");
-    if (!run)
-        return gr_fail(err, GR_ERUN, "%s: cannot start gnuplot (install gnuplot-nox: ./grano.sh deps)", png);
-    fprintf(run, "load '%s'\n", path);
-    return gr_plot_close(run, png, err);
-}
+/* Every figure keeps its script now: the _saved names stay for their callers. */
+FILE *gr_plot_open_saved(const char *png, int w, int h, gr_err *err) { return gr_plot_open(png, w, h, err); }
+int gr_plot_close_saved(FILE *gp, const char *png, gr_err *err) { return gr_plot_close(gp, png, err); }
 
 int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
                      double t, const char *title, gr_err *err)

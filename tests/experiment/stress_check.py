@@ -33,7 +33,6 @@ normal = linear
 tangential = none
 kn = 1e5
 gamma_n = 440
-restitution = 0
 [species]
 diameter = 1
 count = 100
