@@ -17,15 +17,15 @@ gr_grid *gr_grid_create(double x0, double y0, double lx, double ly, double min_c
         gr_fail(err, GR_ERUN, "out of memory for the cell grid");
         return NULL;
     }
-    g->nx = (int)floor(lx / min_cell);
-    g->ny = (int)floor(ly / min_cell);
-    g->nx = g->nx < 1 ? 1 : g->nx;
-    g->ny = g->ny < 1 ? 1 : g->ny;
-    if ((double)g->nx * g->ny > 1e8) {
-        gr_fail(err, GR_EINPUT, "grid: %d x %d cells is too many", g->nx, g->ny);
+    /* Counted in double: the int cast of a huge ratio is undefined. */
+    double fx = fmax(1.0, floor(lx / min_cell)), fy = fmax(1.0, floor(ly / min_cell));
+    if (fx * fy > 1e8) {
+        gr_fail(err, GR_EINPUT, "grid: %.3g x %.3g cells is too many (at most 1e8)", fx, fy);
         free(g);
         return NULL;
     }
+    g->nx = (int)fx;
+    g->ny = (int)fy;
     g->x0 = x0, g->y0 = y0, g->lx = lx, g->ly = ly;
     g->cx = lx / g->nx, g->cy = ly / g->ny;
     g->periodic_x = periodic_x, g->periodic_y = periodic_y;

@@ -66,7 +66,7 @@ static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, g
     bad = bad || g < 0 || gr_h5_attr_int(g, "version", units_version, 2) ||
           gr_h5_attr_str(g, "system",
                          "grano reduced units: d grain diameter, m grain mass, "
-                         "tau = sqrt(d/g) (or d/V0 for event-driven scenes without gravity)", 1);
+                         "tau = sqrt(d/g) (or d/V0 for event-driven scenes without gravity)", 0);
     gr_h5_close(g);
     if (bad)
         return gr_h5_fail(err, GR_ERUN, "cannot write the h5md metadata group");

@@ -58,6 +58,11 @@ int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
     return code;
 }
 
+void gr_h5_no_exit_handler(void)
+{
+    H5dont_atexit();
+}
+
 hid_t gr_h5_fapl(void)
 {
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
@@ -155,9 +160,10 @@ int gr_h5_attr_str(hid_t obj, const char *name, const char *value, int vlen)
     return rc;
 }
 
+/* H5MD 1.1's units module: a unit is a fixed-length string. */
 int gr_h5_unit(hid_t obj, const char *unit)
 {
-    return gr_h5_attr_str(obj, "unit", unit, 1);
+    return gr_h5_attr_str(obj, "unit", unit, 0);
 }
 
 int gr_h5_attr_int(hid_t obj, const char *name, const int *v, size_t n)
@@ -198,7 +204,13 @@ static char *read_str(hid_t obj, int is_attr)
     if (ft < 0)
         return NULL;
     char *out = NULL;
-    if (H5Tget_class(ft) != H5T_STRING)
+    /* One string: a damaged file whose dataspace holds more would have
+     * the library write past the single pointer or buffer read into. */
+    hid_t sp = is_attr ? H5Aget_space(obj) : H5Dget_space(obj);
+    hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+    if (sp >= 0)
+        H5Sclose(sp);
+    if (H5Tget_class(ft) != H5T_STRING || np != 1)
         goto done;
     hid_t mt = H5Tcopy(H5T_C_S1);
     if (H5Tis_variable_str(ft) > 0) {

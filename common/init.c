@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "geom.h"
 #include "grid.h"
@@ -144,53 +145,37 @@ static int place_random(const gr_scene *sc, gr_particles *p, gr_rng *rng, gr_err
     return GR_OK;
 }
 
-static int read_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+
+/* The file's grains must lie in the domain, and number the species count
+ * when the scene gives one. */
+static int check_file_grains(const gr_scene *sc, const gr_particles *p, gr_err *err)
 {
-    FILE *f = fopen(sc->init.file, "r");
-    if (!f)
-        return gr_fail(err, GR_EINPUT, "%s: cannot read: %s", sc->init.file, strerror(errno));
-    char line[1024];
-    int ln = 0;
-    const gr_species *sp = &sc->species[0];
-    while (fgets(line, sizeof line, f)) {
-        ln++;
-        char *s = line;
-        while (*s == ' ' || *s == '\t')
-            s++;
-        if (*s == '#' || *s == '\n' || !*s)
-            continue;
-        double v[5] = {0, 0, 0, 0, sp->diameter};
-        int k = 0;
-        char *end;
-        while (k < 5) {
-            double x = strtod(s, &end);
-            if (end == s)
-                break;
-            v[k++] = x;
-            s = end;
-        }
-        while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
-            s++;
-        int bad = (k != 2 && k != 4 && k != 5) || *s;
-        for (int j = 0; j < k; j++)
-            bad |= !isfinite(v[j]);
-        if (bad || !(v[4] > 0)) {
-            fclose(f);
-            return gr_fail(err, GR_EINPUT, "%s:%d: expected 'x y', 'x y vx vy' or 'x y vx vy diameter' (finite, diameter > 0)",
-                           sc->init.file, ln);
-        }
-        long i = gr_particles_push(p, v[0], v[1], 0.5 * v[4], species_mass(sp, v[4]), 0, 0, err);
-        if (i < 0) {
-            fclose(f);
-            return err->code;
-        }
-        p->vx[i] = v[2];
-        p->vy[i] = v[3];
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->x[i] >= 0 && p->x[i] <= sc->width && p->y[i] >= 0 && p->y[i] <= sc->height))
+            return gr_fail(err, GR_EINPUT, "%s: grain %zu at (%g, %g) lies outside the domain [0, %g] x [0, %g]",
+                           sc->init.file, i + 1, p->x[i], p->y[i], sc->width, sc->height);
+    if (gr_scene_find(sc, "species", "count") && (long)p->n != sc->species[0].count) {
+        char where[1200];
+        gr_scene_where(sc, "species", "count", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: %ld grains, but %s holds %zu", where, sc->species[0].count,
+                       sc->init.file, p->n);
     }
-    fclose(f);
-    if (p->n == 0)
-        return gr_fail(err, GR_EINPUT, "%s: no grains in the file", sc->init.file);
     return GR_OK;
+}
+
+/* The grains file must be a regular file (a device or a pipe such as
+ * /dev/zero would be read for ever); its grains are then checked against
+ * the scene. */
+static int read_grains_file(const gr_scene *sc, gr_particles *p, gr_err *err)
+{
+    struct stat st;
+    char where[1200];
+    gr_scene_where(sc, "init", "file", where, sizeof where);
+    if (stat(sc->init.file, &st) || !S_ISREG(st.st_mode))
+        return gr_fail(err, GR_EINPUT, "%s: '%s' is not a regular file", where, sc->init.file);
+    if (gr_init_read_file(sc->init.file, &sc->species[0], p, err))
+        return err->code;
+    return check_file_grains(sc, p, err);
 }
 
 static void draw_velocities(const gr_scene *sc, gr_particles *p, size_t from, gr_rng *rng)
@@ -273,7 +258,8 @@ int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
     switch (sc->init.kind) {
     case GR_INIT_LATTICE: rc = place_lattice(sc, out, rng, err); break;
     case GR_INIT_RANDOM: rc = place_random(sc, out, rng, err); break;
-    default: rc = read_file(sc, out, err); break;
+    case GR_INIT_OCCUPATION: rc = GR_OK; break; /* the lattice backend fills it */
+    default: rc = read_grains_file(sc, out, err); break;
     }
     if (!rc)
         draw_velocities(sc, out, 0, rng);

@@ -10,6 +10,13 @@
 
 int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err);
 
+/* [init] kind = file (init_file.c): appends the grains of path to p, at the
+ * density of species sp (and its diameter when the file gives none). The
+ * format is told by the content: a LAMMPS data file (atom style sphere or
+ * atomic, Velocities optional), the first frame of an extended XYZ file,
+ * or plain columns x y [vx vy [diameter]]. */
+int gr_init_read_file(const char *path, const gr_species *sp, gr_particles *p, gr_err *err);
+
 /* Place grain radius r at the reinsertion band of the silo without overlap
  * with any of the n grains of p (positions x, y, radii), trying up to
  * `tries` random spots from rng; returns 1 and the spot, or 0 if none. */

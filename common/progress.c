@@ -1,5 +1,7 @@
 #include "progress.h"
 
+#include <inttypes.h>
+#include <math.h>
 #include <stdlib.h>
 #include <time.h>
 #include <unistd.h>
@@ -10,6 +12,10 @@ struct gr_progress {
     double t0, t1, delay;
     double wall0, last_draw;
     int drawn;
+    double thermo_every, thermo_next, thermo_wall; /* thermo lines */
+    uint64_t thermo_steps;
+    int thermo_lines;
+    const char *label; /* name of the progress variable */
 };
 
 double gr_wall_seconds(void)
@@ -30,7 +36,15 @@ gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double 
     p->t1 = t_end;
     p->delay = delay;
     p->wall0 = gr_wall_seconds();
+    p->thermo_next = t_begin;
+    p->label = "t";
     return p;
+}
+
+void gr_progress_label(gr_progress *p, const char *name)
+{
+    if (p)
+        p->label = name;
 }
 
 void gr_progress_free(gr_progress *p)
@@ -66,7 +80,7 @@ void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, doub
     char e[32], r[32];
     fmt_duration(e, sizeof e, el);
     fmt_duration(r, sizeof r, rem);
-    fprintf(p->out, "\r\033[K%5.1f%%  t = %-10.4g elapsed %s  remaining %s", 100 * frac, t_sim, e, r);
+    fprintf(p->out, "\r\033[K%5.1f%%  %s = %-10.4g elapsed %s  remaining %s", 100 * frac, p->label, t_sim, e, r);
     if (obs_name)
         fprintf(p->out, "  %s = %.4g", obs_name, obs_value);
     fflush(p->out);
@@ -80,4 +94,45 @@ void gr_progress_finish(gr_progress *p)
         fflush(p->out);
         p->drawn = 0;
     }
+}
+
+void gr_progress_thermo(gr_progress *p, double every)
+{
+    if (p)
+        p->thermo_every = every;
+}
+
+/* Steps per wall-clock second since the previous line (0 on the first). */
+static void thermo_line(gr_progress *p, const gr_obs *o)
+{
+    double now = gr_wall_seconds();
+    double rate = p->thermo_lines && now > p->thermo_wall
+                      ? (double)(o->steps - p->thermo_steps) / (now - p->thermo_wall) : 0.0;
+    if (!p->thermo_lines)
+        fprintf(p->out, "%12s %12s %12s %12s %12s %9s %10s\n", "Step", "Time", "KinEng", "PotEng", "Temp",
+                "Outflow", "Steps/s");
+    fprintf(p->out, "%12" PRIu64 " %12.6g %12.6g %12.6g %12.6g %9" PRIu64 " %10.4g\n", o->steps, o->t,
+            o->ekin_trans + o->ekin_rot, o->epot_grav, o->temperature, o->outflow, rate);
+    fflush(p->out);
+    p->thermo_lines++;
+    p->thermo_steps = o->steps;
+    p->thermo_wall = now;
+}
+
+void gr_progress_obs(gr_progress *p, const gr_obs *o)
+{
+    if (!p)
+        return;
+    if (p->tty) {
+        gr_progress_update(p, o->t, "E_kin", o->ekin_trans + o->ekin_rot);
+        return;
+    }
+    if (!(p->thermo_every > 0))
+        return;
+    double eps = 1e-9 * (fabs(p->t1) > 1 ? fabs(p->t1) : 1);
+    if (p->thermo_lines && o->t < p->thermo_next - eps && o->t < p->t1 - eps)
+        return;
+    thermo_line(p, o);
+    while (p->thermo_next <= o->t + eps)
+        p->thermo_next += p->thermo_every;
 }

@@ -18,6 +18,11 @@ static uint64_t mix64(uint64_t z)
     return z ^ (z >> 31);
 }
 
+uint64_t gr_rng_key(uint64_t seed, uint64_t stream)
+{
+    return mix64(mix64(seed) ^ mix64(stream + 0x632be59bd9b4e019ULL));
+}
+
 gr_rng *gr_rng_create(uint64_t seed, uint64_t stream, gr_err *err)
 {
     gr_rng *r = malloc(sizeof *r);
@@ -27,7 +32,7 @@ gr_rng *gr_rng_create(uint64_t seed, uint64_t stream, gr_err *err)
         return NULL;
     }
     /* mt19937 takes 32 bits of seed; 0 would select GSL's default seed. */
-    uint64_t h = mix64(mix64(seed) ^ mix64(stream + 0x632be59bd9b4e019ULL));
+    uint64_t h = gr_rng_key(seed, stream);
     unsigned long s = (unsigned long)((h ^ (h >> 32)) & 0xffffffffUL);
     gsl_rng_set(r->g, s ? s : 0x5eed);
     return r;

@@ -17,6 +17,9 @@ typedef struct gr_rng gr_rng;
  * the pair is hashed (splitmix64) into the generator's seed. */
 gr_rng *gr_rng_create(uint64_t seed, uint64_t stream, gr_err *err);
 void gr_rng_free(gr_rng *r);
+/* The 64-bit key of (seed, stream), hashed as for the generators above:
+ * for counter-based generators (Random123) keyed by the stream. */
+uint64_t gr_rng_key(uint64_t seed, uint64_t stream);
 gsl_rng *gr_rng_gsl(gr_rng *r);       /* for gsl_ran_* */
 double gr_rng_uniform(gr_rng *r);     /* [0, 1) */
 double gr_rng_uniform_pos(gr_rng *r); /* (0, 1) */

@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "scene.h"
 #include "scene_impl.h"
@@ -23,17 +24,18 @@ static const char *const keys_silo[] = {
     "hopper", "hopper_outlet", "hopper_bottom", "hopper_top", "reinsert", "reinsert_bottom",
     "reinsert_top", "exit_below", NULL};
 static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", NULL};
-static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
+static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file",
+                                        "occupation", "rest_occupation", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       NULL};
+                                       "thermo_every", "stress", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
 static const char *const tang_names[] = {"none", "coulomb", "viscous", "regularised", "spring", NULL};
 static const char *const floor_names[] = {"fixed", "sine", "sawtooth", "sine-hf", "sawtooth-hf", NULL};
 static const char *const walls_names[] = {"segments", "grains", NULL};
-static const char *const init_names[] = {"lattice", "random", "file", NULL};
+static const char *const init_names[] = {"lattice", "random", "file", "occupation", NULL};
 static const char *const vel_names[] = {"zero", "gaussian", "speed", NULL};
 static const char *const yesno_names[] = {"no", "yes", NULL};
 
@@ -49,6 +51,9 @@ static int get_num(const gr_scene *sc, const char *s, const char *k, double def,
     const gr_scene_entry *e = gr_scene_find(sc, s, k);
     if (!e)
         return GR_OK;
+    if (fabs(*out) > GR_SCENE_MAX_MAGNITUDE)
+        return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': %s is beyond +-%g (energies and products would overflow)",
+                       sc->path, e->line, s, k, e->value, GR_SCENE_MAX_MAGNITUDE);
     int bad_lo = lo_open ? !(*out > lo) : !(*out >= lo);
     if (bad_lo || *out > hi) {
         if (isinf(hi))
@@ -83,6 +88,14 @@ static const char *section_kind(const char *name)
     if (!strncmp(name, "wall.", 5))
         return "wall";
     return name;
+}
+
+static int in_list(const char *const *list, const char *s)
+{
+    for (size_t i = 0; list[i]; i++)
+        if (!strcmp(list[i], s))
+            return 1;
+    return 0;
 }
 
 static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
@@ -124,8 +137,12 @@ static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
         else if (!strcmp(kind, "measure")) valid = keys_measure;
         else if (!strcmp(kind, "run")) valid = keys_run;
         /* Backend sections are checked by the backend. */
-        if (valid && gr_scene_check_keys(sc, e->section, valid, err))
-            return err->code;
+        if (valid && e->key[0] && !in_list(valid, e->key)) {
+            const char *near = gr_nearest(e->key, valid);
+            return gr_fail(err, GR_EINPUT, "%s:%d: unknown key '%s' in [%s]%s%s%s", sc->path, e->line,
+                           e->key, e->section, near ? "; did you mean '" : "", near ? near : "",
+                           near ? "'?" : "");
+        }
     }
     return GR_OK;
 }
@@ -145,7 +162,8 @@ static int read_domain(gr_scene *sc, gr_err *err)
         return entry_fail(sc, "scene", "seed", err, "must be >= 0");
     sc->seed = (uint64_t)seed;
     if (!gr_scene_find(sc, "domain", "width") || !gr_scene_find(sc, "domain", "height"))
-        return gr_fail(err, GR_EINPUT, "%s: [domain] needs 'width' and 'height'", sc->path);
+        return entry_fail(sc, "domain", gr_scene_find(sc, "domain", "width") ? "height" : "width", err,
+                          "[domain] needs 'width' and 'height'");
     if (POSITIVE("domain", "width", 0, &sc->width) || POSITIVE("domain", "height", 0, &sc->height))
         return err->code;
     for (int s = 0; s < 4; s++) {
@@ -224,6 +242,13 @@ static int read_species(gr_scene *sc, gr_err *err)
             return err->code;
         if (sp->count < 0 || !gr_scene_find(sc, sec, "count"))
             return entry_fail(sc, sec, "count", err, "a species needs a count >= 0");
+        /* Checked one species at a time, so the sum cannot overflow. */
+        if (sp->count > GR_SCENE_MAX_GRAINS || gr_scene_count(sc) > GR_SCENE_MAX_GRAINS) {
+            char msg[200];
+            snprintf(msg, sizeof msg, "more than %ld grains in all, the largest count grano is tested and sized for (docs/reliability.md)",
+                     (long)GR_SCENE_MAX_GRAINS);
+            return entry_fail(sc, sec, "count", err, msg);
+        }
     }
     if (sc->nspecies == 0) {
         /* No species: grains of unit diameter and mass only if the init reads a file. */
@@ -270,10 +295,8 @@ static int read_walls(gr_scene *sc, gr_err *err)
         const char *sec = sc->entries[i].section;
         if (strcmp(section_kind(sec), "wall"))
             continue;
-        int dup = 0;
-        for (size_t j = 0; j < i; j++)
-            dup |= !strcmp(sc->entries[j].section, sec);
-        if (dup)
+        /* Once per wall: at its header, the section's first entry. */
+        if (sc->entries[i].key[0])
             continue;
         double a[2], b[2];
         int fa, fb, vib;
@@ -283,6 +306,9 @@ static int read_walls(gr_scene *sc, gr_err *err)
             return entry_fail(sc, sec, fa ? "to" : "from", err, "a wall needs 'from = x y' and 'to = x y'");
         if (a[0] == b[0] && a[1] == b[1])
             return entry_fail(sc, sec, "to", err, "a wall needs two distinct end points");
+        if (sc->nsegments >= GR_SCENE_MAX_WALLS)
+            return entry_fail(sc, sec, "from", err, "more than " GR_STR(GR_SCENE_MAX_WALLS)
+                              " walls, the most grano is tested with (docs/reliability.md)");
         gr_segment s = {a[0], a[1], b[0], b[1], INFINITY, 0, sc->entries[i].line};
         if (NONNEG(sec, "open_time", INFINITY, &s.open_time) || get_yesno(sc, sec, "vibrating", 0, &vib, err))
             return err->code;
@@ -307,7 +333,9 @@ static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
         return err->code;
     if (!gr_scene_find(sc, "silo", "height") || !gr_scene_find(sc, "silo", "orifice") ||
         !gr_scene_find(sc, "silo", "base"))
-        return gr_fail(err, GR_EINPUT, "%s: [silo] needs 'height', 'base' and 'orifice'", sc->path);
+        return entry_fail(sc, "silo", !gr_scene_find(sc, "silo", "height") ? "height"
+                                      : !gr_scene_find(sc, "silo", "base") ? "base" : "orifice",
+                          err, "[silo] needs 'height', 'base' and 'orifice'");
     if (s->orifice > s->width)
         return entry_fail(sc, "silo", "orifice", err, "the orifice is wider than the silo base");
     if (s->orifice_center - 0.5 * s->orifice < s->x0 || s->orifice_center + 0.5 * s->orifice > s->x0 + s->width)
@@ -417,10 +445,13 @@ static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
         return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
     /* Relative paths are relative to the scene file. */
     const char *slash = strrchr(sc->path, '/');
+    int len;
     if (fe->value[0] == '/' || !slash)
-        snprintf(in->file, sizeof in->file, "%s", fe->value);
+        len = snprintf(in->file, sizeof in->file, "%s", fe->value);
     else
-        snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+        len = snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
+    if (len < 0 || (size_t)len >= sizeof in->file)
+        return entry_fail(sc, "init", "file", err, "the path is longer than 1023 characters");
     FILE *f = fopen(in->file, "r");
     if (!f) {
         char msg[1200];
@@ -472,9 +503,10 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
     }
     if (in->kind == GR_INIT_LATTICE) {
         double a = lattice_pitch(sc, d);
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+        /* In double: the site count of a huge region overflows a long. */
+        double nx = floor((in->x1 - in->x0) / a), ny = floor((in->y1 - in->y0) / a);
+        if (nx * ny < (double)n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %.0f x %.0f = %.0f lattice sites of pitch %.4g",
                      n, nx, ny, nx * ny, a);
             return crowded_fail(sc, err, msg);
         }
@@ -482,6 +514,21 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
         snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
         return entry_fail(sc, "init", "kind", err, msg);
     }
+    return GR_OK;
+}
+
+/* kind = occupation: mean occupations of the moving and rest channels,
+ * each in [0, 1]; grains are no longer counted (the lattice holds them). */
+static int read_init_occupation(gr_scene *sc, gr_err *err)
+{
+    gr_init *in = &sc->init;
+    if (!gr_scene_find(sc, "init", "occupation"))
+        return entry_fail(sc, "init", "kind", err, "kind = occupation needs an 'occupation' key (mean occupation of a moving channel, in [0, 1])");
+    if (get_num(sc, "init", "occupation", 0.0, 0.0, 0, 1.0, &in->occupation, err) ||
+        get_num(sc, "init", "rest_occupation", in->occupation, 0.0, 0, 1.0, &in->rest_occupation, err))
+        return err->code;
+    if (gr_scene_count(sc) > 0)
+        return entry_fail(sc, "init", "kind", err, "kind = occupation places no grains; give no species count (or count = 0)");
     return GR_OK;
 }
 
@@ -499,6 +546,8 @@ static int read_init(gr_scene *sc, gr_err *err)
         return err->code;
     if (!(r[2] > r[0]) || !(r[3] > r[1]))
         return entry_fail(sc, "init", "region", err, "the region must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+    if (found && (r[0] < 0 || r[1] < 0 || r[2] > sc->width || r[3] > sc->height))
+        return entry_fail(sc, "init", "region", err, "the region reaches outside the domain [0, width] x [0, height]");
     in->x0 = r[0], in->y0 = r[1], in->x1 = r[2], in->y1 = r[3];
     if (get_num(sc, "init", "spacing", 1.05, 1.0, 0, 10.0, &in->spacing, err))
         return err->code;
@@ -510,6 +559,8 @@ static int read_init(gr_scene *sc, gr_err *err)
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
     if (in->kind == GR_INIT_FILE)
         return read_init_file(sc, fe, err);
+    if (in->kind == GR_INIT_OCCUPATION)
+        return read_init_occupation(sc, err);
     return check_init_fits(sc, d, err);
 }
 
@@ -523,6 +574,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
     if (found) {
         if (!(w[2] > w[0]) || !(w[3] > w[1]))
             return entry_fail(sc, "measure", "window", err, "the window must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+        if (w[0] < 0 || w[1] < 0 || w[2] > sc->width || w[3] > sc->height)
+            return entry_fail(sc, "measure", "window", err, "the window reaches outside the domain [0, width] x [0, height]");
         sc->window.x0 = w[0], sc->window.y0 = w[1], sc->window.x1 = w[2], sc->window.y1 = w[3];
     }
     double c[2];
@@ -537,7 +590,9 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "output_every", sc->run.until / 100.0, &sc->run.output_every) ||
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
-        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err))
+        NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
+        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
+        get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
         return err->code;
     return GR_OK;
 }
@@ -566,8 +621,13 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
     return sc;
 }
 
-gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+char *gr_scene_read_text(const char *path, gr_err *err)
 {
+    struct stat st;
+    if (stat(path, &st) == 0 && (S_ISDIR(st.st_mode) || S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))) {
+        gr_fail(err, GR_EINPUT, "%s: cannot read scene file: a directory or a device", path);
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     if (!f) {
         gr_fail(err, GR_EINPUT, "%s: cannot read scene file: %s", path, strerror(errno));
@@ -579,6 +639,12 @@ gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
         n += fread(buf + n, 1, cap - n - 1, f);
         if (n < cap - 1)
             break;
+        if (cap >= GR_SCENE_MAX_BYTES) {
+            fclose(f);
+            free(buf);
+            gr_fail(err, GR_EINPUT, "%s: scene file larger than %d MB", path, GR_SCENE_MAX_BYTES >> 20);
+            return NULL;
+        }
         char *q = realloc(buf, cap * 2);
         if (!q) {
             free(buf);
@@ -597,12 +663,23 @@ gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
     }
     buf[n] = '\0';
     if (strlen(buf) != n) {
-        gr_fail(err, GR_EINPUT, "%s: not a text file (NUL byte at offset %zu)", path, strlen(buf));
+        int line = 1;
+        for (const char *q = buf; *q; q++)
+            line += *q == '\n';
+        gr_fail(err, GR_EINPUT, "%s:%d: not a text file (NUL byte at offset %zu)", path, line, strlen(buf));
         free(buf);
         return NULL;
     }
-    gr_scene *sc = gr_scene_parse(buf, path, extra, err);
-    free(buf);
+    return buf;
+}
+
+gr_scene *gr_scene_load(const char *path, const char *const *extra, gr_err *err)
+{
+    char *text = gr_scene_read_text(path, err);
+    if (!text)
+        return NULL;
+    gr_scene *sc = gr_scene_parse(text, path, extra, err);
+    free(text);
     return sc;
 }
 
@@ -612,6 +689,8 @@ void gr_scene_free(gr_scene *sc)
         return;
     free(sc->text);
     free(sc->entries);
+    free(sc->parsed);
+    free(sc->index);
     free(sc->segments);
     free(sc);
 }

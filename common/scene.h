@@ -84,7 +84,9 @@ typedef struct {
     double exit_below;      /* grains below this height have left */
 } gr_silo;
 
-typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE } gr_init_kind;
+/* GR_INIT_OCCUPATION: no grains; a lattice backend fills its channels at
+ * random with the mean occupations below (docs/scene-format.md). */
+typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE, GR_INIT_OCCUPATION } gr_init_kind;
 typedef enum { GR_VEL_ZERO = 0, GR_VEL_GAUSSIAN, GR_VEL_SPEED } gr_vel_kind;
 
 typedef struct {
@@ -94,6 +96,8 @@ typedef struct {
     gr_vel_kind velocity;
     double v0;              /* gaussian: std per component; speed: modulus */
     char file[1024];        /* columns: x y [vx vy [diameter]] */
+    double occupation;      /* occupation: mean occupation of each moving channel */
+    double rest_occupation; /* and of the rest channel */
 } gr_init;
 
 typedef struct {
@@ -105,14 +109,26 @@ typedef struct {
     double until;           /* simulated time to run to */
     double output_every;    /* time between trajectory frames */
     double observe_every;   /* time between observable samples */
+    double thermo_every;    /* time between thermo lines off a terminal, 0: none */
     double checkpoint_every;
     int field_nx, field_ny; /* coarse-graining grid, 0 = none */
     int contacts;           /* write the contact network with each frame */
+    int stress;             /* write the contact stress with each frame */
 } gr_runctl;
+
+/* Scale limits (docs/reliability.md): a scene beyond them is refused up
+ * front with the reason. */
+#define GR_SCENE_MAX_GRAINS 10000000L
+#define GR_SCENE_MAX_WALLS 100000
+#define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_SCENE_MAX_BYTES (64 << 20)
+#define GR_STR_(x) #x
+#define GR_STR(x) GR_STR_(x)
 
 /* One key = value of the file, kept for messages and for backends. */
 typedef struct {
-    char section[64], key[64], value[256];
+    char section[64], key[64];
+    const char *value;      /* into the scene's parsed copy of the text */
     int line;
     int used;
 } gr_scene_entry;
@@ -137,6 +153,9 @@ typedef struct gr_scene {
     uint64_t seed;
     size_t nentries;
     gr_scene_entry *entries;
+    char *parsed;           /* the text cut into the entries' values */
+    size_t *index, index_cap; /* (section, key) -> entry + 1, open addressing */
+    int set_line0;          /* line of the first --set in text, 0: none */
 } gr_scene;
 
 /* Features a scene uses; a backend declares those it supports. */
@@ -155,26 +174,42 @@ enum {
     GR_FEAT_MIXTURE = 1u << 11,
     GR_FEAT_HERTZ = 1u << 12,
     GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
-    GR_FEAT_WEIGHTS = 1u << 14        /* a particle stands for several grains */
+    GR_FEAT_WEIGHTS = 1u << 14,       /* a particle stands for several grains */
+    GR_FEAT_RESTITUTION = 1u << 15,   /* a prescribed normal restitution */
+    GR_FEAT_LATTICE = 1u << 16        /* an initial state given as lattice occupations */
 };
-#define GR_FEAT_COUNT 15
+#define GR_FEAT_COUNT 17
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;
  * their keys are kept for the backend to read. */
 gr_scene *gr_scene_load(const char *path, const char *const *extra_sections, gr_err *err);
+/* The file's text (malloc'd, NUL ended; a NUL byte in it is refused). */
+char *gr_scene_read_text(const char *path, gr_err *err);
+/* gr_scene_load with the n settings "section.key=value" of --set applied
+ * as if they were lines of the file (the same parser and checks): each
+ * replaces the file's key or adds it. The scene's text is the text run. A
+ * message about a setting names it ("--set material.mu: ...") instead of a
+ * line; gr_scene_name_sets does that to a later message about the scene. */
+gr_scene *gr_scene_load_set(const char *path, const char *const *extra_sections,
+                            const char *const *sets, size_t n, gr_err *err);
+void gr_scene_name_sets(const gr_scene *sc, const char *const *sets, size_t n, gr_err *err);
 /* Same, from text in memory; path is used in messages. */
 gr_scene *gr_scene_parse(const char *text, const char *path,
                          const char *const *extra_sections, gr_err *err);
 void gr_scene_free(gr_scene *sc);
-/* A copy of scene text (malloc'd) with key of section set to value: the
- * key's line replaced, or the key added at the end of its section, or the
- * section added at the end. For sweeps over a scene's parameters. */
+/* A copy of scene text (malloc'd) with key of section set to value, as
+ * --set does it (scene_set.c): the key's line commented out and
+ * "[section]\nkey = value" appended, so every other line keeps its number.
+ * For sweeps over a scene's parameters. */
 char *gr_scene_text_set(const char *text, const char *section, const char *key, const char *value,
                         gr_err *err);
 
 unsigned gr_scene_features(const gr_scene *sc);
 const char *gr_feature_name(unsigned feature_bit);
+/* Whether the table has a row for the bit (bits below GR_FEAT_COUNT may be
+ * reserved). */
+int gr_feature_known(unsigned feature_bit);
 /* The file line and key that brought in a feature, for messages:
  * writes "file:line: key 'k'" (or the file alone) into buf. */
 void gr_scene_feature_where(const gr_scene *sc, unsigned feature_bit, char *buf, size_t n);

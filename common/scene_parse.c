@@ -1,5 +1,6 @@
-/* Scene files: INI through libinih, with the line of every key kept so
- * that every later message can name file, line and key. */
+/* Scene files: INI lines read here (libinih split lines of 200 characters
+ * and more, and took '= value' for a key named ''), with the line of every
+ * key kept so that every later message can name file, line and key. */
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -7,143 +8,191 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <ini.h>
-
 #include "scene.h"
 #include "scene_impl.h"
 
-/* inih hands the handler no line number in Debian's build: count the lines
- * in the reader it calls once per line. */
-struct parse_ctx;
-typedef struct {
-    const char *p;
-    int line;     /* line of the text last returned */
-    int at_bol;   /* next read starts a new line */
-    struct parse_ctx *ctx;
-} reader_state;
-
-static int on_entry(void *user, const char *section, const char *key, const char *value);
-static void note_section(reader_state *r, const char *str);
-
-static char *read_line(char *str, int num, void *stream)
+/* The index of entries by (section, key): a file of 20 000 walls must
+ * load in well under a second, so lookups and the duplicate check do not
+ * scan the list. Open addressing, at most half full. */
+static size_t entry_hash(const char *section, const char *key)
 {
-    reader_state *r = stream;
-    if (!*r->p || num < 2)
-        return NULL;
-    if (r->at_bol)
-        r->line++;
-    int k = 0;
-    while (k < num - 1 && r->p[0]) {
-        char c = *r->p++;
-        str[k++] = c;
-        if (c == '\n')
-            break;
-    }
-    str[k] = '\0';
-    int starts_line = r->at_bol;
-    r->at_bol = (k > 0 && str[k - 1] == '\n');
-    if (starts_line)
-        note_section(r, str);
-    return str;
+    size_t h = 1469598103934665603u;
+    for (const char *s = section; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211u;
+    h = (h ^ 0xff) * 1099511628211u;
+    for (const char *s = key; *s; s++)
+        h = (h ^ (unsigned char)*s) * 1099511628211u;
+    return h;
 }
 
-typedef struct parse_ctx {
+static const gr_scene_entry *index_find(const gr_scene *sc, const char *section, const char *key)
+{
+    if (!sc->index_cap)
+        return NULL;
+    for (size_t h = entry_hash(section, key) & (sc->index_cap - 1);; h = (h + 1) & (sc->index_cap - 1)) {
+        size_t i = sc->index[h];
+        if (i == 0)
+            return NULL;
+        const gr_scene_entry *e = &sc->entries[i - 1];
+        if (!strcmp(e->section, section) && !strcmp(e->key, key))
+            return e;
+    }
+}
+
+static int index_rebuild(gr_scene *sc, size_t cap)
+{
+    size_t *ix = calloc(cap, sizeof *ix);
+    if (!ix)
+        return -1;
+    free(sc->index);
+    sc->index = ix;
+    sc->index_cap = cap;
+    for (size_t i = 0; i < sc->nentries; i++) {
+        size_t h = entry_hash(sc->entries[i].section, sc->entries[i].key) & (cap - 1);
+        while (ix[h])
+            h = (h + 1) & (cap - 1);
+        ix[h] = i + 1;
+    }
+    return 0;
+}
+
+typedef struct {
     gr_scene *sc;
-    reader_state *rd;
     gr_err *err;
     size_t cap;
+    int line;
 } parse_ctx;
 
-static int on_entry(void *user, const char *section, const char *key, const char *value)
+static int add_entry(parse_ctx *c, const char *section, const char *key, char *value)
 {
-    parse_ctx *c = user;
     gr_scene *sc = c->sc;
-    if (c->err->code)
-        return 0;
-    int line = c->rd->line;
-    if (strlen(section) >= sizeof sc->entries[0].section ||
-        strlen(key) >= sizeof sc->entries[0].key ||
-        strlen(value) >= sizeof sc->entries[0].value) {
-        gr_fail(c->err, GR_EINPUT, "%s:%d: [%s] %s: name or value too long",
-                sc->path, line, section, key);
-        return 0;
-    }
-    for (size_t i = 0; i < sc->nentries && key[0]; i++) {
-        const gr_scene_entry *e = &sc->entries[i];
-        if (!strcmp(e->section, section) && !strcmp(e->key, key)) {
-            gr_fail(c->err, GR_EINPUT, "%s:%d: key '%s' in [%s] is set twice (first at line %d)",
-                    sc->path, line, key, section, e->line);
-            return 0;
-        }
-    }
+    if (strlen(section) >= sizeof sc->entries[0].section || strlen(key) >= sizeof sc->entries[0].key)
+        return gr_fail(c->err, GR_EINPUT, "%s:%d: [%.60s] %.60s: section or key name longer than %zu characters",
+                       sc->path, c->line, section, key, sizeof sc->entries[0].key - 1);
+    const gr_scene_entry *old = index_find(sc, section, key);
+    if (old && key[0])
+        return gr_fail(c->err, GR_EINPUT, "%s:%d: key '%s' in [%s] is set twice (first at line %d)",
+                       sc->path, c->line, key, section, old->line);
+    if (old) /* a section header seen before: its keys join the first one's */
+        return GR_OK;
     if (sc->nentries == c->cap) {
         size_t cap = c->cap ? 2 * c->cap : 64;
         gr_scene_entry *q = realloc(sc->entries, cap * sizeof *q);
-        if (!q) {
-            gr_fail(c->err, GR_ERUN, "out of memory reading %s", sc->path);
-            return 0;
-        }
+        if (!q)
+            return gr_fail(c->err, GR_ERUN, "out of memory reading %s", sc->path);
         sc->entries = q;
         c->cap = cap;
     }
     gr_scene_entry *e = &sc->entries[sc->nentries++];
     snprintf(e->section, sizeof e->section, "%s", section);
     snprintf(e->key, sizeof e->key, "%s", key);
-    snprintf(e->value, sizeof e->value, "%s", value);
-    e->line = line;
+    e->value = value;
+    e->line = c->line;
     e->used = 0;
-    return 1;
+    if (2 * sc->nentries > sc->index_cap) {
+        if (index_rebuild(sc, sc->index_cap ? 2 * sc->index_cap : 256))
+            return gr_fail(c->err, GR_ERUN, "out of memory reading %s", sc->path);
+    } else {
+        size_t h = entry_hash(section, key) & (sc->index_cap - 1);
+        while (sc->index[h])
+            h = (h + 1) & (sc->index_cap - 1);
+        sc->index[h] = sc->nentries;
+    }
+    return GR_OK;
 }
 
-/* inih calls no handler for a section without keys: record every header
- * as an entry with an empty key, so an unknown empty section is caught. */
-static void note_section(reader_state *r, const char *str)
+static char *trim(char *s)
 {
-    while (*str == ' ' || *str == '\t')
-        str++;
-    const char *end = strchr(str, ']');
-    if (*str != '[' || !end)
-        return;
-    char name[128];
-    size_t n = (size_t)(end - str - 1);
-    if (n >= sizeof name)
-        n = sizeof name - 1;
-    memcpy(name, str + 1, n);
-    name[n] = '\0';
-    on_entry(r->ctx, name, "", "");
+    while (*s == ' ' || *s == '\t')
+        s++;
+    size_t n = strlen(s);
+    while (n && isspace((unsigned char)s[n - 1]))
+        s[--n] = '\0';
+    return s;
+}
+
+/* One line of the file, already cut out of the buffer: '[section]',
+ * 'key = value' (or 'key : value'), a comment (';' or '#' first, or after
+ * a value following a blank) or nothing. Lines may be of any length. */
+static int parse_line(parse_ctx *c, char *line, char *section)
+{
+    char *s = trim(line);
+    if (!*s || *s == ';' || *s == '#')
+        return GR_OK;
+    if (*s == '[') {
+        char *end = strchr(s, ']');
+        if (!end)
+            return gr_fail(c->err, GR_EINPUT, "%s:%d: a section header needs its closing ']'",
+                           c->sc->path, c->line);
+        *end = '\0';
+        char *name = trim(s + 1);
+        if (strlen(name) >= sizeof c->sc->entries[0].section)
+            return gr_fail(c->err, GR_EINPUT, "%s:%d: section name longer than %zu characters",
+                           c->sc->path, c->line, sizeof c->sc->entries[0].section - 1);
+        strcpy(section, name);
+        /* Every header is an entry with an empty key, so that an unknown
+         * section without keys is caught too. */
+        return add_entry(c, section, "", end);
+    }
+    size_t k = strcspn(s, "=:");
+    if (!s[k])
+        return gr_fail(c->err, GR_EINPUT,
+                       "%s:%d: not a valid line (expected [section], key = value or a ; comment)",
+                       c->sc->path, c->line);
+    char *value = s + k + 1;
+    s[k] = '\0';
+    char *key = trim(s);
+    if (!*key)
+        return gr_fail(c->err, GR_EINPUT, "%s:%d: a value without a key (expected key = value)",
+                       c->sc->path, c->line);
+    for (char *q = value; *q; q++)
+        if ((*q == ';' || *q == '#') && q > value && (q[-1] == ' ' || q[-1] == '\t')) {
+            *q = '\0';
+            break;
+        }
+    return add_entry(c, section, key, trim(value));
 }
 
 int gr_scene_read_entries(gr_scene *sc, const char *text, gr_err *err)
 {
-    parse_ctx c = {sc, NULL, err, 0};
-    reader_state rd = {text, 0, 1, &c};
-    c.rd = &rd;
-    int rc = ini_parse_stream(read_line, &rd, on_entry, &c);
-    if (err->code)
-        return err->code;
-    if (rc > 0)
-        return gr_fail(err, GR_EINPUT, "%s:%d: not a valid line (expected [section], key = value or a ; comment)",
-                       sc->path, rc);
-    if (rc < 0)
-        return gr_fail(err, GR_ERUN, "%s: the INI parser failed (%d)", sc->path, rc);
+    parse_ctx c = {sc, err, 0, 0};
+    free(sc->parsed);
+    if (!(sc->parsed = strdup(text)))
+        return gr_fail(err, GR_ERUN, "out of memory reading %s", sc->path);
+    char section[sizeof sc->entries[0].section] = "";
+    char *p = sc->parsed;
+    /* A UTF-8 byte order mark, as some editors write. */
+    if (!strncmp(p, "\xef\xbb\xbf", 3))
+        p += 3;
+    while (*p) {
+        char *nl = strchr(p, '\n');
+        if (nl)
+            *nl = '\0';
+        c.line++;
+        if (parse_line(&c, p, section))
+            return err->code;
+        if (!nl)
+            break;
+        p = nl + 1;
+    }
     return GR_OK;
 }
 
 const gr_scene_entry *gr_scene_find(const gr_scene *sc, const char *section, const char *key)
 {
-    for (size_t i = 0; i < sc->nentries; i++)
-        if (!strcmp(sc->entries[i].section, section) && !strcmp(sc->entries[i].key, key))
-            return &sc->entries[i];
-    return NULL;
+    return index_find(sc, section, key);
 }
 
 void gr_scene_where(const gr_scene *sc, const char *section, const char *key, char *buf, size_t n)
 {
     const gr_scene_entry *e = gr_scene_find(sc, section, key);
+    const gr_scene_entry *h = e ? NULL : gr_scene_find(sc, section, "");
     if (e)
         snprintf(buf, n, "%s:%d: [%s] key '%s'", sc->path, e->line, section, key);
+    else if (h) /* absent key: the line of its section */
+        snprintf(buf, n, "%s:%d: [%s] key '%s' (absent, default)", sc->path, h->line, section, key);
     else
-        snprintf(buf, n, "%s: [%s] key '%s' (default)", sc->path, section, key);
+        snprintf(buf, n, "%s: [%s] key '%s' (absent, default)", sc->path, section, key);
 }
 
 /* Levenshtein distance, for "did you mean" suggestions. */
@@ -305,8 +354,8 @@ int gr_scene_get_vec(const gr_scene *sc, const char *section, const char *key,
         if (end == s)
             return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': expected %d numbers, got '%s'",
                            sc->path, e->line, section, key, n, e->value);
-        if (!isfinite(v))
-            return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': '%s' holds a non-finite number",
+        if (!isfinite(v) || fabs(v) > GR_SCENE_MAX_MAGNITUDE)
+            return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': '%s' holds a non-finite number or one beyond +-1e100",
                            sc->path, e->line, section, key, e->value);
         out[i] = v;
         s = end;

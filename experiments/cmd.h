@@ -10,11 +10,14 @@ int cmd_bench(int argc, char **argv);
 int cmd_silo_start(int argc, char **argv);
 int cmd_silo_flow(int argc, char **argv);
 int cmd_course(int argc, char **argv);
+int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 
 /* Backend-specific benchmarks, called by cmd_bench with argv[0] = method. */
 int bench_cd(int argc, char **argv);
 int bench_dem(int argc, char **argv);
+int bench_dsmc(int argc, char **argv);
 int bench_edmd(int argc, char **argv);
+int bench_lgca(int argc, char **argv);
 
 #endif

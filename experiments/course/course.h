@@ -10,6 +10,7 @@
 #include "h5md.h"
 #include "method.h"
 #include "particles.h"
+#include "progress.h"
 #include "scene.h"
 
 typedef struct {
@@ -18,7 +19,9 @@ typedef struct {
     int naive;     /* [edmd] algorithm = naive (v1.0 of the slides) instead of the tree */
     double alpha;  /* cooling */
     unsigned long seed;
+    int force;     /* replace existing result files */
     const gr_method_type *m;
+    gr_progress *pg; /* the exercise's progress line on a terminal (NULL: none) */
 } course_opts;
 
 /* The scene of text (the keys of a scene file) with the method's section,

@@ -103,12 +103,14 @@ static int write_results(const course_opts *o, const maxwell *w, gr_err *err)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/maxwell.dat", o->out);
-    if (exp_write_dat(path, "collisions/N KS chi2 dof p ; then: v f(v) at each stage, Maxwell", w->tab,
-                      NSTAGE, 5, err))
+    if (exp_write_dat(path, "collisions/N KS chi2 dof p   (data set 0; data set 1, the histograms, follows)",
+                      w->tab, NSTAGE, 5, err))
         return err->code;
     FILE *f = fopen(path, "a");
     if (!f)
         return gr_fail(err, GR_ERUN, "%s: cannot append", path);
+    /* Two blank lines end a data set for gnuplot's `index`. */
+    fprintf(f, "\n\n# v f(v) at C/N = 0.5 1 2 3 10, Maxwell 2v/V0^2 exp(-v^2/V0^2)   (data set 1)\n");
     print_rows(f, w->htab, NBIN, NSTAGE + 2);
     if (fclose(f))
         return gr_fail(err, GR_ERUN, "%s: write failed", path);
@@ -138,11 +140,11 @@ static int plot(const course_opts *o, const maxwell *w, gr_err *err)
         fprintf(gp, "%g %g\n", stage[k], w->ks[k]);
     fprintf(gp, "EOD\nset multiplot layout 1,2\n");
     fprintf(gp, "set title 'Speed histograms, %ld disks x %ld runs'\nset xlabel 'v / V_0'\n"
-                "set ylabel 'f(v)'\nset key top right\n", w->n, w->runs);
+                "set ylabel 'f(v) / V_0^{-1}'\nset key top right\n", w->n, w->runs);
     fprintf(gp, "plot for [k=2:6] $h u 1:k w histeps lw 2 t sprintf('C/N = %%s', word('0.5 1 2 3 10', k-1)), "
                 "2*x*exp(-x*x) w l lw 3 dt 2 lc 'black' t 'Maxwell'\n");
     fprintf(gp, "set title 'Kolmogorov-Smirnov distance to Maxwell'\nset xlabel 'collisions per disk C/N'\n"
-                "set ylabel 'D'\nset logscale xy\nunset key\n");
+                "set ylabel 'KS distance D (dimensionless)'\nset logscale xy\nunset key\n");
     fprintf(gp, "plot $k w lp pt 7 lw 2, %g w l dt 2 lc 'black'\nunset multiplot\n",
             0.87 / sqrt((double)(w->n * w->runs)));
     return gr_plot_close(gp, path, err);
@@ -150,6 +152,7 @@ static int plot(const course_opts *o, const maxwell *w, gr_err *err)
 
 static void report(const course_opts *o, const maxwell *w)
 {
+    gr_progress_finish(o->pg);
     printf("maxwell: %ld elastic disks in a %g x %g box, %ld runs, %s\n", w->n, w->L, w->L, w->runs,
            course_how(o));
     printf("  collisions/N   KS distance   chi2/dof   p-value\n");
@@ -170,8 +173,10 @@ int course_maxwell(const course_opts *o, gr_err *err)
     for (int k = 0; k < NSTAGE && !rc; k++)
         if (!(w.hist[k] = gr_hist_create(NBIN, 0.0, 3.0 * w.v0, err)))
             rc = err->code;
-    for (long r = 0; r < w.runs && !rc; r++)
+    for (long r = 0; r < w.runs && !rc; r++) {
         rc = one_run(o, &w, r, err);
+        gr_progress_update(o->pg, (double)(r + 1) / (double)w.runs, "runs done", (double)(r + 1));
+    }
     if (!rc && !(rc = distances(&w, err))) {
         report(o, &w);
         rc = write_results(o, &w, err);

@@ -78,14 +78,18 @@ static int against_density(const course_opts *o, pressure *w, gr_err *err)
         double ideal = nd * T * L / (L - 1), eos = ideal * (1 + 2 * eta * exp_chi_luding(eta));
         double row[6] = {(double)ns[k], nd, p, nd * T, ideal, eos};
         memcpy(w->A + 6 * k, row, sizeof row);
+        gr_progress_finish(o->pg);
         printf("  %-5ld  %-8.4f  %-9.5g  %-9.5g  %-7.4f  %-19.4f  %.4g\n", ns[k], nd, p, nd * T, p / (nd * T),
                eos / (nd * T), cpn);
+        fflush(stdout);
+        gr_progress_update(o->pg, (k + 1.0) / (w->nn + w->nv), "boxes done", k + 1.0);
     }
     return GR_OK;
 }
 
 static int against_v0(const course_opts *o, pressure *w, gr_err *err)
 {
+    gr_progress_finish(o->pg);
     printf("  N = %d, against V0:\n  V0     p          p / V0^2\n", NFIX);
     for (int k = 0; k < w->nv; k++) {
         double p = NAN, T = NAN, cpn = NAN;
@@ -94,7 +98,10 @@ static int against_v0(const course_opts *o, pressure *w, gr_err *err)
             return err->code;
         double row[3] = {v0s[k], p, p / (v0s[k] * v0s[k])};
         memcpy(w->B + 3 * k, row, sizeof row);
+        gr_progress_finish(o->pg);
         printf("  %-5g  %-9.5g  %.5g\n", v0s[k], p, p / (v0s[k] * v0s[k]));
+        fflush(stdout);
+        gr_progress_update(o->pg, (w->nn + k + 1.0) / (w->nn + w->nv), "boxes done", w->nn + k + 1.0);
     }
     double cov = 0, ss = 0, xx[5], yy[5];
     for (int k = 0; k < w->nv; k++)
@@ -144,12 +151,14 @@ static int plot(const course_opts *o, const pressure *w, int f, gr_err *err)
             fprintf(gp, "%.6g%c", f ? w->B[3 * k + q] : w->A[6 * k + q], q + 1 < cols ? ' ' : '\n');
     fprintf(gp, "EOD\nset key top left\n");
     if (!f)
-        fprintf(gp, "set title 'Wall pressure, V_0 = 1, L = %g'\nset xlabel 'n = N/L^2'\nset ylabel 'p'\n"
+        fprintf(gp, "set title 'Wall pressure, V_0 = 1, L = %g d'\nset xlabel 'number density n = N/L^2 / d^{-2}'\n"
+                    "set ylabel 'wall pressure p / (m V_0^2 d^{-2})'\n"
                     "plot $d u 2:3 w p pt 7 ps 1.5 t 'measured', $d u 2:4 w l lw 2 t 'ideal gas n T', "
                     "$d u 2:5 w l dt 2 lw 2 t 'ideal gas, walls', $d u 2:6 w l lw 2 t 'hard disks (Luding), walls'\n",
                 L);
     else
-        fprintf(gp, "set title 'Wall pressure against V_0, N = %d, L = %g'\nset xlabel 'V_0'\nset ylabel 'p'\n"
+        fprintf(gp, "set title 'Wall pressure against V_0, N = %d, L = %g d'\nset xlabel 'V_0 / u (u: the speed unit, V_0 of the density sweep)'\n"
+                    "set ylabel 'wall pressure p / (m u^2 d^{-2})'\n"
                     "plot $d u 1:2 w p pt 7 ps 1.5 t 'measured', %.8g*x*x w l lw 2 t 'p = %.4g V_0^2'\n",
                 NFIX, L, w->c, w->c);
     return gr_plot_close(gp, path, err);

@@ -16,10 +16,19 @@ typedef struct {
     const char *snapshot; /* PNG of the final state (NULL: none) */
     int force;            /* replace existing files */
     int progress;         /* progress line on a terminal */
+    int branch;           /* restart into a new output, physical changes allowed */
+    char *notes;          /* receives the scene differences a restart allowed */
+    size_t notes_cap;
 } gr_run_opts;
 
 /* "<out minus .h5>.ckpt" */
 void gr_run_ckpt_path(const char *out, char *buf, size_t n);
+
+/* Samples of any one kind a run may ask for ([run] until / *_every). */
+#define GR_RUN_MAX_SAMPLES 1e8
+
+/* The [run] intervals: GR_EINPUT naming file:line:key beyond the limit. */
+int gr_run_check(const gr_scene *sc, gr_err *err);
 
 /* Returns GR_OK, GR_EINPUT (scene refused, bad restart) or GR_ERUN (the run
  * failed; the checkpoint then holds the last good state). */
@@ -27,6 +36,9 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
 
 /* Save / restore a method's full state and the run counters. */
 int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_err *err);
-int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err);
+/* Load: the scene may differ from the checkpoint's as restart.h allows
+ * (o->branch, o->notes); *old_run receives the checkpoint's [run]. */
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], const gr_run_opts *o, gr_runctl *old_run,
+                gr_err *err);
 
 #endif

@@ -10,9 +10,11 @@
 
 #include "cmd.h"
 #include "fields.h"
+#include "files.h"
 #include "h5md.h"
 #include "init.h"
 #include "method.h"
+#include "opts.h"
 #include "plot.h"
 #include "progress.h"
 #include "runio.h"
@@ -32,11 +34,18 @@ static void usage(FILE *f)
         "  -u, --until T        simulated time to run to (default: [run] until)\n"
         "  -s, --seed S         seed of every random stream (default: [scene] seed)\n"
         "  -o, --out FILE       result file (default results/<scene>-<method>.h5)\n"
-        "  -f, --force          replace an existing result file\n"
-        "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE\n"
-        "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
-        "  -q, --quiet          no progress line\n"
-        "  -h, --help           this help\n\n"
+        "  -f, --force          replace an existing result file and its checkpoint\n"
+        "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE;\n"
+        "                       an existing --out is continued (frames after CKPT dropped);\n"
+        "                       SCENE's [run] and [measure] may differ from the checkpoint's\n"
+        "      --branch         with --restart: a new --out from the checkpoint's state, where\n"
+        "                       physical parameters (and --seed) may differ too\n"
+        "      --snapshot PNG   a picture of the final state, grains coloured by speed (a lattice\n"
+        "                       method: its density field, cells of about one diameter)\n"
+        "      --set S.K=V      set key K of section S as a scene line would (repeatable)\n"
+        "  -q, --quiet          no progress line (terminal) or thermo lines (otherwise)\n"
+        "  -h, --help           this help\n"
+        "      --version        grano's version\n\n"
         "A checkpoint <out>.ckpt is written every [run] checkpoint_every and at the end;\n"
         "a run that goes unstable stops with a diagnostic, exit code 1, and its\n"
         "checkpoint holds the last good state. Bad input exits with code 2.\n");
@@ -44,9 +53,11 @@ static void usage(FILE *f)
 
 typedef struct {
     const char *scene, *method, *out, *restart, *snapshot;
+    const char *sets[64];
+    size_t nsets;
     double until;
     long long seed;
-    int force, quiet;
+    int force, quiet, branch;
 } run_args;
 
 static int parse_args(int argc, char **argv, run_args *a)
@@ -56,7 +67,9 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"seed", required_argument, NULL, 's'},   {"out", required_argument, NULL, 'o'},
         {"force", no_argument, NULL, 'f'},        {"restart", required_argument, NULL, 'r'},
         {"snapshot", required_argument, NULL, 'P'}, {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+        {"help", no_argument, NULL, 'h'},         {"set", required_argument, NULL, 'S'},
+        {"version", no_argument, NULL, 'V'},    {"branch", no_argument, NULL, 'B'},
+        {NULL, 0, NULL, 0}};
     *a = (run_args){.method = "dem", .until = NAN, .seed = -1};
     int c;
     opterr = 0;
@@ -75,7 +88,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 's':
             errno = 0;
             a->seed = strtoll(optarg, &end, 10);
-            if (*end || a->seed < 0 || errno) {
+            if (end == optarg || *end || a->seed < 0 || errno) {
                 fprintf(stderr, "grano run: --seed: '%s' is not a non-negative integer\n", optarg);
                 return 2;
             }
@@ -85,7 +98,16 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 'r': a->restart = optarg; break;
         case 'P': a->snapshot = optarg; break;
         case 'q': a->quiet = 1; break;
+        case 'S':
+            if (a->nsets == sizeof a->sets / sizeof a->sets[0]) {
+                fprintf(stderr, "grano run: --set: at most %zu settings\n", a->nsets);
+                return 2;
+            }
+            a->sets[a->nsets++] = optarg;
+            break;
         case 'h': usage(stdout); exit(0);
+        case 'V': exp_print_version("run"); exit(0);
+        case 'B': a->branch = 1; break;
         case ':':
             fprintf(stderr, "grano run: option '%s' needs a value\n", argv[optind - 1]);
             return 2;
@@ -101,6 +123,27 @@ static int parse_args(int argc, char **argv, run_args *a)
     }
     a->scene = argv[optind];
     return 0;
+}
+
+/* The result, its checkpoint and the snapshot: never a directory or a
+ * device; an existing one only with --force (a restart continues its own);
+ * partial files of a killed run are removed and said so. */
+static int check_outputs(const run_args *a, const char *out, const char *ckpt, gr_err *e)
+{
+    const char *tails[2] = {".tmp", ".part"};
+    const char *bases[2] = {ckpt, out};
+    for (int k = 0; k < 2; k++) {
+        char stale[1400];
+        snprintf(stale, sizeof stale, "%s%s", bases[k], tails[k]);
+        if (exp_remove_stale(stale) && !a->quiet)
+            fprintf(stderr, "grano run: removed %s, a partial file left by an interrupted run\n", stale);
+    }
+    int cont = a->restart != NULL && !a->branch;
+    if (exp_check_writable(out, "--out", a->force || cont, e) ||
+        exp_check_writable(ckpt, "--out (its checkpoint)", a->force || cont, e) ||
+        (a->snapshot && exp_check_writable(a->snapshot, "--snapshot", 1, e)))
+        return e->code;
+    return GR_OK;
 }
 
 static int fail_msg(const gr_err *e)
@@ -123,7 +166,7 @@ int cmd_run(int argc, char **argv)
     }
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
-    gr_scene *sc = gr_scene_load(a.scene, names, &e);
+    gr_scene *sc = gr_scene_load_set(a.scene, names, a.sets, a.nsets, &e);
     if (!sc)
         return fail_msg(&e);
     if (a.seed >= 0)
@@ -139,15 +182,27 @@ int cmd_run(int argc, char **argv)
         snprintf(out, sizeof out, "results/%s-%s.h5", sc->name, m->name);
     }
     gr_run_ckpt_path(out, ckpt, sizeof ckpt);
-    /* Refuse before any work, so bad input writes nothing. */
-    if (!a.force && access(out, F_OK) == 0) {
-        fprintf(stderr, "grano run: --out: '%s' already exists; use --force to replace it\n", out);
+    /* Refuse before any work, so bad input writes nothing. A restart
+     * continues its output and checkpoint in place. */
+    if ((rc = check_outputs(&a, out, ckpt, &e))) {
         gr_scene_free(sc);
+        return fail_msg(&e);
+    }
+    if (a.branch && !a.restart) {
+        gr_scene_free(sc);
+        fprintf(stderr, "grano run: --branch needs --restart CKPT\n");
         return 2;
     }
+    char notes[2048] = "";
     gr_run_opts ro = {.out = out, .ckpt = ckpt, .restart = a.restart, .force = a.force,
-                      .progress = !a.quiet, .snapshot = a.snapshot};
+                      .progress = !a.quiet, .snapshot = a.snapshot, .branch = a.branch,
+                      .notes = notes, .notes_cap = sizeof notes};
     rc = gr_run_scene(sc, m, &ro, &e);
+    gr_scene_name_sets(sc, a.sets, a.nsets, &e);
+    if (notes[0] && !a.quiet)
+        fprintf(stderr, "grano run: %s from %s with these differences (%s): %s\n",
+                a.branch ? "branched" : "restarted", a.restart,
+                a.branch ? "--branch allows any" : "[run] and [measure] may differ", notes);
     if (rc)
         fail_msg(&e);
     else if (!a.quiet)

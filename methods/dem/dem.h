@@ -91,6 +91,7 @@ typedef struct gr_dem {
     gr_normal_law normal;
     gr_tang_law tang;
     double kn, gn, kt, gt, mu;
+    double gw;               /* normal damping at walls (dem_damping.c) */
     int clip, rot, hist_on;
     double g;
     double Lx, Ly;           /* periods, 0 if none */
@@ -132,6 +133,7 @@ typedef struct gr_dem {
     double ekin_last;        /* kinetic + elastic energy of the last good step */
     double eel_eval;         /* elastic energy of the last force evaluation */
     double e_floor;          /* energy below which jumps are not checked */
+    double e_ref;            /* mechanical energy when the growth check began (NAN: not yet) */
     uint64_t outflow;
     int gates_open;
     double wall_impulse;     /* normal impulse on segments since last observe */
@@ -172,6 +174,11 @@ int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err);
 /* Contact time of the stiffest pair (eq. 2.2 or 2.5) and the speed used. */
 double gr_dem_contact_time(const gr_scene *sc, const gr_particles *init, double v_impact);
 double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init);
+/* dem_damping.c: restitution of the linear law for one contact (clip: no
+ * attraction), and the pair and wall damping a scene asks for (gamma_n, or
+ * derived from [material] restitution and wall_restitution). */
+double gr_dem_restitution(double kn, double gamma, double meff, int clip);
+int gr_dem_damping(const gr_scene *sc, const gr_particles *init, double *gn, double *gw, gr_err *err);
 int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params *p, gr_err *err);
 
 int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,

@@ -23,8 +23,11 @@ static const char *field_name(int f)
 
 int gr_dem_save(const gr_dem *d, gr_ckpt *ck, gr_err *err)
 {
-    if (d->par.integrator == GR_DEM_CVODE)
-        return gr_fail(err, GR_EINPUT, "[dem] integrator = cvode (a reference integrator) cannot be checkpointed; use verlet, gear or euler");
+    if (d->par.integrator == GR_DEM_CVODE) {
+        char where[1200];
+        gr_scene_where(&d->sc, "dem", "integrator", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: cvode (a reference integrator) cannot be checkpointed; use verlet, gear or euler", where);
+    }
     int64_t meta[META_COUNT] = {
         [META_N] = (int64_t)d->n, [META_NTAG] = (int64_t)d->ntag, [META_STEP] = (int64_t)d->step,
         [META_OUTFLOW] = (int64_t)d->outflow, [META_GATES] = d->gates_open, [META_NSEG] = d->nseg,
@@ -171,6 +174,7 @@ int gr_dem_load(gr_dem *d, gr_ckpt *ck, gr_err *err)
     d->t = real[R_T];
     d->t0 = real[R_T0];
     d->ekin_last = real[R_EKIN];
+    d->e_ref = NAN;
     d->wall_impulse = real[R_WIMP];
     d->wall_time = real[R_WTIME];
     d->max_ovl = real[R_MAXOVL];

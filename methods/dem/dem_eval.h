@@ -17,6 +17,7 @@ typedef struct {
     const int32_t *restrict tag;
     const uint32_t *restrict flags;
     dem_law law;
+    dem_law law_w;      /* walls: their own damping (dem_damping.c) */
     uint64_t E;
     double integ;
     double Lx, Ly;

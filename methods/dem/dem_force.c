@@ -122,7 +122,7 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t 
         }
     }
     double el;
-    dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
+    dem_law_eval(&c->law_w, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
     if (TL == GR_TANG_SPRING && slot >= 0)
         dem_hist_write(&c->d->hist, slot, key, zeta, c->E);
     *fxi += Fx;
@@ -477,6 +477,7 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .ux = d->f[F_VX][q], .uy = d->f[F_VY][q], .uw = d->f[F_W][q], .rad = d->rad,
         .tag = d->tag, .flags = d->flags,
         .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
+        .law_w = {d->kn, d->gw, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
         .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
         .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,

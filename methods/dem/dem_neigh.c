@@ -66,13 +66,18 @@ static int grid_size(gr_dem *d, double cutoff, gr_err *err)
         return gr_fail(err, GR_EINPUT,
                        "periodic domain %g x %g is narrower than 3 neighbour cells of %g (largest diameter plus skin)",
                        d->sc.width, d->sc.height, cutoff);
-    /* keep the grid a few cells per grain at most */
-    while ((double)nx * (double)ny > 4.0 * (double)(d->ntag + 64) && (nx > 3 || ny > 3)) {
-        if (nx > 3 && !g->px) nx = (nx + 1) / 2;
-        if (ny > 3 && !g->py) ny = (ny + 1) / 2;
-        if (g->px && g->py)
+    /* Keep the grid a few cells per grain at most; a periodic direction
+     * keeps its cells (they tile the period), so stop once nothing can
+     * shrink: a long periodic strip looped here for ever. */
+    while ((double)nx * (double)ny > 4.0 * (double)(d->ntag + 64)) {
+        long nx2 = nx > 3 && !g->px ? (nx + 1) / 2 : nx, ny2 = ny > 3 && !g->py ? (ny + 1) / 2 : ny;
+        if (nx2 == nx && ny2 == ny)
             break;
+        nx = nx2, ny = ny2;
     }
+    if ((double)nx * (double)ny > 1e8)
+        return gr_fail(err, GR_EINPUT, "domain %g x %g needs %ld x %ld neighbour cells of %g, more than 1e8",
+                       d->sc.width, d->sc.height, nx, ny, cutoff);
     g->nx = (int)nx;
     g->ny = (int)ny;
     g->x0 = xmin;

@@ -20,6 +20,7 @@ typedef struct {
     const gr_dem *d;
     const double *x, *y, *vx, *vy, *w;
     dem_law law;
+    dem_law law_w;
     net_row *row;
     size_t n, cap;
     gr_err *err;
@@ -102,7 +103,7 @@ static int net_wall(net_ctx *c, size_t i, int k, double off, double vy, gr_err *
     double wsum = d->rot ? c->w[i] * r : 0.0;
     double zeta = d->hist_on ? stretch(d, i, (int32_t)(d->ntag + (size_t)k)) : 0.0;
     double Fx, Fy, Ft, el;
-    dem_law_eval(&c->law, (int)d->normal, (int)d->tang, xi, nx, ny, c->vx[i], c->vy[i] - vy,
+    dem_law_eval(&c->law_w, (int)d->normal, (int)d->tang, xi, nx, ny, c->vx[i], c->vy[i] - vy,
                  wsum, &zeta, 0.0, &Fx, &Fy, &Ft, &el);
     return push_row(c, d->tag_id[d->tag[i]], -1 - (int64_t)k, Fx * nx + Fy * ny, Ft, err);
 }
@@ -182,6 +183,7 @@ int gr_dem_contacts(const gr_dem *d, gr_contacts *out, gr_err *err)
     net_ctx c = {
         .d = d, .x = d->f[F_X][p], .y = d->f[F_Y][p], .vx = d->f[F_VX][p], .vy = d->f[F_VY][p],
         .w = d->f[F_W][p], .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
+        .law_w = {d->kn, d->gw, d->kt, d->gt, d->mu, d->par.dt, d->clip},
     };
     out->n = 0;
     int rc = d->n ? net_pairs(&c, err) : GR_OK;

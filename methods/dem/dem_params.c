@@ -39,6 +39,26 @@ double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init)
     return v;
 }
 
+/* Lightest mobile grain. */
+static double min_mass(const gr_particles *init)
+{
+    double m1 = INFINITY;
+    for (size_t i = 0; i < init->n; i++)
+        if (!(init->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
+            m1 = fmin(m1, init->mass[i]);
+    return isfinite(m1) ? m1 : 1.0;
+}
+
+/* The damping in force: gamma_n, or derived from a restitution; a scene the
+ * derivation refuses is refused by gr_dem_check_dt and gr_dem_create, so
+ * here the given gamma_n stands in. */
+static void damping(const gr_scene *sc, const gr_particles *init, double *gn, double *gw)
+{
+    gr_err e = {0};
+    if (gr_dem_damping(sc, init, gn, gw, &e))
+        *gn = *gw = sc->mat.gamma_n;
+}
+
 /* Lightest pair: two mobile grains, or one grain on a wall. */
 static double min_meff(const gr_particles *init)
 {
@@ -57,7 +77,8 @@ static double min_meff(const gr_particles *init)
 
 double gr_dem_contact_time(const gr_scene *sc, const gr_particles *init, double v)
 {
-    double me = min_meff(init), kn = sc->mat.kn, gn = sc->mat.gamma_n;
+    double me = min_meff(init), kn = sc->mat.kn, gn, gw;
+    damping(sc, init, &gn, &gw);
     if (sc->mat.normal == GR_NORMAL_HERTZ)
         return 3.21 * pow(me / kn, 0.4) * pow(v, -0.2);
     double w2 = kn / me, z = gn / (2 * me);
@@ -68,13 +89,15 @@ int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params 
 {
     if (p->v_impact <= 0)
         p->v_impact = gr_dem_default_v_impact(sc, init);
-    double me = min_meff(init);
+    double me = min_meff(init), gn, gw;
+    if (gr_dem_damping(sc, init, &gn, &gw, err))
+        return err->code;
     double tc = gr_dem_contact_time(sc, init, p->v_impact);
     const char *what = sc->mat.normal == GR_NORMAL_HERTZ ? "Hertz contact time (eq. 2.5)" : "contact time (eq. 2.2)";
     double limit = p->dt_fraction * tc;
     /* a dashpot alone is integrated explicitly, stable for dt < 2 m / gamma:
      * keep half of that (tangential: effective mass m_eff/3 for disks) */
-    double tdn = sc->mat.gamma_n > 0 ? me / sc->mat.gamma_n : INFINITY;
+    double tdn = fmin(gn > 0 ? me / gn : INFINITY, gw > 0 ? min_mass(init) / gw : INFINITY);
     int tang_damped = sc->mat.tangential == GR_TANG_VISCOUS || sc->mat.tangential == GR_TANG_REGULARISED ||
                       sc->mat.tangential == GR_TANG_SPRING;
     double tdt = tang_damped && sc->mat.gamma_t > 0 ? me / 3.0 / sc->mat.gamma_t : INFINITY;
@@ -100,8 +123,8 @@ int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params 
                        where, p->dt, limit, p->dt_fraction, what, tc, me, sc->mat.kn, p->v_impact, limit);
     if (p->dt > lim_d)
         return gr_fail(err, GR_EINPUT,
-                       "%s: dt = %g is above the damping limit %.6g = m_eff / gamma, half the explicit stability bound (gamma_n %g, gamma_t %g on m_eff/3, m_eff %g); use dt <= %.6g",
-                       where, p->dt, lim_d, sc->mat.gamma_n, sc->mat.gamma_t, me, lim_d);
+                       "%s: dt = %g is above the damping limit %.6g = m_eff / gamma, half the explicit stability bound (gamma_n %g, at walls %g, gamma_t %g on m_eff/3, m_eff %g); use dt <= %.6g",
+                       where, p->dt, lim_d, gn, gw, sc->mat.gamma_t, me, lim_d);
     return GR_OK;
 }
 

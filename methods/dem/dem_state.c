@@ -86,12 +86,14 @@ int gr_dem_prepare(gr_dem *d, gr_err *err)
 
 /* The contact law and the domain from the scene; refuses the combinations
  * the backend cannot run (GR_EINPUT naming the key). */
-static int set_law(gr_dem *d, const gr_scene *sc, gr_err *err)
+static int set_law(gr_dem *d, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     const gr_material *m = &sc->mat;
+    if (gr_dem_damping(sc, init, &d->gn, &d->gw, err))
+        return err->code;
     d->normal = m->normal;
     d->tang = m->tangential;
-    d->kn = m->kn, d->gn = m->gamma_n, d->kt = m->kt, d->gt = m->gamma_t, d->mu = m->mu;
+    d->kn = m->kn, d->kt = m->kt, d->gt = m->gamma_t, d->mu = m->mu;
     d->clip = m->clip_attraction;
     d->rot = d->tang != GR_TANG_NONE;
     d->hist_on = d->tang == GR_TANG_SPRING;
@@ -248,6 +250,7 @@ static int first_forces(gr_dem *d, gr_err *err)
     d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
     gr_dem_energy(d, &ek, NULL);
     d->ekin_last = ek + d->eel_eval;
+    d->e_ref = NAN;
     return GR_OK;
 }
 
@@ -262,7 +265,7 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
     d->par = *par;
     gr_id_index *ix = NULL;
     size_t live = 0;
-    int rc = set_law(d, sc, err) || tag_order(d, init, &ix, err) ||
+    int rc = set_law(d, sc, init, err) || tag_order(d, init, &ix, err) ||
              record_grains(d, init, ix, &live, err) || load_grains(d, init, ix, live, err);
     free(ix);
     if (rc || set_scene(d, err) || first_forces(d, err)) {

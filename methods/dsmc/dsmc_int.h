@@ -21,8 +21,17 @@ typedef struct {
 } gr_dsmc_params;
 
 /* Which validity limits the scene breaks at create (bits). */
-enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4 };
+enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4, GR_DSMC_BAD_ENSKOG_CELL = 8 };
 
+/* A particle's rank (the order of its id) with this bit set has left the
+ * domain through an open side. */
+#define GR_DSMC_GONE 0x80000000u
+#define GR_DSMC_RANK 0x7fffffffu
+
+/* Particles are kept sorted by cell (the counting sort of each step moves
+ * them), so that a cell's particles are contiguous in memory: the arrays
+ * below are in that order, rank[k] names the grain. About 60 bytes per
+ * particle (docs/methods/dsmc.md, Speed). */
 typedef struct gr_dsmc {
     gr_scene sc;           /* shallow copy: pointers stay the caller's */
     gr_dsmc_params par;
@@ -32,16 +41,20 @@ typedef struct gr_dsmc {
     double Lx, Ly;         /* domain */
     int nx, ny;            /* cells */
     double cw, ch;         /* cell sides */
-    size_t n;              /* particles, index = rank of id */
-    gr_particles *p;
-    double *gmax;          /* per-cell running maximum relative speed */
-    size_t *start, *order; /* particles sorted by cell (counting sort) */
-    int *cell;
-    gr_rng *pair_rng, *imp_rng, *floor_rng;
+    int walls_any;         /* a side is a wall (else streaming is x += v h) */
+    size_t n;              /* particles */
+    double *x, *y, *vx, *vy, *tmp; /* tmp: the sort's gather buffer */
+    uint32_t *rank, *cell, *order; /* cell: also the gather buffer of rank */
+    int64_t *ids;          /* ids by rank (sorted) */
+    uint32_t *start;       /* first particle of each cell; nc + 1: the gone */
+    uint64_t key;          /* the collisions' counter-based stream (Philox) */
+    gr_rng *floor_rng;
+    gr_particles *view;    /* grains in id order for output, made when asked */
     uint64_t step, pairs, walls, cand, lost;
     unsigned bad;          /* GR_DSMC_BAD_* at create */
     double t;
     double wall_mom, wall_time, wall_len;
+    double virial;         /* sum of sigma J over collisions (collisional transfer) */
 } gr_dsmc;
 
 /* dsmc_params.c */
@@ -52,6 +65,8 @@ void gr_dsmc_params_from(const gr_param_values *pv, gr_dsmc_params *p);
  * walls and floor as for hard disks, periodic wrap, exit through open
  * sides. */
 void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h);
+/* All particles over one step of length h from time t. */
+void gr_dsmc_stream_all(gr_dsmc *d, double t, double h);
 
 /* dsmc_collide.c: the collisions of one step, cell by cell. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err);
@@ -61,11 +76,18 @@ int gr_dsmc_step(gr_dsmc *d, gr_err *err);
 int gr_dsmc_advance(gr_dsmc *d, double t_end, uint64_t max_steps, gr_err *err);
 
 /* dsmc_state.c */
-int gr_dsmc_create(const gr_scene *sc, const gr_particles *init, const gr_dsmc_params *par,
-                   gr_rng *const rng[3], gr_dsmc **out, gr_err *err);
+/* key: of the collisions' counter-based stream; floor_rng: the
+ * high-frequency floor's phases. */
+int gr_dsmc_create(const gr_scene *sc, const gr_particles *init, const gr_dsmc_params *par, uint64_t key,
+                   gr_rng *floor_rng, gr_dsmc **out, gr_err *err);
 void gr_dsmc_free(gr_dsmc *d);
 int gr_dsmc_observe(gr_dsmc *d, gr_obs *o, gr_err *err);
+/* The grains in id order (radius, mass and flags filled). */
+int gr_dsmc_snapshot(gr_dsmc *d, gr_particles *out, gr_err *err);
 void gr_dsmc_reset_window(gr_dsmc *d);
+/* Bytes the state holds per particle (its arrays over n, the cells' shared
+ * out), for grano bench dsmc. */
+double gr_dsmc_bytes_per_particle(const gr_dsmc *d);
 
 /* dsmc_ckpt.c */
 int gr_dsmc_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err);

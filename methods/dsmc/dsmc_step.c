@@ -7,8 +7,7 @@
 int gr_dsmc_step(gr_dsmc *d, gr_err *err)
 {
     double h = d->par.dt;
-    for (size_t i = 0; i < d->n; i++)
-        gr_dsmc_stream(d, i, d->t, h);
+    gr_dsmc_stream_all(d, d->t, h);
     if (gr_dsmc_collide(d, err))
         return err->code;
     d->step++;

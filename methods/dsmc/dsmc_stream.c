@@ -83,9 +83,8 @@ static double floor_velocity(gr_dsmc *d, double t, double vy)
 /* Earliest wall met within h: its side and time. */
 static int next_wall(const gr_dsmc *d, size_t i, double t0, double h, double *tw)
 {
-    const gr_particles *p = d->p;
     const gr_bc *s = d->sc.side;
-    double r = p->radius[i], x = p->x[i], y = p->y[i], vx = p->vx[i], vy = p->vy[i], g = d->g;
+    double r = 0.5 * d->sigma, x = d->x[i], y = d->y[i], vx = d->vx[i], vy = d->vy[i], g = d->g;
     double tt[4] = {INFINITY, INFINITY, INFINITY, INFINITY};
     if (s[GR_LEFT] == GR_BC_WALL) tt[GR_LEFT] = first_exit(x - r, vx, 0);
     if (s[GR_RIGHT] == GR_BC_WALL) tt[GR_RIGHT] = first_exit(d->Lx - r - x, -vx, 0);
@@ -104,25 +103,23 @@ static int next_wall(const gr_dsmc *d, size_t i, double t0, double h, double *tw
 
 static void fly(gr_dsmc *d, size_t i, double h)
 {
-    gr_particles *p = d->p;
-    p->x[i] += p->vx[i] * h;
-    p->y[i] += p->vy[i] * h - 0.5 * d->g * h * h;
-    p->vy[i] -= d->g * h;
+    d->x[i] += d->vx[i] * h;
+    d->y[i] += d->vy[i] * h - 0.5 * d->g * h * h;
+    d->vy[i] -= d->g * h;
 }
 
 /* The wall's impulse, with infinite mass; its normal part feeds the wall
  * pressure (times W: each particle stands for W grains). */
 static void bounce(gr_dsmc *d, size_t i, int w, double t)
 {
-    gr_particles *p = d->p;
     double nx = w == GR_LEFT ? 1 : w == GR_RIGHT ? -1 : 0, ny = w == GR_BOTTOM ? 1 : w == GR_TOP ? -1 : 0;
-    double Vn = w == GR_BOTTOM ? floor_velocity(d, t, p->vy[i]) : 0.0;
-    double gn = p->vx[i] * nx + p->vy[i] * ny - Vn;
+    double Vn = w == GR_BOTTOM ? floor_velocity(d, t, d->vy[i]) : 0.0;
+    double gn = d->vx[i] * nx + d->vy[i] * ny - Vn;
     if (gn >= 0)
         return;
-    double J = -(1.0 + d->alpha_w) * p->mass[i] * gn;
-    p->vx[i] += J * nx / p->mass[i];
-    p->vy[i] += J * ny / p->mass[i];
+    double J = -(1.0 + d->alpha_w) * d->mass * gn;
+    d->vx[i] += J * nx / d->mass;
+    d->vy[i] += J * ny / d->mass;
     d->wall_mom += J * d->W;
     d->walls++;
 }
@@ -130,16 +127,15 @@ static void bounce(gr_dsmc *d, size_t i, int w, double t)
 /* Periodic wrap and exit through an open side (the centre leaves). */
 static void boundaries(gr_dsmc *d, size_t i)
 {
-    gr_particles *p = d->p;
     const gr_bc *s = d->sc.side;
     if (s[GR_LEFT] == GR_BC_PERIODIC)
-        p->x[i] -= d->Lx * floor(p->x[i] / d->Lx);
+        d->x[i] -= d->Lx * floor(d->x[i] / d->Lx);
     if (s[GR_BOTTOM] == GR_BC_PERIODIC)
-        p->y[i] -= d->Ly * floor(p->y[i] / d->Ly);
-    double x = p->x[i], y = p->y[i];
+        d->y[i] -= d->Ly * floor(d->y[i] / d->Ly);
+    double x = d->x[i], y = d->y[i];
     if ((x < 0 && s[GR_LEFT] == GR_BC_OPEN) || (x > d->Lx && s[GR_RIGHT] == GR_BC_OPEN) ||
         (y < 0 && s[GR_BOTTOM] == GR_BC_OPEN) || (y > d->Ly && s[GR_TOP] == GR_BC_OPEN)) {
-        p->flags[i] |= GR_PF_GONE;
+        d->rank[i] |= GR_DSMC_GONE;
         d->lost++;
     }
 }
@@ -149,20 +145,18 @@ static void boundaries(gr_dsmc *d, size_t i)
  * step, kept inside the domain. */
 static void settle(gr_dsmc *d, size_t i, int w, double left)
 {
-    gr_particles *p = d->p;
-    double r = p->radius[i];
+    double r = 0.5 * d->sigma;
     if (w == GR_BOTTOM || w == GR_TOP)
-        p->vy[i] = 0.0, p->x[i] += p->vx[i] * left;
+        d->vy[i] = 0.0, d->x[i] += d->vx[i] * left;
     else
-        p->vx[i] = 0.0, p->y[i] += p->vy[i] * left;
-    p->x[i] = fmin(fmax(p->x[i], r), d->Lx - r);
-    p->y[i] = fmin(fmax(p->y[i], r), d->Ly - r);
+        d->vx[i] = 0.0, d->y[i] += d->vy[i] * left;
+    d->x[i] = fmin(fmax(d->x[i], r), d->Lx - r);
+    d->y[i] = fmin(fmax(d->y[i], r), d->Ly - r);
 }
 
 void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h)
 {
-    gr_particles *p = d->p;
-    if (p->flags[i] & GR_PF_GONE)
+    if (d->rank[i] & GR_DSMC_GONE)
         return;
     double left = h;
     for (int k = 0; left > 0; k++) {
@@ -179,4 +173,31 @@ void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h)
         bounce(d, i, w, t);
     }
     boundaries(d, i);
+}
+
+/* Without walls nor gravity a flight is a straight line: the loop the
+ * compiler vectorises, then the periodic wrap and the open sides. */
+void gr_dsmc_stream_all(gr_dsmc *d, double t, double h)
+{
+    if (d->walls_any || d->g != 0.0) {
+        for (size_t i = 0; i < d->n; i++)
+            gr_dsmc_stream(d, i, t, h);
+        return;
+    }
+    double *restrict x = d->x, *restrict y = d->y;
+    const double *restrict vx = d->vx, *restrict vy = d->vy;
+    for (size_t i = 0; i < d->n; i++)
+        x[i] += vx[i] * h, y[i] += vy[i] * h;
+    const gr_bc *s = d->sc.side;
+    int torus = s[GR_LEFT] == GR_BC_PERIODIC && s[GR_BOTTOM] == GR_BC_PERIODIC;
+    double Lx = d->Lx, Ly = d->Ly;
+    for (size_t i = 0; i < d->n; i++) {
+        /* the common case of a torus: at most one box length per step */
+        if (torus && x[i] >= -Lx && x[i] < 2 * Lx && y[i] >= -Ly && y[i] < 2 * Ly) {
+            x[i] += x[i] < 0 ? Lx : x[i] >= Lx ? -Lx : 0.0;
+            y[i] += y[i] < 0 ? Ly : y[i] >= Ly ? -Ly : 0.0;
+        } else if (!(d->rank[i] & GR_DSMC_GONE)) {
+            boundaries(d, i);
+        }
+    }
 }

@@ -14,7 +14,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
 {
     p->algorithm = GR_EDMD_TREE;
     p->cell = 0.0;
-    p->collapse = GR_EDMD_COLLAPSE_NONE;
+    p->collapse = GR_EDMD_COLLAPSE_TC;
     p->tc = 1e-5;
     p->v_threshold = 1e-4;
     p->fields = 0;
@@ -27,7 +27,7 @@ const gr_param gr_edmd_param_table[] = {
     {"algorithm", GR_PARAM_CHOICE, GR_EDMD_TREE, 0, 0, 0, algo_names, "",
      "tree: O(log N) per event; naive: the slides' v1.0, O(N^2)"},
     {"cell", GR_PARAM_REAL, 0.0, 0, INFINITY, 0, NULL, "d", "minimum cell side; 0: the largest diameter"},
-    {"collapse", GR_PARAM_CHOICE, GR_EDMD_COLLAPSE_NONE, 0, 0, 0, collapse_names, "",
+    {"collapse", GR_PARAM_CHOICE, GR_EDMD_COLLAPSE_TC, 0, 0, 0, collapse_names, "",
      "guard against inelastic collapse"},
     {"tc", GR_PARAM_REAL, 1e-5, 0, INFINITY, 0, NULL, "tau",
      "TC model: elastic if a partner collided less than tc ago"},

@@ -40,17 +40,6 @@ def addr(obj):
     return h5py.h5o.get_info(obj.id).addr
 
 
-def vlen_str_attr(obj, name):
-    """The attribute is a variable-length string; returns its text."""
-    if name not in obj.attrs:
-        return None
-    info = h5py.check_string_dtype(obj.attrs.get_id(name).dtype)
-    if info is None or info.length is not None:
-        return None
-    v = obj.attrs[name]
-    return v.decode() if isinstance(v, bytes) else v
-
-
 def fixed_str_attr(obj, name):
     info = h5py.check_string_dtype(obj.attrs.get_id(name).dtype)
     if info is None or info.length is None:
@@ -70,7 +59,7 @@ def check_file(path):
     check(fixed_str_attr(h["creator"], "name") == "grano", "h5md/creator name is grano")
     check(fixed_str_attr(h["creator"], "version") == "0.1.0-test", "h5md/creator version")
     u = h["modules/units"]
-    check(list(u.attrs["version"]) == [1, 0] and vlen_str_attr(u, "system") is not None,
+    check(list(u.attrs["version"]) == [1, 0] and fixed_str_attr(u, "system") is not None,
           "h5md/modules/units declares its version and unit system")
 
     t = f["particles/trajectory"]
@@ -118,7 +107,7 @@ def check_file(path):
              "flags/value": "1", "radius": "d", "mass": "m", "inertia": "m d+2",
              "species": "1", "id": "1", "position/time": "tau", "box/edges/value": "d"}
     for p, want in units.items():
-        check(vlen_str_attr(t[p], "unit") == want, f"trajectory/{p} unit '{want}' (VL string)")
+        check(fixed_str_attr(t[p], "unit") == want, f"trajectory/{p} unit '{want}' (fixed-length string, H5MD 1.1)")
 
     o = f["observables"]
     check(sorted(o.keys()) == sorted(OBS), "observables: " + ", ".join(OBS))
@@ -130,8 +119,8 @@ def check_file(path):
         check(addr(g["step"]) == addr(o["n_mobile/step"]) and
               addr(g["time"]) == addr(o["n_mobile/time"]),
               f"observables/{name} shares step/time")
-        check(vlen_str_attr(g["value"], "unit") is not None, f"observables/{name} has a unit")
-    check(vlen_str_attr(o["temperature/value"], "unit") == "m d+2 tau-2", "temperature unit")
+        check(fixed_str_attr(g["value"], "unit") is not None, f"observables/{name} has a unit")
+    check(fixed_str_attr(o["temperature/value"], "unit") == "m d+2 tau-2", "temperature unit")
     check(np.all(np.isnan(o["wall_pressure/value"][()])), "NaN kept for an absent quantity")
 
     par = f["parameters"]
@@ -152,7 +141,7 @@ def check_file(path):
           "field grid attributes")
     check(fl["value"].shape == (2, 2, 4) and fl["step"].shape == (2,),
           "field value is (samples, ny, nx)")
-    check(vlen_str_attr(fl["value"], "unit") == "1", "field unit")
+    check(fixed_str_attr(fl["value"], "unit") == "1", "field unit")
     res = f["results/flow"]
     check(res.shape == (4, 2) and [c.decode() if isinstance(c, bytes) else c
                                    for c in res.attrs["columns"]] == ["D", "Q"],

@@ -68,10 +68,8 @@ static collision collide(gr_scene *sc, double v, double phase)
  * ends, which gives each single collision an O(dt) error depending on where
  * in a step the contact begins; averaged over equally spaced phases that
  * term cancels and the second-order error of the integrator remains. */
-static collision averaged(const char *normal, double kn, double gn, int clip, double dt,
-                          const char *integ, double v, int nphase)
+static collision averaged_on(gr_scene *sc, double v, int nphase)
 {
-    gr_scene *sc = pair_scene(normal, kn, gn, clip, dt, integ);
     collision a = {0, 0, 0};
     for (int k = 0; k < nphase; k++) {
         collision c = collide(sc, v, (k + 0.5) / nphase);
@@ -81,6 +79,98 @@ static collision averaged(const char *normal, double kn, double gn, int clip, do
     }
     gr_scene_free(sc);
     return a;
+}
+
+static collision averaged(const char *normal, double kn, double gn, int clip, double dt,
+                          const char *integ, double v, int nphase)
+{
+    return averaged_on(pair_scene(normal, kn, gn, clip, dt, integ), v, nphase);
+}
+
+/* [material] restitution alone: the soft DEM derives gamma_n (dem_damping.c)
+ * so that the binary collision rebounds with e, clipped (Schwager and
+ * Poeschel 2007) or not (the damped oscillator). */
+static gr_scene *restitution_scene(double e, int clip, const char *extra)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[domain]\nwidth = 40\nheight = 40\n"
+             "[material]\nkn = 1e4\nrestitution = %.17g\nclip_attraction = %s\n%s"
+             "[species]\ncount = 2\n[dem]\ndt = 5e-5\nneighbour = brute\n",
+             e, clip ? "yes" : "no", extra);
+    return dt_scene(text);
+}
+
+static void linear_restitution_from_scene(void **state)
+{
+    (void)state;
+    const double es[5] = {0.99, 0.9, 0.6, 0.3, 0.05};
+    for (int clip = 0; clip < 2; clip++) {
+        for (int k = 0; k < 5; k++) {
+            collision c = averaged_on(restitution_scene(es[k], clip, ""), 1.0, 8);
+            printf("# restitution = %g, clip_attraction = %s: measured e = %.6f (error %.1e)\n", es[k],
+                   clip ? "yes" : "no", c.e, c.e - es[k]);
+            assert_true(fabs(c.e - es[k]) < 1e-3);
+        }
+    }
+    /* without clipping e = 0 is critical damping: the pair sticks */
+    collision c = averaged_on(restitution_scene(0.0, 0, ""), 1.0, 2);
+    printf("# restitution = 0, clip_attraction = no: measured e = %.2e\n", c.e);
+    assert_true(fabs(c.e) < 1e-3);
+}
+
+/* One grain of unit mass against the left wall at speed v: the wall's own
+ * restitution, from its own damping (m_eff = m, not m / 2). */
+static void wall_restitution_from_scene(void **state)
+{
+    (void)state;
+    const double cases[3][2] = {{0.9, NAN}, {0.9, 0.6}, {0.5, 1.0}};
+    for (int k = 0; k < 3; k++) {
+        char extra[64] = "";
+        if (!isnan(cases[k][1]))
+            snprintf(extra, sizeof extra, "wall_restitution = %g\n", cases[k][1]);
+        gr_scene *sc = restitution_scene(cases[k][0], 1, extra);
+        gr_err e = {0};
+        gr_particles *p = gr_particles_create(2, &e);
+        gr_particles_push(p, 0.5 + 0.0123, 20, 0.5, 1.0, 0, 0, &e);
+        gr_particles_push(p, 30, 20, 0.5, 1.0, 0, 0, &e);
+        p->vx[0] = -1.0;
+        gr_dem *d = dt_create(sc, p);
+        dt_advance(d, 0.1);
+        double want = isnan(cases[k][1]) ? cases[k][0] : cases[k][1];
+        printf("# restitution %g, wall_restitution %g: wall rebound %.6f\n", cases[k][0], cases[k][1],
+               DVX(d, 0));
+        assert_true(fabs(DVX(d, 0) - want) < 2e-3);
+        gr_dem_free(d);
+        gr_particles_free(p);
+        gr_scene_free(sc);
+    }
+}
+
+/* What the soft DEM cannot honour is refused naming the key. */
+static void restitution_refusals(void **state)
+{
+    (void)state;
+    const char *bad[3][2] = {
+        {"normal = hertz\n", "hertz"},
+        {"gamma_n = 100\n", "disagrees"},
+        {"", "out of reach"},
+    };
+    for (int k = 0; k < 3; k++) {
+        gr_scene *sc = restitution_scene(k == 2 ? 0.0 : 0.9, 1, bad[k][0]);
+        gr_err e = {0};
+        gr_particles *p = gr_particles_create(2, &e);
+        gr_particles_push(p, 10, 20, 0.5, 1.0, 0, 0, &e);
+        gr_particles_push(p, 30, 20, 0.5, 1.0, 0, 0, &e);
+        gr_dem_params par;
+        assert_int_equal(gr_dem_params_read(sc, &par, &e), GR_OK);
+        assert_int_equal(gr_dem_check_dt(sc, p, &par, &e), GR_EINPUT);
+        printf("# refused: %s\n", e.msg);
+        assert_non_null(strstr(e.msg, bad[k][1]));
+        assert_non_null(strstr(e.msg, "dem-test.ini:"));
+        gr_particles_free(p);
+        gr_scene_free(sc);
+    }
 }
 
 static void linear_restitution_and_contact_time(void **state)
@@ -222,6 +312,9 @@ int main(void)
         cmocka_unit_test(hertz_contact_time_scaling),
         cmocka_unit_test(hertz_matches_cvode_reference),
         cmocka_unit_test(hertz_damped_restitution_depends_on_speed),
+        cmocka_unit_test(linear_restitution_from_scene),
+        cmocka_unit_test(wall_restitution_from_scene),
+        cmocka_unit_test(restitution_refusals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,166 @@
+/* The homogeneous cooling state: the stationary a2(alpha) of DSMC against
+ * van Noije and Ernst's first-Sonine formula and against edmd (a second,
+ * independent solver of the same dilute gas), and the cooling slope per
+ * collision against (1 - alpha^2)/2 (1 + 3 a2/16)/(1 - a2/16) at the
+ * measured a2. With `slow`, longer averages. Tolerances in each test and
+ * docs/methods/dsmc.md. */
+#include "dsmc_test.h"
+
+static int slow;
+
+#define GAS                                                                                                            \
+    "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"                 \
+    "bottom = periodic\ntop = periodic\n[material]\nrestitution = %g\n[species]\ncount = %d\n"                         \
+    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n[dsmc]\ndt = %.17g\ncell = %g\n[edmd]\ncell = 10\n"
+
+static gr_sim *gas(const char *method, int seed, int n, double eta, double alpha, double dtf, double cell,
+                   gr_scene **sc)
+{
+    char text[1024];
+    double L = sqrt(n * M_PI / 4 / eta), nd = n / (L * L);
+    snprintf(text, sizeof text, GAS, seed, L, L, alpha, n, dtf / (2 * sqrt(M_PI) * nd), cell);
+    return ds_make_method(method, text, sc);
+}
+
+/* Mean and standard error of x[0..k) from blocks of b. */
+static void block_stats(const double *x, int k, int b, double *mean, double *err)
+{
+    int nb = k / b;
+    double s = 0, s2 = 0;
+    for (int j = 0; j < nb; j++) {
+        double m = 0;
+        for (int i = 0; i < b; i++)
+            m += x[j * b + i] / b;
+        s += m, s2 += m * m;
+    }
+    *mean = s / nb;
+    *err = sqrt(fmax(0, s2 / nb - *mean * *mean) / (nb - 1));
+}
+
+/* The scaled HCS in one cell: every mean free time (of the rescaled gas)
+ * the peculiar velocities go back to T = 1 (a2 is scale free); a2 sampled
+ * then; the cooling per collision from the temperature each interval ends
+ * at and the collisions in it. 10 intervals skipped. */
+static void scaled_hcs(double alpha, int n, double dtf, int K, double *a2, double *a2e, double *slope)
+{
+    gr_scene *sc;
+    gr_sim *s = gas("dsmc", 11, n, 0.3, alpha, dtf, 1e6, &sc);
+    gr_dsmc *d = gr_sim_state(s);
+    double nd = n / (d->Lx * d->Ly), tau = 1.0 / (2 * sqrt(M_PI) * nd), lnT = 0, C = 0;
+    double *x = malloc(sizeof *x * (size_t)K);
+    assert_non_null(x);
+    for (int k = -10; k < K; k++) {
+        uint64_t p0 = ds_counter(s, "pair_collisions");
+        ds_run_to(s, d->t + tau);
+        double T = ds_temp(s), f = 1.0 / sqrt(T), mx = 0, my = 0;
+        for (size_t i = 0; i < d->n; i++)
+            mx += d->vx[i] / (double)d->n, my += d->vy[i] / (double)d->n;
+        for (size_t i = 0; i < d->n; i++)
+            d->vx[i] = (d->vx[i] - mx) * f, d->vy[i] = (d->vy[i] - my) * f;
+        if (k >= 0) {
+            x[k] = ds_a2(d);
+            lnT += log(T), C += 2.0 * (double)(ds_counter(s, "pair_collisions") - p0) / (double)n;
+        }
+    }
+    block_stats(x, K, 20, a2, a2e);
+    *slope = -lnT / C;
+    free(x);
+    gr_sim_free(s);
+    gr_scene_free(sc);
+}
+
+/* a2 to its statistics (blocks of 20 mean free times) and against van
+ * Noije and Ernst within 0.012 + 3 standard errors: the measured
+ * departure, 0.003 to 0.010 toward lower a2 for alpha 0.5 to 0.95, is 4
+ * to 30 standard errors, so not statistics; nor the rescaling (free
+ * cooling gives the same, test_free_a2_edmd); the cooling per collision
+ * agrees with the first-Sonine relation at the measured a2 to 0.1 %, so
+ * the collision rule and rate are not in question. What is left is the
+ * truncation of the Sonine expansion at a2 or a bias of the DSMC
+ * velocity statistics that none of these sees (docs/methods/dsmc.md).
+ * The cooling per collision within 1 % of
+ * (1 - alpha^2)/2 (1 + 3 a2/16)/(1 - a2/16). Slow: alpha 0.5 to 0.99
+ * over 20000 mean free times. */
+static void test_hcs_a2(void **st)
+{
+    (void)st;
+    const double quick[] = {0.6, 0.8, 0.95}, all[] = {0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.99};
+    const double *al = slow ? all : quick;
+    int K = slow ? 20000 : 2000, na = slow ? 7 : 3;
+    for (int k = 0; k < na; k++) {
+        double a2, err, sl, want = exp_sonine_a2(al[k]);
+        scaled_hcs(al[k], 4000, 0.07, K, &a2, &err, &sl);
+        double sw = (1 - al[k] * al[k]) / 2 * (1 + 3 * a2 / 16) / (1 - a2 / 16);
+        print_message("# HCS alpha %.2f: a2 %.5f +- %.5f (blocks of 20), first Sonine %.5f; cooling per collision "
+                      "%.5f, (1-a^2)/2 (1+3a2/16)/(1-a2/16) %.5f, ratio %.4f\n",
+                      al[k], a2, err, want, sl, sw, sl / sw);
+        assert_true(fabs(sl / sw - 1) < 0.01);
+        assert_true(fabs(a2 - want) < 0.012 + 3 * err);
+    }
+}
+
+/* Free cooling, not rescaled, at packing 0.005 (Boltzmann), 2000 disks:
+ * a2 from snapshots at every collision per particle from 11 to 30, four
+ * seeds (slow: 16), dsmc against edmd within 3 combined standard errors
+ * (blocks of 20 snapshots). */
+static void free_a2(const char *method, double alpha, int n, int seeds, double *a2, double *err)
+{
+    enum { KMAX = 400 };
+    double x[KMAX];
+    int k = 0;
+    for (int r = 0; r < seeds; r++) {
+        gr_scene *sc;
+        gr_sim *s = gas(method, 41 + r, n, 0.005, alpha, 0.1, 0, &sc);
+        gr_err e = {0};
+        gr_particles *p = gr_particles_create(0, &e);
+        for (int c = 1; c <= 30; c++) {
+            while (2.0 * (double)ds_counter(s, "pair_collisions") / n < c) {
+                double T = ds_temp(s), nd = n / (gr_sim_scene(s)->width * gr_sim_scene(s)->height);
+                double tau = 1.0 / (2 * sqrt(M_PI) * nd * sqrt(T));
+                ds_run_to(s, gr_sim_time(s) + 0.1 * tau);
+            }
+            if (c <= 10)
+                continue;
+            assert_int_equal(gr_sim_snapshot(s, p, &e), GR_OK);
+            double mx = 0, my = 0, s2 = 0, s4 = 0;
+            for (size_t i = 0; i < p->n; i++)
+                mx += p->vx[i] / p->n, my += p->vy[i] / p->n;
+            for (size_t i = 0; i < p->n; i++) {
+                double ux = p->vx[i] - mx, uy = p->vy[i] - my, u2 = ux * ux + uy * uy;
+                s2 += u2 / p->n, s4 += u2 * u2 / p->n;
+            }
+            if (k < KMAX)
+                x[k++] = s4 / (2 * s2 * s2) - 1;
+        }
+        gr_particles_free(p);
+        gr_sim_free(s);
+        gr_scene_free(sc);
+    }
+    block_stats(x, k, 20, a2, err);
+}
+
+static void test_free_a2_edmd(void **st)
+{
+    (void)st;
+    const double al[] = {0.6, 0.8};
+    int seeds = slow ? 16 : 4, n = 2000;
+    for (int k = 0; k < 2; k++) {
+        double a, ae, b, be;
+        free_a2("dsmc", al[k], n, seeds, &a, &ae);
+        free_a2("edmd", al[k], n, seeds, &b, &be);
+        print_message("# free cooling alpha %.2f, eta 0.005: a2 dsmc %.5f +- %.5f, edmd %.5f +- %.5f, first Sonine "
+                      "%.5f\n",
+                      al[k], a, ae, b, be, exp_sonine_a2(al[k]));
+        assert_true(fabs(a - b) < 3 * sqrt(ae * ae + be * be));
+    }
+}
+
+int main(int argc, char **argv)
+{
+    slow = argc > 1 && !strcmp(argv[1], "slow");
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hcs_a2),
+        cmocka_unit_test(test_free_a2_edmd),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
