@@ -128,7 +128,7 @@ int cmd_compare(int argc, char **argv)
     pl.progress = pl.progress && isatty(STDERR_FILENO);
     gr_err err = {0};
     if (cmp_plan_build(&pl, sel.cases, sel.methods, &err)) {
-        fprintf(stderr, "grano compare: %s\n", err.msg);
+        fprintf(stderr, "%sgrano compare: %s\n", pl.notes, err.msg);
         free(pl.units);
         return err.code == GR_EINPUT ? 2 : 1;
     }
