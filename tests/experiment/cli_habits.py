@@ -10,7 +10,7 @@ import tempfile
 
 GRANO = sys.argv[1]
 COMMANDS = ["run", "info", "methods", "bench", "bench dem", "bench cd", "bench edmd", "silo-start",
-            "silo-flow", "course"]
+            "silo-flow", "course", "compare"]
 SCENE = "[domain]\nwidth = 10\nheight = 10\n[species]\ncount = 20\n[init]\nkind = random\n[run]\nuntil = 0.01\n"
 
 
