@@ -89,7 +89,7 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
 {
     char png[2048];
     snprintf(png, sizeof png, "%s/%s.png", dir, c->name);
-    FILE *gp = gr_plot_open_saved(png, 900, 620, err);
+    FILE *gp = gr_plot_open(png, 900, 620, err);
     if (!gp)
         return err->code;
     int nrow = 0, has[CMP_MAXROWS] = {0};
@@ -124,7 +124,7 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
             first = 0;
         }
     fprintf(gp, "\n");
-    return gr_plot_close_saved(gp, png, err);
+    return gr_plot_close(gp, png, err);
 }
 
 /* The summary: per case, the error and wall time of each row's finest
@@ -134,7 +134,7 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
 {
     char png[2048];
     snprintf(png, sizeof png, "%s/summary.png", dir);
-    FILE *gp = gr_plot_open_saved(png, 1100, 520, err);
+    FILE *gp = gr_plot_open(png, 1100, 520, err);
     if (!gp)
         return err->code;
     static const char *const methods[] = {"dem", "edmd", "cd", "dsmc", "lgca", NULL};
@@ -174,7 +174,7 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
         fprintf(gp, "\n");
     }
     fprintf(gp, "unset multiplot\n");
-    return gr_plot_close_saved(gp, png, err);
+    return gr_plot_close(gp, png, err);
 }
 
 /* The case's points (NULL when it has none), its table lines and checks. */

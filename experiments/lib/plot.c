@@ -128,10 +128,6 @@ int gr_plot_close(FILE *gp, const char *png, gr_err *err)
     return rc;
 }
 
-/* Every figure keeps its script now: the _saved names stay for their callers. */
-FILE *gr_plot_open_saved(const char *png, int w, int h, gr_err *err) { return gr_plot_open(png, w, h, err); }
-int gr_plot_close_saved(FILE *gp, const char *png, gr_err *err) { return gr_plot_close(gp, png, err); }
-
 int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
                      double t, const char *title, gr_err *err)
 {

@@ -18,10 +18,6 @@ int gr_plot_close(FILE *gp, const char *png, gr_err *err);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf; text
  * from users (scene names, paths) goes through it. */
 void gr_plot_quote(const char *s, char *buf, size_t n);
-/* The same as gr_plot_open / gr_plot_close (which keep the script too),
- * under the names grano compare calls. */
-FILE *gr_plot_open_saved(const char *png, int w, int h, gr_err *err);
-int gr_plot_close_saved(FILE *gp, const char *png, gr_err *err);
 
 /* Grains as disks coloured by speed (fixed grains grey), the box outlined. */
 int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
