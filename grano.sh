@@ -10,6 +10,9 @@ SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy
           libsiconos-numerics-dev librandom123-dev python3-ase)
+# optional peers, installed by `deps --optional` only: lammps (lmp) for
+# `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`
+OPTIONAL=(lammps)
 
 say() { printf 'grano.sh: %s\n' "$*" >&2; }
 
@@ -20,8 +23,9 @@ as_root() {
 }
 
 cmd_deps() {
-    local missing=()
-    for p in "${PACKAGES[@]}"; do
+    local missing=() want=("${PACKAGES[@]}")
+    [ "${1:-}" = --optional ] && want+=("${OPTIONAL[@]}")
+    for p in "${want[@]}"; do
         dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
     done
     if [ ${#missing[@]} -eq 0 ]; then
@@ -88,7 +92,8 @@ cmd_bench() {
 usage() {
     cat <<USAGE
 usage: ./grano.sh COMMAND
-  deps            install the Debian packages grano needs (only the missing ones)
+  deps [--optional]  install the Debian packages grano needs (only the missing ones);
+                  --optional adds the peers (lammps, for --peer lammps)
   build           deps, then configure and build into $BUILD/
   demo            build, then run the silo discharge demo (results/demo.h5, results/demo.png)
   test [--slow]   build, then the meson suites (unit, method, experiment; slow with --slow),
@@ -101,7 +106,7 @@ USAGE
 }
 
 case "${1:-}" in
-    deps) cmd_deps ;;
+    deps) shift; cmd_deps "$@" ;;
     build) cmd_build ;;
     demo) cmd_demo ;;
     test) shift; cmd_test "$@" ;;

@@ -29,6 +29,8 @@ typedef struct gr_h5md_opts {
     const char *version;  /* grano version for h5md/creator; NULL: built-in */
     const char *author;   /* h5md/author; NULL: $GRANO_AUTHOR, $USER, "unknown" */
     int no_xdmf;          /* 1: no <path>.xdmf sidecar */
+    int any_text;         /* gr_h5md_reopen: the scene text may differ (a restart
+                           * whose [run] or [measure] changed); the file keeps its own */
 } gr_h5md_opts;
 
 /* Create path. Refuses an existing path unless o->force (GR_EINPUT naming
@@ -74,7 +76,7 @@ typedef struct {
     const char *name;
     const char *unit;     /* H5MD unit string, e.g. "1", "d tau-1" */
     int nx, ny;
-    int ncomp;            /* 1: scalar field, 2: vector field */
+    int ncomp;            /* 1: scalar field, 2: vector field, 4: 2x2 tensor (xx xy yx yy) */
     double x0, y0;        /* origin: lower-left corner of the grid */
     double dx, dy;        /* cell size */
 } gr_field_desc;
@@ -177,5 +179,8 @@ int gr_h5md_read_field(gr_h5md_reader *r, const char *name, size_t sample,
  * caller frees; v may be NULL to get the shape only). */
 int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows,
                         size_t *cols, double **v, gr_err *err);
+/* Its description and column names (", " between), "" when absent. */
+int gr_h5md_result_text(gr_h5md_reader *r, const char *name, char *desc, size_t n, char *cols,
+                        size_t m, gr_err *err);
 
 #endif

@@ -184,7 +184,7 @@ static int check_same_run(hid_t f, const char *path, const gr_scene *sc, const g
     int rc = GR_OK;
     if (!creator || strcmp(creator, "grano"))
         rc = gr_fail(err, GR_EINPUT, "%s is not a grano result file", path);
-    else if (!scene || strcmp(scene, sc->text ? sc->text : ""))
+    else if (!scene || (!o->any_text && strcmp(scene, sc->text ? sc->text : "")))
         rc = gr_fail(err, GR_EINPUT, "%s holds a run of another scene (its parameters/scene differs); "
                      "continue into a new file", path);
     else if (!method || strcmp(method, o->method ? o->method : ""))

@@ -65,7 +65,7 @@ static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double 
 {
     if (!gr_h5_valid_name(f->name) || strchr(f->name, '/'))
         return gr_fail(err, GR_ERUN, "invalid field name '%s'", f->name ? f->name : "");
-    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 2 || !(f->dx > 0) || !(f->dy > 0) ||
+    if (f->nx < 1 || f->ny < 1 || f->ncomp < 1 || f->ncomp > 4 || !(f->dx > 0) || !(f->dy > 0) ||
         !isfinite(f->dx) || !isfinite(f->dy) || !isfinite(f->x0) || !isfinite(f->y0))
         return gr_fail(err, GR_ERUN, "field '%s': invalid grid %dx%d (ncomp %d, cell %g x %g)",
                        f->name, f->nx, f->ny, f->ncomp, f->dx, f->dy);
@@ -236,5 +236,56 @@ int gr_h5md_read_result(gr_h5md_reader *r, const char *name, size_t *rows, size_
 {
     int rc;
     GR_H5_GUARD(err, rc, rc = result_read_impl(r, name, rows, cols, v, err));
+    return rc;
+}
+
+/* The "columns" attribute (variable-length strings), joined by ", ". */
+static void read_columns(hid_t d, char *cols, size_t m)
+{
+    hid_t a = H5Aopen(d, "columns", H5P_DEFAULT);
+    hid_t s = a >= 0 ? H5Aget_space(a) : -1;
+    hssize_t n = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    char **v = n > 0 ? calloc((size_t)n, sizeof *v) : NULL;
+    if (v && H5Aread(a, t, v) >= 0) {
+        size_t k = 0;
+        for (hssize_t i = 0; i < n && k + 1 < m; i++)
+            k += (size_t)snprintf(cols + k, m - k, "%s%s", i ? ", " : "", v[i] ? v[i] : "?");
+        H5Dvlen_reclaim(t, s, H5P_DEFAULT, v);
+    }
+    free(v);
+    H5Tclose(t);
+    gr_h5_close(s);
+    gr_h5_close(a);
+}
+
+static int result_text_impl(gr_h5md_reader *r, const char *name, char *desc, size_t n, char *cols, size_t m,
+                            gr_err *err)
+{
+    hid_t file = gr_h5md_reader_file(r);
+    char p[256];
+    snprintf(p, sizeof p, "results/%s", name);
+    desc[0] = cols[0] = '\0';
+    if (!gr_h5_valid_name(name) || !gr_h5_exists(file, p) || gr_h5_is_group(file, p))
+        return gr_fail(err, GR_EINPUT, "%s has no result array '%s'", gr_h5md_info_of(r)->path, name);
+    hid_t d = H5Dopen2(file, p, H5P_DEFAULT);
+    if (d < 0)
+        return gr_h5_fail(err, GR_ERUN, "cannot open %s", p);
+    char *s = H5Aexists(d, "description") > 0 ? gr_h5_read_attr_str(d, "description") : NULL;
+    if (s)
+        snprintf(desc, n, "%s", s);
+    free(s);
+    if (H5Aexists(d, "columns") > 0)
+        read_columns(d, cols, m);
+    gr_h5_close(d);
+    return GR_OK;
+}
+
+int gr_h5md_result_text(gr_h5md_reader *r, const char *name, char *desc, size_t n, char *cols, size_t m,
+                        gr_err *err)
+{
+    int rc;
+    GR_H5_GUARD(err, rc, rc = result_text_impl(r, name, desc, n, cols, m, err));
     return rc;
 }

@@ -204,7 +204,13 @@ static char *read_str(hid_t obj, int is_attr)
     if (ft < 0)
         return NULL;
     char *out = NULL;
-    if (H5Tget_class(ft) != H5T_STRING)
+    /* One string: a damaged file whose dataspace holds more would have
+     * the library write past the single pointer or buffer read into. */
+    hid_t sp = is_attr ? H5Aget_space(obj) : H5Dget_space(obj);
+    hssize_t np = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+    if (sp >= 0)
+        H5Sclose(sp);
+    if (H5Tget_class(ft) != H5T_STRING || np != 1)
         goto done;
     hid_t mt = H5Tcopy(H5T_C_S1);
     if (H5Tis_variable_str(ft) > 0) {

@@ -258,6 +258,7 @@ int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
     switch (sc->init.kind) {
     case GR_INIT_LATTICE: rc = place_lattice(sc, out, rng, err); break;
     case GR_INIT_RANDOM: rc = place_random(sc, out, rng, err); break;
+    case GR_INIT_OCCUPATION: rc = GR_OK; break; /* the lattice backend fills it */
     default: rc = read_grains_file(sc, out, err); break;
     }
     if (!rc)

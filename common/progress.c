@@ -15,6 +15,7 @@ struct gr_progress {
     double thermo_every, thermo_next, thermo_wall; /* thermo lines */
     uint64_t thermo_steps;
     int thermo_lines;
+    const char *label; /* name of the progress variable */
 };
 
 double gr_wall_seconds(void)
@@ -36,7 +37,14 @@ gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double 
     p->delay = delay;
     p->wall0 = gr_wall_seconds();
     p->thermo_next = t_begin;
+    p->label = "t";
     return p;
+}
+
+void gr_progress_label(gr_progress *p, const char *name)
+{
+    if (p)
+        p->label = name;
 }
 
 void gr_progress_free(gr_progress *p)
@@ -72,7 +80,7 @@ void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, doub
     char e[32], r[32];
     fmt_duration(e, sizeof e, el);
     fmt_duration(r, sizeof r, rem);
-    fprintf(p->out, "\r\033[K%5.1f%%  t = %-10.4g elapsed %s  remaining %s", 100 * frac, t_sim, e, r);
+    fprintf(p->out, "\r\033[K%5.1f%%  %s = %-10.4g elapsed %s  remaining %s", 100 * frac, p->label, t_sim, e, r);
     if (obs_name)
         fprintf(p->out, "  %s = %.4g", obs_name, obs_value);
     fflush(p->out);

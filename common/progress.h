@@ -15,6 +15,9 @@ typedef struct gr_progress gr_progress;
 /* Shows nothing until `delay` seconds have passed (short runs stay quiet). */
 gr_progress *gr_progress_create(FILE *out, double t_begin, double t_end, double delay);
 void gr_progress_free(gr_progress *p);
+/* The name of the progress variable on the line ("t" by default, for a
+ * simulated time; "units" where it counts units of work). */
+void gr_progress_label(gr_progress *p, const char *name);
 void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, double obs_value);
 /* Off a terminal, a thermo line at the first sample, then at the first
  * sample at or after each multiple of every (> 0) and at t_end. */

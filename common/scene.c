@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "scene.h"
 #include "scene_impl.h"
@@ -23,17 +24,18 @@ static const char *const keys_silo[] = {
     "hopper", "hopper_outlet", "hopper_bottom", "hopper_top", "reinsert", "reinsert_bottom",
     "reinsert_top", "exit_below", NULL};
 static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", NULL};
-static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file", NULL};
+static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file",
+                                        "occupation", "rest_occupation", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       "thermo_every", NULL};
+                                       "thermo_every", "stress", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
 static const char *const tang_names[] = {"none", "coulomb", "viscous", "regularised", "spring", NULL};
 static const char *const floor_names[] = {"fixed", "sine", "sawtooth", "sine-hf", "sawtooth-hf", NULL};
 static const char *const walls_names[] = {"segments", "grains", NULL};
-static const char *const init_names[] = {"lattice", "random", "file", NULL};
+static const char *const init_names[] = {"lattice", "random", "file", "occupation", NULL};
 static const char *const vel_names[] = {"zero", "gaussian", "speed", NULL};
 static const char *const yesno_names[] = {"no", "yes", NULL};
 
@@ -160,7 +162,8 @@ static int read_domain(gr_scene *sc, gr_err *err)
         return entry_fail(sc, "scene", "seed", err, "must be >= 0");
     sc->seed = (uint64_t)seed;
     if (!gr_scene_find(sc, "domain", "width") || !gr_scene_find(sc, "domain", "height"))
-        return gr_fail(err, GR_EINPUT, "%s: [domain] needs 'width' and 'height'", sc->path);
+        return entry_fail(sc, "domain", gr_scene_find(sc, "domain", "width") ? "height" : "width", err,
+                          "[domain] needs 'width' and 'height'");
     if (POSITIVE("domain", "width", 0, &sc->width) || POSITIVE("domain", "height", 0, &sc->height))
         return err->code;
     for (int s = 0; s < 4; s++) {
@@ -330,7 +333,9 @@ static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
         return err->code;
     if (!gr_scene_find(sc, "silo", "height") || !gr_scene_find(sc, "silo", "orifice") ||
         !gr_scene_find(sc, "silo", "base"))
-        return gr_fail(err, GR_EINPUT, "%s: [silo] needs 'height', 'base' and 'orifice'", sc->path);
+        return entry_fail(sc, "silo", !gr_scene_find(sc, "silo", "height") ? "height"
+                                      : !gr_scene_find(sc, "silo", "base") ? "base" : "orifice",
+                          err, "[silo] needs 'height', 'base' and 'orifice'");
     if (s->orifice > s->width)
         return entry_fail(sc, "silo", "orifice", err, "the orifice is wider than the silo base");
     if (s->orifice_center - 0.5 * s->orifice < s->x0 || s->orifice_center + 0.5 * s->orifice > s->x0 + s->width)
@@ -498,9 +503,10 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
     }
     if (in->kind == GR_INIT_LATTICE) {
         double a = lattice_pitch(sc, d);
-        long nx = (long)floor((in->x1 - in->x0) / a), ny = (long)floor((in->y1 - in->y0) / a);
-        if (nx * ny < n) {
-            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %ld x %ld = %ld lattice sites of pitch %.4g",
+        /* In double: the site count of a huge region overflows a long. */
+        double nx = floor((in->x1 - in->x0) / a), ny = floor((in->y1 - in->y0) / a);
+        if (nx * ny < (double)n) {
+            snprintf(msg, sizeof msg, "%ld grains do not fit: the initial region holds %.0f x %.0f = %.0f lattice sites of pitch %.4g",
                      n, nx, ny, nx * ny, a);
             return crowded_fail(sc, err, msg);
         }
@@ -508,6 +514,21 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
         snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
         return entry_fail(sc, "init", "kind", err, msg);
     }
+    return GR_OK;
+}
+
+/* kind = occupation: mean occupations of the moving and rest channels,
+ * each in [0, 1]; grains are no longer counted (the lattice holds them). */
+static int read_init_occupation(gr_scene *sc, gr_err *err)
+{
+    gr_init *in = &sc->init;
+    if (!gr_scene_find(sc, "init", "occupation"))
+        return entry_fail(sc, "init", "kind", err, "kind = occupation needs an 'occupation' key (mean occupation of a moving channel, in [0, 1])");
+    if (get_num(sc, "init", "occupation", 0.0, 0.0, 0, 1.0, &in->occupation, err) ||
+        get_num(sc, "init", "rest_occupation", in->occupation, 0.0, 0, 1.0, &in->rest_occupation, err))
+        return err->code;
+    if (gr_scene_count(sc) > 0)
+        return entry_fail(sc, "init", "kind", err, "kind = occupation places no grains; give no species count (or count = 0)");
     return GR_OK;
 }
 
@@ -538,6 +559,8 @@ static int read_init(gr_scene *sc, gr_err *err)
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
     if (in->kind == GR_INIT_FILE)
         return read_init_file(sc, fe, err);
+    if (in->kind == GR_INIT_OCCUPATION)
+        return read_init_occupation(sc, err);
     return check_init_fits(sc, d, err);
 }
 
@@ -568,7 +591,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
         NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
-        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err))
+        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
+        get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
         return err->code;
     return GR_OK;
 }
@@ -599,6 +623,11 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
 
 char *gr_scene_read_text(const char *path, gr_err *err)
 {
+    struct stat st;
+    if (stat(path, &st) == 0 && (S_ISDIR(st.st_mode) || S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode))) {
+        gr_fail(err, GR_EINPUT, "%s: cannot read scene file: a directory or a device", path);
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     if (!f) {
         gr_fail(err, GR_EINPUT, "%s: cannot read scene file: %s", path, strerror(errno));
@@ -610,6 +639,12 @@ char *gr_scene_read_text(const char *path, gr_err *err)
         n += fread(buf + n, 1, cap - n - 1, f);
         if (n < cap - 1)
             break;
+        if (cap >= GR_SCENE_MAX_BYTES) {
+            fclose(f);
+            free(buf);
+            gr_fail(err, GR_EINPUT, "%s: scene file larger than %d MB", path, GR_SCENE_MAX_BYTES >> 20);
+            return NULL;
+        }
         char *q = realloc(buf, cap * 2);
         if (!q) {
             free(buf);
@@ -628,7 +663,10 @@ char *gr_scene_read_text(const char *path, gr_err *err)
     }
     buf[n] = '\0';
     if (strlen(buf) != n) {
-        gr_fail(err, GR_EINPUT, "%s: not a text file (NUL byte at offset %zu)", path, strlen(buf));
+        int line = 1;
+        for (const char *q = buf; *q; q++)
+            line += *q == '\n';
+        gr_fail(err, GR_EINPUT, "%s:%d: not a text file (NUL byte at offset %zu)", path, line, strlen(buf));
         free(buf);
         return NULL;
     }

@@ -84,7 +84,9 @@ typedef struct {
     double exit_below;      /* grains below this height have left */
 } gr_silo;
 
-typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE } gr_init_kind;
+/* GR_INIT_OCCUPATION: no grains; a lattice backend fills its channels at
+ * random with the mean occupations below (docs/scene-format.md). */
+typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE, GR_INIT_OCCUPATION } gr_init_kind;
 typedef enum { GR_VEL_ZERO = 0, GR_VEL_GAUSSIAN, GR_VEL_SPEED } gr_vel_kind;
 
 typedef struct {
@@ -94,6 +96,8 @@ typedef struct {
     gr_vel_kind velocity;
     double v0;              /* gaussian: std per component; speed: modulus */
     char file[1024];        /* columns: x y [vx vy [diameter]] */
+    double occupation;      /* occupation: mean occupation of each moving channel */
+    double rest_occupation; /* and of the rest channel */
 } gr_init;
 
 typedef struct {
@@ -109,6 +113,7 @@ typedef struct {
     double checkpoint_every;
     int field_nx, field_ny; /* coarse-graining grid, 0 = none */
     int contacts;           /* write the contact network with each frame */
+    int stress;             /* write the contact stress with each frame */
 } gr_runctl;
 
 /* Scale limits (docs/reliability.md): a scene beyond them is refused up
@@ -116,6 +121,7 @@ typedef struct {
 #define GR_SCENE_MAX_GRAINS 10000000L
 #define GR_SCENE_MAX_WALLS 100000
 #define GR_SCENE_MAX_MAGNITUDE 1e100
+#define GR_SCENE_MAX_BYTES (64 << 20)
 #define GR_STR_(x) #x
 #define GR_STR(x) GR_STR_(x)
 
@@ -169,9 +175,10 @@ enum {
     GR_FEAT_HERTZ = 1u << 12,
     GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
     GR_FEAT_WEIGHTS = 1u << 14,       /* a particle stands for several grains */
-    GR_FEAT_RESTITUTION = 1u << 15    /* a prescribed normal restitution */
+    GR_FEAT_RESTITUTION = 1u << 15,   /* a prescribed normal restitution */
+    GR_FEAT_LATTICE = 1u << 16        /* an initial state given as lattice occupations */
 };
-#define GR_FEAT_COUNT 16
+#define GR_FEAT_COUNT 17
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;
@@ -200,6 +207,9 @@ char *gr_scene_text_set(const char *text, const char *section, const char *key, 
 
 unsigned gr_scene_features(const gr_scene *sc);
 const char *gr_feature_name(unsigned feature_bit);
+/* Whether the table has a row for the bit (bits below GR_FEAT_COUNT may be
+ * reserved). */
+int gr_feature_known(unsigned feature_bit);
 /* The file line and key that brought in a feature, for messages:
  * writes "file:line: key 'k'" (or the file alone) into buf. */
 void gr_scene_feature_where(const gr_scene *sc, unsigned feature_bit, char *buf, size_t n);

@@ -28,6 +28,7 @@ static const feature_info features[GR_FEAT_COUNT] = {
     {GR_FEAT_HF_FLOOR, "a high-frequency floor limit", "floor", "motion"},
     {GR_FEAT_WEIGHTS, "particle weights (a simulated particle standing for several grains)", "species", "weight"},
     {GR_FEAT_RESTITUTION, "a normal restitution coefficient", "material", "restitution"},
+    {GR_FEAT_LATTICE, "a lattice state (initial condition given as channel occupations)", "init", "kind"},
 };
 
 unsigned gr_scene_features(const gr_scene *sc)
@@ -75,6 +76,8 @@ unsigned gr_scene_features(const gr_scene *sc)
         f |= GR_FEAT_HERTZ;
     if (!isnan(m->restitution) || !isnan(m->wall_restitution))
         f |= GR_FEAT_RESTITUTION;
+    if (sc->init.kind == GR_INIT_OCCUPATION)
+        f |= GR_FEAT_LATTICE;
     return f;
 }
 
@@ -84,6 +87,14 @@ const char *gr_feature_name(unsigned bit)
         if (features[i].bit == bit)
             return features[i].name;
     return "an unknown feature";
+}
+
+int gr_feature_known(unsigned bit)
+{
+    for (int i = 0; i < GR_FEAT_COUNT; i++)
+        if (features[i].bit == bit && features[i].name)
+            return 1;
+    return 0;
 }
 
 /* The first entry of the file that brings the feature in. */

@@ -186,10 +186,13 @@ const gr_scene_entry *gr_scene_find(const gr_scene *sc, const char *section, con
 void gr_scene_where(const gr_scene *sc, const char *section, const char *key, char *buf, size_t n)
 {
     const gr_scene_entry *e = gr_scene_find(sc, section, key);
+    const gr_scene_entry *h = e ? NULL : gr_scene_find(sc, section, "");
     if (e)
         snprintf(buf, n, "%s:%d: [%s] key '%s'", sc->path, e->line, section, key);
+    else if (h) /* absent key: the line of its section */
+        snprintf(buf, n, "%s:%d: [%s] key '%s' (absent, default)", sc->path, h->line, section, key);
     else
-        snprintf(buf, n, "%s: [%s] key '%s' (default)", sc->path, section, key);
+        snprintf(buf, n, "%s: [%s] key '%s' (absent, default)", sc->path, section, key);
 }
 
 /* Levenshtein distance, for "did you mean" suggestions. */

@@ -50,6 +50,14 @@ static void comment_line(char *text, int line)
     }
 }
 
+/* What gr_scene_read_entries allocated in a scene on the stack. */
+static void free_entries(gr_scene *tmp)
+{
+    free(tmp->entries);
+    free(tmp->parsed);
+    free(tmp->index);
+}
+
 /* The file's text with the settings applied; *line0 the first added line. */
 static char *apply(const char *path, const char *text, const setting *st, size_t n, int *line0, gr_err *err)
 {
@@ -63,7 +71,7 @@ static char *apply(const char *path, const char *text, const setting *st, size_t
     }
     memcpy(out, text, len + 1);
     if (gr_scene_read_entries(&tmp, text, err)) {
-        free(tmp.entries);
+        free_entries(&tmp);
         free(out);
         return NULL;
     }
@@ -72,7 +80,7 @@ static char *apply(const char *path, const char *text, const setting *st, size_t
         if (e)
             comment_line(out, e->line);
     }
-    free(tmp.entries);
+    free_entries(&tmp);
     len = strlen(out);
     if (len && out[len - 1] != '\n')
         out[len++] = '\n', out[len] = '\0';

@@ -95,7 +95,7 @@ static void write_field(FILE *f, const char *h5, hid_t file, const char *name)
                    "      <DataItem Dimensions=\"3\" Format=\"XML\">1 %.17g %.17g</DataItem>\n"
                    "    </Geometry>\n", origin[1], origin[0], cell[1], cell[0]);
         fprintf(f, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Cell\">\n", name,
-                nc > 1 ? "Vector" : "Scalar");
+                nc == 2 ? "Vector" : nc > 2 ? "Matrix" : "Scalar");
         const char *ind = "      ";
         if (nc > 1) {
             fprintf(f, "%s<DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d %d %d\" Type=\"HyperSlab\">\n",

@@ -18,5 +18,6 @@ int bench_cd(int argc, char **argv);
 int bench_dem(int argc, char **argv);
 int bench_dsmc(int argc, char **argv);
 int bench_edmd(int argc, char **argv);
+int bench_lgca(int argc, char **argv);
 
 #endif

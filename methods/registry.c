@@ -8,11 +8,13 @@ extern const gr_method_type gr_edmd_method;
 extern const gr_method_type gr_dem_method;
 extern const gr_method_type gr_cd_method;
 extern const gr_method_type gr_dsmc_method;
+extern const gr_method_type gr_lgca_method;
 static const gr_method_type *const registry[] = {
     &gr_edmd_method,
     &gr_dem_method,
     &gr_cd_method,
     &gr_dsmc_method,
+    &gr_lgca_method,
     NULL
 };
 

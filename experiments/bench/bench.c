@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cmd.h"
+#include "opts.h"
 
 typedef struct {
     const char *method;
@@ -15,6 +16,7 @@ static const bench_entry benches[] = {
     {"dem", bench_dem},
     {"dsmc", bench_dsmc},
     {"edmd", bench_edmd},
+    {"lgca", bench_lgca},
     {NULL, NULL},
 };
 
@@ -32,6 +34,10 @@ int cmd_bench(int argc, char **argv)
     if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
         usage(argc < 2 ? stderr : stdout);
         return argc < 2 ? 2 : 0;
+    }
+    if (!strcmp(argv[1], "--version")) {
+        exp_print_version("bench");
+        return 0;
     }
     for (size_t i = 0; benches[i].method; i++)
         if (!strcmp(argv[1], benches[i].method))

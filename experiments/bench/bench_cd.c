@@ -5,6 +5,7 @@
  * Siconos is built in (GR_BENCH_SICONOS, tests/oracle/fc2d.c compiled into
  * grano), the time of fc2d_nsgs_dense on the same exported problem over
  * cd's own cold solve, in alternating rounds. */
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -15,6 +16,7 @@
 #include "cmd.h"
 #include "init.h"
 #include "method.h"
+#include "opts.h"
 #ifdef GR_BENCH_SICONOS
 #include "fc2d.h"
 #endif
@@ -35,6 +37,7 @@ typedef struct {
     int nn, quick, rounds;
     long steps;
     double tol, settle;
+    int given_n;
 } bc_opts;
 
 typedef struct {
@@ -77,34 +80,43 @@ static int parse_list(const char *s, long *out, int cap)
     return n;
 }
 
+static int cd_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    bc_opts *o = ctx;
+    long v;
+    switch (id) {
+    case 'Q': o->quick = 1; return 0;
+    case 'n':
+        if ((o->nn = parse_list(arg, o->ns, 16)) < 1)
+            return gr_fail(err, GR_EINPUT, "--n: '%s' is not a list of integers >= 10", arg);
+        o->given_n = 1;
+        return 0;
+    case 's': return exp_opt_long("--steps", arg, 1, LONG_MAX, &o->steps, err);
+    case 'S': return exp_opt_double("--settle", arg, 0, 1e12, &o->settle, err);
+    case 't': return exp_opt_double("--tol", arg, 1e-300, 1, &o->tol, err);
+    case 'r':
+        if (exp_opt_long("--rounds", arg, 1, 1000, &v, err))
+            return err->code;
+        o->rounds = (int)v;
+        return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
 /* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
 static int parse_args(int argc, char **argv, bc_opts *o)
 {
-    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0};
-    int given_n = 0;
-    for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[a], "--quick")) {
-            o->quick = 1;
-        } else if (a + 1 < argc && !strcmp(argv[a], "--n")) {
-            o->nn = parse_list(argv[++a], o->ns, 16);
-            given_n = 1;
-        } else if (a + 1 < argc && !strcmp(argv[a], "--steps")) {
-            o->steps = atol(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--settle")) {
-            o->settle = atof(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--tol")) {
-            o->tol = atof(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--rounds")) {
-            o->rounds = atoi(argv[++a]);
-        } else {
-            fprintf(stderr, "grano bench cd: unknown or incomplete option '%s'\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
-    }
+    static const struct option opts[] = {
+        {"quick", no_argument, NULL, 'Q'}, {"n", required_argument, NULL, 'n'},
+        {"steps", required_argument, NULL, 's'}, {"settle", required_argument, NULL, 'S'},
+        {"tol", required_argument, NULL, 't'}, {"rounds", required_argument, NULL, 'r'},
+        {NULL, 0, NULL, 0}};
+    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0, 0};
+    int first = 0;
+    int rc = exp_getopt_main("bench cd", argc, argv, opts, cd_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
+    int given_n = o->given_n;
     if (o->quick && !given_n)
         o->ns[0] = 100, o->nn = 1;
     if (o->quick)

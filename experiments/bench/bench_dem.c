@@ -3,6 +3,7 @@
  * same bed in LAMMPS when asked (--peer lammps), and the speed-against-error
  * sweep (--accuracy). */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,7 @@
 #include "cmd.h"
 #include "dem/dem.h"
 #include "init.h"
+#include "opts.h"
 #include "plot.h"
 
 static double bench_dem_now(void)
@@ -510,55 +512,55 @@ typedef struct {
     int accuracy, quick, scaling, threads_given;
 } bd_opts;
 
+static int dem_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    bd_opts *o = ctx;
+    switch (id) {
+    case 'A': o->accuracy = 1; return 0;
+    case 'C': o->scaling = 1; return 0;
+    case 'Q': o->quick = 1; return 0;
+    case 'n':
+        o->nn = 0;
+        for (const char *s = arg; *s && o->nn < 16;) {
+            char *end;
+            o->ns[o->nn++] = strtol(s, &end, 10);
+            if (end == s || o->ns[o->nn - 1] < 1 || (*end && *end != ','))
+                return gr_fail(err, GR_EINPUT, "--n: '%s' is not positive integers separated by commas", arg);
+            s = *end ? end + 1 : end;
+        }
+        return 0;
+    case 's': return exp_opt_long("--steps", arg, 1, LONG_MAX, &o->steps, err);
+    case 'S': return exp_opt_long("--settle", arg, 0, LONG_MAX, &o->settle, err);
+    case 't':
+        o->threads_given = 1;
+        return exp_opt_long("--threads", arg, 1, 1024, &o->threads, err);
+    case 'k': return exp_opt_double("--skin", arg, 0, 1e6, &o->skin, err);
+    case 'p':
+        if (strcmp(arg, "lammps"))
+            return gr_fail(err, GR_EINPUT, "--peer: unknown peer '%s' (known: lammps)", arg);
+        o->peer = arg;
+        return 0;
+    case 'd': o->dir = arg; return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
 /* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
 static int parse_args(int argc, char **argv, bd_opts *o)
 {
+    static const struct option opts[] = {
+        {"accuracy", no_argument, NULL, 'A'},     {"scaling", no_argument, NULL, 'C'},
+        {"quick", no_argument, NULL, 'Q'},        {"n", required_argument, NULL, 'n'},
+        {"steps", required_argument, NULL, 's'},  {"settle", required_argument, NULL, 'S'},
+        {"threads", required_argument, NULL, 't'}, {"skin", required_argument, NULL, 'k'},
+        {"peer", required_argument, NULL, 'p'},   {"dir", required_argument, NULL, 'd'},
+        {NULL, 0, NULL, 0}};
     *o = (bd_opts){.ns = {5000, 20000, 80000}, .nn = 3, .steps = 2000, .settle = 1000, .threads = 1, .skin = 0.2,
                    .peer = NULL, .dir = "."};
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--accuracy")) {
-            o->accuracy = 1;
-        } else if (!strcmp(a, "--scaling")) {
-            o->scaling = 1;
-        } else if (!strcmp(a, "--quick")) {
-            o->quick = 1;
-        } else if (v && !strcmp(a, "--n")) {
-            o->nn = 0;
-            for (char *s = argv[++i], *end; *s && o->nn < 16; s = *end ? end + 1 : end) {
-                o->ns[o->nn++] = strtol(s, &end, 10);
-                if (end == s || o->ns[o->nn - 1] < 1 || (*end && *end != ',')) {
-                    fprintf(stderr, "grano bench dem: --n wants positive integers separated by commas\n");
-                    return 2;
-                }
-            }
-        } else if (v && !strcmp(a, "--steps")) {
-            o->steps = atol(argv[++i]);
-        } else if (v && !strcmp(a, "--settle")) {
-            o->settle = atol(argv[++i]);
-        } else if (v && !strcmp(a, "--threads")) {
-            o->threads = atol(argv[++i]);
-            o->threads_given = 1;
-        } else if (v && !strcmp(a, "--skin")) {
-            o->skin = atof(argv[++i]);
-        } else if (v && !strcmp(a, "--peer")) {
-            o->peer = argv[++i];
-            if (strcmp(o->peer, "lammps")) {
-                fprintf(stderr, "grano bench dem: unknown peer '%s' (known: lammps)\n", o->peer);
-                return 2;
-            }
-        } else if (v && !strcmp(a, "--dir")) {
-            o->dir = argv[++i];
-        } else {
-            fprintf(stderr, "grano bench dem: unknown or incomplete option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        }
-    }
+    int first = 0;
+    int rc = exp_getopt_main("bench dem", argc, argv, opts, dem_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
     return -1;
 }
 

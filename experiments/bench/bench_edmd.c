@@ -8,6 +8,7 @@
 
 #include "cmd.h"
 #include "edmd/edmd.h"
+#include "opts.h"
 #include "order.h"
 #include "init.h"
 #include "scene.h"
@@ -169,49 +170,55 @@ typedef struct {
     int rounds;
 } be_opts;
 
+static int edmd_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    be_opts *o = ctx;
+    long v;
+    switch (id) {
+    case 'Q': o->nn = 2; return 0;
+    case 'n':
+        if ((o->nn = parse_list(arg, o->ns, 16)) < 1)
+            return gr_fail(err, GR_EINPUT, "--n: '%s' is not a list of numbers", arg);
+        return 0;
+    case 'e':
+        if ((o->ne = parse_list(arg, o->etas, 8)) < 1)
+            return gr_fail(err, GR_EINPUT, "--eta: '%s' is not a list of numbers", arg);
+        return 0;
+    case 'E': return exp_opt_double("--equil", arg, 0, 1e15, &o->equil, err);
+    case 'M': return exp_opt_double("--measure", arg, 1e-300, 1e15, &o->measure, err);
+    case 'r':
+        if (exp_opt_long("--ratio", arg, 1, 64, &v, err))
+            return err->code;
+        o->rounds = (int)v;
+        return 0;
+    case 'a':
+        if (exp_opt_long("--arity", arg, 2, 4, &v, err))
+            return err->code;
+        o->arity = (int)v;
+        return 0;
+    case 's': return exp_opt_double("--sort", arg, -1e300, 1e300, &o->sort, err);
+    case 'q': o->queue = arg; return 0;
+    case 'c': return exp_opt_double("--cell", arg, 0, 1e300, &o->cell, err);
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
 /* Parse argv into *o; -1 to go on, else the exit code (0 after --help). */
 static int parse_args(int argc, char **argv, be_opts *o)
 {
+    static const struct option opts[] = {
+        {"quick", no_argument, NULL, 'Q'},         {"n", required_argument, NULL, 'n'},
+        {"eta", required_argument, NULL, 'e'},     {"equil", required_argument, NULL, 'E'},
+        {"measure", required_argument, NULL, 'M'}, {"ratio", required_argument, NULL, 'r'},
+        {"arity", required_argument, NULL, 'a'},   {"sort", required_argument, NULL, 's'},
+        {"queue", required_argument, NULL, 'q'},   {"cell", required_argument, NULL, 'c'},
+        {NULL, 0, NULL, 0}};
     *o = (be_opts){.ns = {1e3, 1e4, 1e5, 1e6}, .etas = {0.3, 0.6}, .nn = 4, .ne = 2, .equil = 20, .measure = 10,
                    .arity = 2, .cell = 0, .queue = NULL, .sort = -1.0, .rounds = 0};
-    for (int a = 1; a < argc; a++) {
-        if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[a], "--quick")) {
-            o->nn = 2;
-        } else if (a + 1 < argc && !strcmp(argv[a], "--n")) {
-            o->nn = parse_list(argv[++a], o->ns, 16);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--eta")) {
-            o->ne = parse_list(argv[++a], o->etas, 8);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--equil")) {
-            o->equil = atof(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--measure")) {
-            o->measure = atof(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--ratio")) {
-            o->rounds = atoi(argv[++a]);
-            if (o->rounds < 1 || o->rounds > 64) {
-                fprintf(stderr, "grano bench edmd: --ratio takes 1 to 64 rounds\n");
-                return 2;
-            }
-        } else if (a + 1 < argc && !strcmp(argv[a], "--arity")) {
-            o->arity = atoi(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--sort")) {
-            o->sort = atof(argv[++a]);
-        } else if (a + 1 < argc && !strcmp(argv[a], "--queue")) {
-            o->queue = argv[++a];
-        } else if (a + 1 < argc && !strcmp(argv[a], "--cell")) {
-            o->cell = atof(argv[++a]);
-        } else {
-            fprintf(stderr, "grano bench edmd: unknown or incomplete option '%s'\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
-        if (o->nn <= 0 || o->ne <= 0) {
-            fprintf(stderr, "grano bench edmd: bad list after %s\n", argv[a]);
-            return 2;
-        }
-    }
+    int first = 0;
+    int rc = exp_getopt_main("bench edmd", argc, argv, opts, edmd_option, o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
     return -1;
 }
 

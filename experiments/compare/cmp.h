@@ -26,8 +26,13 @@ typedef struct {
     const char *full;    /* comma-separated values of the full comparison */
     const char *quick;   /* those of --quick */
     const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
-    int ref;             /* 1: this row's result is the case's reference (a long run) */
+    int role;            /* CMP_SWEEP, CMP_REFERENCE or CMP_BIAS */
 } cmp_row;
+enum {
+    CMP_SWEEP = 0,     /* its error must not grow as the knob is tightened (--quick checks) */
+    CMP_REFERENCE = 1, /* its result is the case's reference (a long or exact run) */
+    CMP_BIAS = 2       /* shows a bias that grows along the knob: reported, not checked */
+};
 
 /* What a measurement gives: the quantity, its statistical error from
  * within the run (NaN when the run gives none), a second quantity (aux),
@@ -40,8 +45,9 @@ typedef struct {
 typedef struct cmp_case cmp_case;
 /* Measure on a fresh instance of the scene. */
 typedef int (*cmp_measure_fn)(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
-/* The reference value (and aux's reference in *aux_ref) for the scene;
- * NULL: the pooled result of the case's row marked ref. */
+/* The analytic or published value (and aux's in *aux_ref) for the scene,
+ * or NULL. Errors are against the case's CMP_REFERENCE row when it has
+ * one, else against this; edmd's tolerance is always against this. */
 typedef double (*cmp_ref_fn)(const gr_scene *sc, double *aux_ref);
 /* The initial grains (NULL: the scene's [init]). */
 typedef int (*cmp_prepare_fn)(const gr_scene *sc, gr_particles *p, gr_err *err);
@@ -53,7 +59,8 @@ struct cmp_case {
     const char *aux;       /* what aux is */
     const char *quick_set; /* settings of --quick ("section.key=value;..."), or NULL */
     int seeds_full, seeds_quick; /* independent realisations */
-    double tol_edmd;       /* edmd's relative error must stay below this (--quick test); 0: none */
+    double tol_edmd;       /* edmd's relative deviation from the analytic value must stay
+                              below this (--quick test); 0: none */
     cmp_measure_fn measure;
     cmp_ref_fn reference;
     cmp_prepare_fn prepare;   /* NULL: the scene's [init] */

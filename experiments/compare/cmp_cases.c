@@ -34,10 +34,10 @@ static const cmp_case cases[] = {
      .seeds_full = 16, .seeds_quick = 8, .tol_edmd = 0.1,
      .measure = cmp_measure_cooling, .reference = cmp_ref_cooling, .prepare = cmp_prepare_cooling,
      .rows = {
-         {"edmd", "edmd", NULL, "", "", NULL},
+         {"edmd", "edmd", NULL, "", "", NULL, CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,2.5e-4", NULL},
          {"dsmc", "dsmc", "dsmc.dt", "0.4,0.2,0.1,0.05", "0.4,0.1", "dsmc.cell=8"},
-         {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.1"},
+         {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.1", CMP_BIAS},
      }},
     {.name = "cooling-dense", .scene = "cooling-dense.ini", .quantity = "T/T0 at Haff's time",
      .aux = "T/T0 at half Haff's time",
@@ -45,10 +45,10 @@ static const cmp_case cases[] = {
      .seeds_full = 16, .seeds_quick = 8, .tol_edmd = 0.1,
      .measure = cmp_measure_cooling, .reference = cmp_ref_cooling, .prepare = cmp_prepare_cooling,
      .rows = {
-         {"edmd", "edmd", NULL, "", "", NULL},
+         {"edmd", "edmd", NULL, "", "", NULL, CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,1.25e-4", NULL},
          {"dsmc", "dsmc", "dsmc.dt", "0.2,0.1,0.05,0.02", "0.2,0.05", "dsmc.cell=8"},
-         {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.05"},
+         {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.05", CMP_BIAS},
      }},
     {.name = "column", .scene = "column.ini", .quantity = "wall force / weight", .aux = "top height",
      .seeds_full = 1, .seeds_quick = 1, .tol_edmd = 0,
@@ -71,7 +71,7 @@ static const cmp_case cases[] = {
      .quick_set = "run.until=60", .seeds_full = 8, .seeds_quick = 4, .tol_edmd = 0,
      .measure = cmp_measure_bed, .reference = NULL,
      .rows = {
-         {"edmd", "edmd-long", "run.until", "2000", "300", NULL, 1},
+         {"edmd", "edmd-long", "run.until", "2000", "300", NULL, CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "1e-3,5e-4,2.5e-4", "1e-3,2.5e-4", NULL, 0},
          {"dsmc", "dsmc", "dsmc.dt", "0.01,0.005,0.0025", "0.01,0.0025", "dsmc.cell=4", 0},
      }},
@@ -79,10 +79,10 @@ static const cmp_case cases[] = {
      .quick_set = "run.until=20", .seeds_full = 3, .seeds_quick = 1, .tol_edmd = 0,
      .measure = cmp_measure_silo, .reference = NULL,
      .rows = {
-         {"dem", "dem-long", "run.until", "200", "40", "dem.dt=1.25e-4", 1},
+         {"dem", "dem-long", "run.until", "200", "40", "dem.dt=1.25e-4", CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4", "5e-4", NULL, 0},
          {"cd", "cd", "cd.tol", "1e-2,1e-3,1e-4", "1e-2,1e-3", "cd.dt=2e-3", 0},
-         {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-4", "edmd.collapse=tc", 0},
+         {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-3", "edmd.collapse=tc", 0},
      }},
     {.name = NULL},
 };

@@ -1,7 +1,5 @@
 /* grano compare [--quick] [--cases LIST] [--methods LIST] [--out DIR] [-j N]:
  * the command (docs/comparison.md): options, the plan of runs, the sweep. */
-#include <errno.h>
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,6 +9,7 @@
 
 #include "cmd.h"
 #include "cmp.h"
+#include "opts.h"
 #include "progress.h"
 #include "sweep.h"
 
@@ -38,7 +37,7 @@ static void usage(FILE *f)
                "  -s, --scenes DIR     the case scenes (default %s)\n"
                "  -f, --force          redo every run\n"
                "      --no-progress    no progress line\n"
-               "  -h, --help           this help\n"
+               "  -h, --help           this help;  --version: the version\n"
                "Exit code 0; 1 when a run or a check failed; 2 for bad arguments.\n",
             GRANO_COMPARE_SCENES);
 }
@@ -68,49 +67,50 @@ static int check_list(const char *flag, const char *list, int cases)
     return 0;
 }
 
+enum { O_QUICK = 'q', O_CASES = 'c', O_METHODS = 'm', O_OUT = 'o', O_JOBS = 'j', O_SCENES = 's', O_FORCE = 'f',
+       O_NOPROGRESS = 0x100 };
+
+typedef struct {
+    cmp_plan *pl;
+    cmp_sel *sel;
+} parse_ctx;
+
+static int one_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    parse_ctx *c = ctx;
+    long jobs;
+    switch (id) {
+    case O_QUICK: c->pl->quick = 1; return 0;
+    case O_CASES: c->sel->cases = arg; return 0;
+    case O_METHODS: c->sel->methods = arg; return 0;
+    case O_OUT: c->pl->out = arg; return 0;
+    case O_SCENES: c->pl->scenes = arg; return 0;
+    case O_FORCE: c->pl->force = 1; return 0;
+    case O_NOPROGRESS: c->pl->progress = 0; return 0;
+    case O_JOBS:
+        if (exp_opt_long("-j", arg, 1, 256, &jobs, err))
+            return err->code;
+        c->pl->jobs = (int)jobs;
+        return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
+/* Options into pl and sel: 0, -1 (help or version printed: exit 0), or the
+ * exit code of a bad flag (reported here). */
 static int parse(int argc, char **argv, cmp_plan *pl, cmp_sel *sel)
 {
     static const struct option opts[] = {
-        {"quick", no_argument, NULL, 'q'},       {"cases", required_argument, NULL, 'c'},
-        {"methods", required_argument, NULL, 'm'}, {"out", required_argument, NULL, 'o'},
-        {"jobs", required_argument, NULL, 'j'},  {"scenes", required_argument, NULL, 's'},
-        {"force", no_argument, NULL, 'f'},       {"no-progress", no_argument, NULL, 'P'},
-        {"help", no_argument, NULL, 'h'},        {NULL, 0, NULL, 0}};
-    int c;
-    opterr = 0;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, ":qc:m:o:j:s:fh", opts, NULL)) != -1) {
-        char *end;
-        switch (c) {
-        case 'q': pl->quick = 1; break;
-        case 'c': sel->cases = optarg; break;
-        case 'm': sel->methods = optarg; break;
-        case 'o': pl->out = optarg; break;
-        case 's': pl->scenes = optarg; break;
-        case 'f': pl->force = 1; break;
-        case 'P': pl->progress = 0; break;
-        case 'j':
-            errno = 0;
-            pl->jobs = (int)strtol(optarg, &end, 10);
-            if (*end || errno || pl->jobs < 1 || pl->jobs > 256) {
-                fprintf(stderr, "grano compare: -j: '%s' is not a number of jobs in [1, 256]\n", optarg);
-                return 2;
-            }
-            break;
-        case 'h': usage(stdout); return -1;
-        case ':':
-            fprintf(stderr, "grano compare: %s needs a value\n", argv[optind - 1]);
-            return 2;
-        default:
-            fprintf(stderr, "grano compare: unknown option '%s'\n", argv[optind - 1]);
-            usage(stderr);
-            return 2;
-        }
-    }
-    if (optind < argc) {
-        fprintf(stderr, "grano compare: unexpected argument '%s'\n", argv[optind]);
-        return 2;
-    }
+        {"quick", no_argument, NULL, O_QUICK},       {"cases", required_argument, NULL, O_CASES},
+        {"methods", required_argument, NULL, O_METHODS}, {"out", required_argument, NULL, O_OUT},
+        {"jobs", required_argument, NULL, O_JOBS},   {"scenes", required_argument, NULL, O_SCENES},
+        {"force", no_argument, NULL, O_FORCE},       {"no-progress", no_argument, NULL, O_NOPROGRESS},
+        {NULL, 0, NULL, 0}};
+    parse_ctx c = {pl, sel};
+    int first = 0;
+    int rc = exp_getopt_main("compare", argc, argv, opts, one_option, &c, usage, 0, &first);
+    if (rc >= 0)
+        return rc ? rc : -1;
     if ((sel->cases && check_list("--cases", sel->cases, 1)) ||
         (sel->methods && check_list("--methods", sel->methods, 0)))
         return 2;
@@ -128,7 +128,7 @@ int cmd_compare(int argc, char **argv)
     pl.progress = pl.progress && isatty(STDERR_FILENO);
     gr_err err = {0};
     if (cmp_plan_build(&pl, sel.cases, sel.methods, &err)) {
-        fprintf(stderr, "grano compare: %s\n", err.msg);
+        fprintf(stderr, "%sgrano compare: %s\n", pl.notes, err.msg);
         free(pl.units);
         return err.code == GR_EINPUT ? 2 : 1;
     }

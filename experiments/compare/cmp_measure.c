@@ -307,9 +307,22 @@ double cmp_ref_eos(const gr_scene *sc, double *aux_ref)
 
 #define BED_SAMPLES 20 /* snapshots per window */
 
+/* A grain below the lowest position of the floor went through it: the
+ * run is wrong even if every number is finite. */
+static int below_floor(const gr_particles *p, const gr_scene *sc, double t, gr_err *err)
+{
+    double low = -sc->floor.amplitude - gr_scene_max_diameter(sc);
+    for (size_t i = 0; i < p->n; i++)
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && p->y[i] < low)
+            return gr_fail(err, GR_ERUN, "grain %lld is at y = %.4g at t = %.6g, below the floor: it went through",
+                           (long long)p->id[i], p->y[i], t);
+    return GR_OK;
+}
+
 /* After the first fifth of the run, in NBLOCKS windows of BED_SAMPLES
  * snapshots: the mean height of the grains (the first moment of the
- * density profile) and their mean granular temperature (aux). */
+ * density profile) and their mean granular temperature (aux). A grain
+ * found below the floor fails the run. */
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
 {
     (void)c;
@@ -321,7 +334,7 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
         for (int k = 1; k <= BED_SAMPLES && !rc; k++) {
             double t = t0 + (sc->run.until - t0) * (b * BED_SAMPLES + k) / (NBLOCKS * BED_SAMPLES);
             gr_obs o;
-            if ((rc = gr_sim_advance(s, t, 0, err) || gr_sim_snapshot(s, p, err)))
+            if ((rc = gr_sim_advance(s, t, 0, err) || gr_sim_snapshot(s, p, err) || below_floor(p, sc, t, err)))
                 break;
             gr_obs_from_particles(p, sc->gravity, &o);
             H[b] += o.epot_grav / (sc->gravity * (double)o.n_mobile) / BED_SAMPLES;

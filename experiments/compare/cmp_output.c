@@ -12,16 +12,30 @@
 #include "plot.h"
 #include "table.h"
 
-#define NCOL 13
-static const char *const columns =
-    "row,knob_value,runs,finished,wall_s,steps,value,value_sem,reference,rel_error,rel_error_sem,aux,aux_reference";
+#define NCOL 14
+static const char *const columns = "row,knob_value,runs,finished,wall_s,steps,value,value_sem,reference,rel_error,"
+                                   "rel_error_sem,aux,aux_reference,analytic";
 
 /* Errors below this are drawn at it on the log axis (exact methods). */
 static const double floor_err = 1e-16;
 
-static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n, double ref, double aux_ref)
+/* Which row, if any, is the case's reference. */
+static const char *ref_label(const cmp_case *c)
 {
-    fprintf(f, "\n== %s: %s (reference %.8g), %s (reference %.6g)\n", c->name, c->quantity, ref, c->aux, aux_ref);
+    for (const cmp_row *r = c->rows; r->method; r++)
+        if (r->role == CMP_REFERENCE)
+            return r->label;
+    return NULL;
+}
+
+static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref)
+{
+    const char *rl = ref_label(c);
+    fprintf(f, "\n== %s: %s: reference %.8g +- %.2g (%s)", c->name, c->quantity, ref->value, ref->sem,
+            rl ? rl : "analytic");
+    if (rl && isfinite(ref->analytic))
+        fprintf(f, ", analytic %.8g", ref->analytic);
+    fprintf(f, "; %s: reference %.6g\n", c->aux, ref->aux);
     fprintf(f, "%-9s %-14s %-9s %5s %9s %11s %-24s %-20s %12s %s\n", "method", "knob", "value", "runs", "wall/s",
             "steps", "measured +- error bar", "relative error", c->aux, "");
     for (size_t i = 0; i < n; i++) {
@@ -32,14 +46,15 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
         fprintf(f, "%-9s %-14s %-9s %2d/%-2d %9.3g %11.4g %-24s %-20s %12.5g %s\n", p->row->label,
                 p->row->knob ? p->row->knob : "-", p->value[0] ? p->value : "-", p->nok, p->n, p->wall, p->steps,
                 meas, er, p->aux,
-                p->nok < p->n ? "FAILED" : (p->error > 2 * p->error_sem ? "" : "(within the error bar)"));
+                p->nok < p->n ? "FAILED"
+                : p->row->role == CMP_REFERENCE ? "(reference)"
+                : p->error > 2 * p->error_sem ? "" : "(within the error bar)");
         if (p->msg[0])
             fprintf(f, "          %s\n", p->msg);
     }
 }
 
-static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n, double ref, double aux_ref,
-                   gr_err *err)
+static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref, gr_err *err)
 {
     double *v = malloc((n ? n : 1) * NCOL * sizeof *v);
     if (!v)
@@ -52,7 +67,8 @@ static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
         double row[NCOL] = {(double)(p->row - c->rows), p->value[0] ? atof(p->value) : NAN, p->n, p->nok,
-                            p->wall, p->steps, p->mean, p->sem, ref, p->error, p->error_sem, p->aux, aux_ref};
+                            p->wall, p->steps, p->mean, p->sem, ref->value, p->error, p->error_sem, p->aux,
+                            ref->aux, ref->analytic};
         memcpy(v + i * NCOL, row, sizeof row);
     }
     char name[128];
@@ -62,9 +78,14 @@ static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n
     return rc;
 }
 
-/* Error (x) against wall time (y), log-log, a line per row, the knob value
- * written at each point, error bars on the error. */
-static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, size_t n, gr_err *err)
+/* Error (x) against wall time (y), log-log, a line per row with the knob
+ * value written at each point and the error bar of the error; the
+ * reference row, when the case has one, is not drawn (its error is zero by
+ * definition): its error bar is, as a dashed line (no method can be shown
+ * closer to it than that). An error bar larger than the error is drawn
+ * down to a tenth of it: the error is then consistent with zero. */
+static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref,
+                     gr_err *err)
 {
     char png[2048];
     snprintf(png, sizeof png, "%s/%s.png", dir, c->name);
@@ -75,24 +96,31 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
     for (int r = 0; c->rows[r].method; r++) {
         fprintf(gp, "$r%d << EOD\n", r);
         for (size_t i = 0; i < n; i++)
-            if (pts[i].row == &c->rows[r] && pts[i].nok > 0) {
-                fprintf(gp, "%.6g %.6g %.6g \"%s\"\n", fmax(pts[i].error, floor_err), pts[i].wall,
-                        pts[i].error_sem, pts[i].value[0] ? pts[i].value : "");
+            if (pts[i].row == &c->rows[r] && pts[i].nok > 0 && c->rows[r].role != CMP_REFERENCE) {
+                double e = fmax(pts[i].error, floor_err);
+                fprintf(gp, "%.6g %.6g %.6g %.6g \"%s\"\n", e, pts[i].wall, fmax(e - pts[i].error_sem, e / 10),
+                        e + pts[i].error_sem, pts[i].value[0] ? pts[i].value : "");
                 has[r] = 1;
             }
         fprintf(gp, "EOD\n");
         nrow++;
     }
-    fprintf(gp, "set title \"%s: %s\"\nset logscale xy\nset format x '10^{%%T}'\n"
-                "set xlabel \"relative error of %s (errors below 1e-16 drawn at 1e-16)\"\n"
+    const char *rl = ref_label(c);
+    fprintf(gp, "set title \"%s: %s against %s\"\nset logscale xy\nset format x '10^{%%T}'\n"
+                "set xlabel \"relative error of %s (below 1e-16 drawn at 1e-16)\"\n"
                 "set ylabel 'wall time per run / s'\nset key outside right\nset grid\n",
-            c->name, c->quantity, c->quantity);
+            c->name, c->quantity, rl ? rl : "the analytic value", c->quantity);
+    if (rl && ref->sem > 0)
+        fprintf(gp, "set arrow from %.6g, graph 0 to %.6g, graph 1 nohead dt 2 lc rgb 'gray40'\n"
+                    "set label \"%s's error bar\" at %.6g, graph 0.95 right offset -0.5,0 tc rgb 'gray40'\n",
+                ref->sem / fabs(ref->value), ref->sem / fabs(ref->value), rl, ref->sem / fabs(ref->value));
     fprintf(gp, "plot ");
     for (int r = 0, first = 1; r < nrow; r++)
         if (has[r]) {
-            fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 t '%s%s%s', $r%d u 1:2:4 w labels offset 0.8,0.8 font ',9' "
-                        "notitle", first ? "" : ", ", r, c->rows[r].label, c->rows[r].knob ? " by " : "",
-                    c->rows[r].knob ? c->rows[r].knob : "", r);
+            fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 lc %d t '%s%s%s', $r%d u 1:2:3:4 w xerrorbars lc %d notitle, "
+                        "$r%d u 1:2:5 w labels offset 0.8,0.8 font ',9' notitle",
+                    first ? "" : ", ", r, r + 1, c->rows[r].label, c->rows[r].knob ? " by " : "",
+                    c->rows[r].knob ? c->rows[r].knob : "", r, r + 1, r);
             first = 0;
         }
     fprintf(gp, "\n");
@@ -117,14 +145,16 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
             for (size_t i = 0; i < nall[k]; i++) {
                 const cmp_point *p = &all[k][i];
                 int last = i + 1 == nall[k] || all[k][i + 1].row != p->row;
-                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]) && !strchr(p->row->label, '-')) {
+                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]) && p->row->role == CMP_SWEEP &&
+                    !strchr(p->row->label, '-')) {
                     fprintf(gp, "%d %.6g %.6g\n", k, fmax(p->error, floor_err), p->wall);
                     count[m]++;
                 }
             }
         fprintf(gp, "EOD\n");
     }
-    fprintf(gp, "set multiplot layout 1,2 title 'grano compare: each method at its finest setting'\n");
+    fprintf(gp, "set multiplot layout 1,2 title \"grano compare: each method at its finest setting, against "
+                "each case's reference (compare.txt names it)\"\n");
     fprintf(gp, "set xtics (");
     for (int k = 0; cs[k].name; k++)
         fprintf(gp, "%s'%s' %d", k ? ", " : "", cs[k].name, k);
@@ -151,18 +181,18 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
 static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h,
                     cmp_point **pts, size_t *n, int *bad, gr_err *err)
 {
-    double ref, aux_ref;
+    cmp_refs ref;
     *pts = malloc((pl->nunits ? pl->nunits : 1) * sizeof **pts);
     if (!*pts)
         return gr_fail(err, GR_ERUN, "out of memory");
-    if (cmp_collect(pl, parts, c, *pts, n, &ref, &aux_ref, err))
+    if (cmp_collect(pl, parts, c, *pts, n, &ref, err))
         return err->code;
     if (!*n)
         return GR_OK;
-    text_case(stdout, c, *pts, *n, ref, aux_ref);
-    text_case(txt, c, *pts, *n, ref, aux_ref);
-    *bad += cmp_check(c, *pts, *n);
-    if (h5_case(h, c, *pts, *n, ref, aux_ref, err) || plot_case(pl->out, c, *pts, *n, err))
+    text_case(stdout, c, *pts, *n, &ref);
+    text_case(txt, c, *pts, *n, &ref);
+    *bad += cmp_check(c, *pts, *n, &ref);
+    if (h5_case(h, c, *pts, *n, &ref, err) || plot_case(pl->out, c, *pts, *n, &ref, err))
         return err->code;
     return GR_OK;
 }

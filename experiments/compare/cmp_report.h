@@ -17,11 +17,19 @@ typedef struct {
     char msg[240];         /* the first failure */
 } cmp_point;
 
-/* The points of case c in plan order (room for pl->nunits), its reference
- * and aux reference (NaN when the case has no runs). */
+/* A case's references: the value errors are taken against (the
+ * CMP_REFERENCE row's result, or the analytic value), its error bar, and
+ * the analytic value (NaN when the case has none); the same for aux. */
+typedef struct {
+    double value, sem, analytic;
+    double aux, aux_analytic;
+} cmp_refs;
+
+/* The points of case c in plan order (room for pl->nunits) and its
+ * references (NaN when the case has no runs). */
 int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_point *pts, size_t *npts,
-                double *ref, double *aux_ref, gr_err *err);
+                cmp_refs *ref, gr_err *err);
 /* The checks (printed); returns how many failed. */
-int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n);
+int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref);
 
 #endif

@@ -4,6 +4,7 @@
  * homogeneous cooling. Each writes an HDF5 file, a plain table and PNG
  * figures; this file holds the command (course_common.c what they share). */
 #include <errno.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,6 +15,8 @@
 
 #include "cmd.h"
 #include "course.h"
+#include "files.h"
+#include "opts.h"
 #include "init.h"
 
 /* Refuse, before any output, a method that does not count disk-disk
@@ -38,7 +41,7 @@ static int require_pairs(const course_opts *o, const char *ex, gr_err *err)
 static void usage(FILE *f)
 {
     fprintf(f, "usage: grano course EXERCISE [--method M] [--quick] [--out DIR] [--naive|--tree]\n"
-               "                    [--alpha A] [--seed S]\n\n"
+               "                    [--alpha A] [--seed S] [--force] [--help] [--version]\n\n"
                "The exercises of the lecture slides on event-driven hard disks (docs/course.md):\n"
                "  maxwell    speed histograms after N/2, N, 2N, 3N, 10N collisions against Maxwell's law\n"
                "  pressure   wall pressure against the density n = N/L^2 and against V0\n"
@@ -48,36 +51,63 @@ static void usage(FILE *f)
                "the method must give the counter 'pair_collisions'. --out DIR: where the .h5, .dat\n"
                "and .png files go (default course-out); --quick: small runs for tests; --naive: the\n"
                "slides' algorithm v1.0 (edmd's algorithm = naive, the default for maxwell) instead\n"
-               "of the event tree; --tree forces the tree.\n");
+               "of the event tree; --tree forces the tree. An exercise's existing result file\n"
+               "DIR/EXERCISE.h5 is replaced only with --force.\n");
 }
 
-/* Options into o; 0, or the exit code of a bad flag (reported here). */
-static int parse(int argc, char **argv, course_opts *o)
+enum { O_QUICK = 'Q', O_NAIVE = 0x100, O_TREE, O_OUT = 'o', O_METHOD = 'm', O_ALPHA = 0x103, O_SEED = 's',
+       O_FORCE = 'f' };
+
+typedef struct {
+    course_opts *o;
+    const char *method;
+} parse_ctx;
+
+static int one_option(void *ctx, int id, const char *arg, gr_err *err)
 {
-    const char *method = "edmd";
-    for (int a = 2; a < argc; a++) {
-        if (!strcmp(argv[a], "--quick"))
-            o->quick = 1;
-        else if (!strcmp(argv[a], "--naive"))
-            o->naive = 1;
-        else if (!strcmp(argv[a], "--tree"))
-            o->naive = 0;
-        else if (a + 1 < argc && !strcmp(argv[a], "--out"))
-            o->out = argv[++a];
-        else if (a + 1 < argc && !strcmp(argv[a], "--method"))
-            method = argv[++a];
-        else if (a + 1 < argc && !strcmp(argv[a], "--alpha"))
-            o->alpha = atof(argv[++a]);
-        else if (a + 1 < argc && !strcmp(argv[a], "--seed"))
-            o->seed = strtoul(argv[++a], NULL, 10);
-        else {
-            fprintf(stderr, "grano course: unknown or incomplete option '%s'\n", argv[a]);
-            usage(stderr);
-            return 2;
-        }
+    parse_ctx *c = ctx;
+    course_opts *o = c->o;
+    long seed;
+    switch (id) {
+    case O_QUICK: o->quick = 1; return 0;
+    case O_NAIVE: o->naive = 1; return 0;
+    case O_TREE: o->naive = 0; return 0;
+    case O_FORCE: o->force = 1; return 0;
+    case O_OUT: o->out = arg; return 0;
+    case O_METHOD: c->method = arg; return 0;
+    case O_ALPHA: return exp_opt_double("--alpha", arg, 1e-9, 1 - 1e-9, &o->alpha, err);
+    case O_SEED:
+        if (exp_opt_long("--seed", arg, 0, LONG_MAX, &seed, err))
+            return err->code;
+        o->seed = (unsigned long)seed;
+        return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
     }
+}
+
+/* Options into o and the exercise; 0, -1 (help or version printed: exit
+ * 0), or the exit code of a bad flag (reported here). */
+static int parse(int argc, char **argv, course_opts *o, const char **ex)
+{
+    static const struct option opts[] = {
+        {"quick", no_argument, NULL, O_QUICK},        {"naive", no_argument, NULL, O_NAIVE},
+        {"tree", no_argument, NULL, O_TREE},          {"out", required_argument, NULL, O_OUT},
+        {"method", required_argument, NULL, O_METHOD}, {"alpha", required_argument, NULL, O_ALPHA},
+        {"seed", required_argument, NULL, O_SEED},    {"force", no_argument, NULL, O_FORCE},
+        {NULL, 0, NULL, 0}};
+    parse_ctx c = {o, "edmd"};
     gr_err err = {0};
-    if (gr_method_lookup(method, "--method", &o->m, &err)) {
+    int first = 0;
+    int rc = exp_getopt_main("course", argc, argv, opts, one_option, &c, usage, 1, &first);
+    if (rc >= 0)
+        return rc ? rc : -1;
+    if (first >= argc) {
+        fprintf(stderr, "grano course: missing EXERCISE\n");
+        usage(stderr);
+        return 2;
+    }
+    *ex = argv[first];
+    if (gr_method_lookup(c.method, "--method", &o->m, &err)) {
         fprintf(stderr, "grano course: %s\n", err.msg);
         return 2;
     }
@@ -86,24 +116,34 @@ static int parse(int argc, char **argv, course_opts *o)
                 o->naive ? "naive" : "tree", o->m->name);
         return 2;
     }
-    if (!(o->alpha > 0 && o->alpha < 1)) {
-        fprintf(stderr, "grano course: --alpha must be in (0, 1), got %g\n", o->alpha);
-        return 2;
+    return 0;
+}
+
+/* An exercise's result file is replaced only with --force. */
+static int check_results(const course_opts *o, const char *ex, int all)
+{
+    static const char *const names[] = {"maxwell", "pressure", "cooling"};
+    for (int k = 0; k < 3; k++) {
+        if (!all && strcmp(ex, names[k]))
+            continue;
+        char path[1200];
+        snprintf(path, sizeof path, "%s/%s.h5", o->out, names[k]);
+        gr_err e = {0};
+        if (exp_check_writable(path, "--out", o->force, &e)) {
+            fprintf(stderr, "grano course: %s\n", e.msg);
+            return 2;
+        }
     }
     return 0;
 }
 
 int cmd_course(int argc, char **argv)
 {
-    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
-        usage(argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
-    }
-    const char *ex = argv[1];
+    const char *ex = NULL;
     course_opts o = {.out = "course-out", .quick = 0, .naive = -1, .alpha = 0.9, .seed = 1};
-    int rc = parse(argc, argv, &o);
+    int rc = parse(argc, argv, &o, &ex);
     if (rc)
-        return rc;
+        return rc < 0 ? 0 : rc;
     int all = !strcmp(ex, "all");
     if (!all && strcmp(ex, "maxwell") && strcmp(ex, "pressure") && strcmp(ex, "cooling")) {
         fprintf(stderr, "grano course: unknown exercise '%s'\n", ex);
@@ -120,6 +160,8 @@ int cmd_course(int argc, char **argv)
         fprintf(stderr, "grano course: cannot create %s: %s\n", o.out, strerror(errno));
         return 2;
     }
+    if ((rc = check_results(&o, ex, all)))
+        return rc;
     int naive = o.naive;
     if (!rc && (all || !strcmp(ex, "maxwell"))) {
         /* the first exercise is the slides' v1.0 */

@@ -19,6 +19,7 @@ typedef struct {
     int naive;     /* [edmd] algorithm = naive (v1.0 of the slides) instead of the tree */
     double alpha;  /* cooling */
     unsigned long seed;
+    int force;     /* replace existing result files */
     const gr_method_type *m;
     gr_progress *pg; /* the exercise's progress line on a terminal (NULL: none) */
 } course_opts;

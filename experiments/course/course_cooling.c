@@ -121,10 +121,10 @@ static int plot(const course_opts *o, const cooling *w, gr_err *err)
         fprintf(gp, "%.6g %.6g %.6g %.6g %.6g\n", tab[6 * k], tab[6 * k + 1], tab[6 * k + 2], tab[6 * k + 3],
                 tab[6 * k + 4]);
     fprintf(gp, "EOD\nset multiplot layout 1,2\nset logscale y\nset key top right\n");
-    fprintf(gp, "set title 'Cooling, {/Symbol a} = %g: T against collisions'\nset xlabel 'C/N'\n"
-                "set ylabel 'T/T_0'\nplot $d u 1:3 w p pt 7 t 'measured', $d u 1:4 w l lw 2 "
+    fprintf(gp, "set title 'Cooling, {/Symbol a} = %g: T against collisions'\nset xlabel 'collisions per disk C/N'\n"
+                "set ylabel 'T / T_0 (T_0: temperature at the quench)'\nplot $d u 1:3 w p pt 7 t 'measured', $d u 1:4 w l lw 2 "
                 "t 'exp(-(1-{/Symbol a}^2) C/N)'\n", w->alpha);
-    fprintf(gp, "set title 'Haff law, Enskog {/Symbol t} = %.3g'\nset xlabel '1 + t/{/Symbol t}'\nset logscale x\n"
+    fprintf(gp, "set title 'Haff law, Enskog {/Symbol t} = %.3g'\nset xlabel '1 + t/{/Symbol t} (t in units of d/V_0)'\nset logscale x\n"
                 "plot $d u (1+$2/%.8g):3 w p pt 7 t 'measured', $d u (1+$2/%.8g):5 w l lw 2 "
                 "t '(1+t/{/Symbol t})^{-2}'\nunset multiplot\n", tab[5], tab[5], tab[5]);
     return gr_plot_close(gp, path, err);

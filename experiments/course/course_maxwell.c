@@ -140,11 +140,11 @@ static int plot(const course_opts *o, const maxwell *w, gr_err *err)
         fprintf(gp, "%g %g\n", stage[k], w->ks[k]);
     fprintf(gp, "EOD\nset multiplot layout 1,2\n");
     fprintf(gp, "set title 'Speed histograms, %ld disks x %ld runs'\nset xlabel 'v / V_0'\n"
-                "set ylabel 'f(v)'\nset key top right\n", w->n, w->runs);
+                "set ylabel 'f(v) / V_0^{-1}'\nset key top right\n", w->n, w->runs);
     fprintf(gp, "plot for [k=2:6] $h u 1:k w histeps lw 2 t sprintf('C/N = %%s', word('0.5 1 2 3 10', k-1)), "
                 "2*x*exp(-x*x) w l lw 3 dt 2 lc 'black' t 'Maxwell'\n");
     fprintf(gp, "set title 'Kolmogorov-Smirnov distance to Maxwell'\nset xlabel 'collisions per disk C/N'\n"
-                "set ylabel 'D'\nset logscale xy\nunset key\n");
+                "set ylabel 'KS distance D (dimensionless)'\nset logscale xy\nunset key\n");
     fprintf(gp, "plot $k w lp pt 7 lw 2, %g w l dt 2 lc 'black'\nunset multiplot\n",
             0.87 / sqrt((double)(w->n * w->runs)));
     return gr_plot_close(gp, path, err);

@@ -151,12 +151,14 @@ static int plot(const course_opts *o, const pressure *w, int f, gr_err *err)
             fprintf(gp, "%.6g%c", f ? w->B[3 * k + q] : w->A[6 * k + q], q + 1 < cols ? ' ' : '\n');
     fprintf(gp, "EOD\nset key top left\n");
     if (!f)
-        fprintf(gp, "set title 'Wall pressure, V_0 = 1, L = %g'\nset xlabel 'n = N/L^2'\nset ylabel 'p'\n"
+        fprintf(gp, "set title 'Wall pressure, V_0 = 1, L = %g d'\nset xlabel 'number density n = N/L^2 / d^{-2}'\n"
+                    "set ylabel 'wall pressure p / (m V_0^2 d^{-2})'\n"
                     "plot $d u 2:3 w p pt 7 ps 1.5 t 'measured', $d u 2:4 w l lw 2 t 'ideal gas n T', "
                     "$d u 2:5 w l dt 2 lw 2 t 'ideal gas, walls', $d u 2:6 w l lw 2 t 'hard disks (Luding), walls'\n",
                 L);
     else
-        fprintf(gp, "set title 'Wall pressure against V_0, N = %d, L = %g'\nset xlabel 'V_0'\nset ylabel 'p'\n"
+        fprintf(gp, "set title 'Wall pressure against V_0, N = %d, L = %g d'\nset xlabel 'V_0 / u (u: the speed unit, V_0 of the density sweep)'\n"
+                    "set ylabel 'wall pressure p / (m u^2 d^{-2})'\n"
                     "plot $d u 1:2 w p pt 7 ps 1.5 t 'measured', %.8g*x*x w l lw 2 t 'p = %.4g V_0^2'\n",
                 NFIX, L, w->c, w->c);
     return gr_plot_close(gp, path, err);

@@ -14,6 +14,8 @@
 #include "init.h"
 #include "plot.h"
 #include "progress.h"
+#include "stress.h"
+#include "restart.h"
 
 void gr_run_ckpt_path(const char *out, char *buf, size_t n)
 {
@@ -76,7 +78,26 @@ static int check_text(gr_ckpt *ck, const char *name, const char *want, const cha
     return rc;
 }
 
-int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err)
+/* The stored scene text, allocated. */
+static char *stored_text(gr_ckpt *ck, const char *path, gr_err *err)
+{
+    size_t n;
+    if (gr_ckpt_len(ck, "run_scene_text", &n, err)) {
+        gr_fail(err, GR_EINPUT, "%s: not a grano run checkpoint (no run_scene_text)", path);
+        return NULL;
+    }
+    char *s = calloc(n + 1, 1);
+    if (!s)
+        gr_fail(err, GR_ERUN, "out of memory");
+    else if (gr_ckpt_get_bytes(ck, "run_scene_text", s, n, err)) {
+        free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], const gr_run_opts *o, gr_runctl *old_run,
+                gr_err *err)
 {
     const gr_scene *sc = gr_sim_scene(sim);
     const gr_method_type *m = gr_sim_type(sim);
@@ -84,12 +105,17 @@ int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err
     if (!ck)
         return err->code;
     uint64_t seed;
-    int rc = check_text(ck, "run_scene_text", sc->text, path, "scene (its text differs)", err);
+    *old_run = sc->run;
+    char *text = stored_text(ck, path, err);
+    int rc = text ? GR_OK : err->code;
+    if (!rc && strcmp(text, sc->text))
+        rc = gr_restart_compare(sc, text, path, o->branch, o->notes, o->notes_cap, old_run, err);
+    free(text);
     if (!rc)
         rc = check_text(ck, "run_method", m->name, path, "method", err);
-    if (!rc && !(rc = gr_ckpt_get_u64(ck, "run_seed", &seed, 1, err)) && seed != sc->seed)
-        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written with seed %llu, not %llu", path,
-                     (unsigned long long)seed, (unsigned long long)sc->seed);
+    if (!rc && !(rc = gr_ckpt_get_u64(ck, "run_seed", &seed, 1, err)) && seed != sc->seed && !o->branch)
+        rc = gr_fail(err, GR_EINPUT, "--restart: %s was written with seed %llu, not %llu (--branch starts a new output with the new seed)",
+                     path, (unsigned long long)seed, (unsigned long long)sc->seed);
     if (!rc)
         rc = gr_ckpt_get_u64(ck, "run_counters", counters, 3, err);
     if (!rc)
@@ -133,9 +159,27 @@ typedef struct {
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
-    gr_contacts *net;  /* [run] contacts = yes */
+    gr_contacts *net;  /* [run] contacts = yes or stress = yes */
     double *buf;
+    double *sbuf;      /* [run] stress = yes: nx * ny * 4 on the field grid */
 } run_io;
+
+/* [run] stress = yes: the contact stress of the frame's network over the
+ * domain (fields/stress_global, one cell) and on the field grid. */
+static int write_stress(run_io *io, const gr_scene *sc, uint64_t step, double t, gr_err *err)
+{
+    double g[4];
+    int nx = sc->run.field_nx, ny = sc->run.field_ny;
+    if (gr_stress_contacts(sc, io->snap, io->net, t, nx, ny, g, io->sbuf, err))
+        return err->code;
+    gr_field_desc d = {"stress_global", "m tau-2", 1, 1, 4, 0, 0, sc->width, sc->height};
+    if (gr_h5md_write_field(io->h, &d, step, t, g, err))
+        return err->code;
+    if (!io->sbuf)
+        return GR_OK;
+    d = (gr_field_desc){"stress", "m tau-2", nx, ny, 4, 0, 0, sc->width / nx, sc->height / ny};
+    return gr_h5md_write_field(io->h, &d, step, t, io->sbuf, err);
+}
 
 static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
 {
@@ -225,7 +269,9 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
             if (io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
-                            (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))))
+                            (sc->run.contacts &&
+                             (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))) ||
+                            (sc->run.stress && (status = write_stress(io, sc, obs.steps, t, err)))))
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
@@ -252,17 +298,61 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     return status;
 }
 
-/* `[run] contacts = yes` asks the method for its contact network with each
- * frame: refused up front, naming the line, if the method has none. */
+/* After a restart whose intervals changed, the next sample of each kind
+ * is the first of the new interval after the checkpoint; a branch samples
+ * the checkpoint's state itself first, as a fresh run samples its start. */
+static void resume_counters(const gr_scene *sc, const gr_runctl *was, double t, double t0, int branch,
+                            uint64_t k[3])
+{
+    const gr_runctl *r = &sc->run;
+    const double now[3] = {r->observe_every, r->output_every, r->checkpoint_every};
+    const double old[3] = {was->observe_every, was->output_every, was->checkpoint_every};
+    double eps = 1e-9 * (r->until > 1 ? r->until : 1);
+    for (int j = 0; j < 3; j++) {
+        if (branch && j < 2)
+            k[j] = next_index(t - 2 * eps, t0, now[j], eps);
+        else if (now[j] != old[j])
+            k[j] = next_index(t, t0, now[j], eps);
+    }
+}
+
+/* `[run] contacts = yes` (or stress = yes) asks the method for its contact
+ * network with each frame: refused up front, naming the line, if the method
+ * has none. The stress also needs the grains' positions: snapshots. */
 static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io, gr_err *err)
 {
     char where[1200], who[1300];
-    gr_scene_where(sc, "run", "contacts", where, sizeof where);
+    gr_scene_where(sc, "run", sc->run.contacts ? "contacts" : "stress", where, sizeof where);
     snprintf(who, sizeof who, "%s = yes", where);
-    if (gr_sim_require(m, GR_OP_CONTACTS, who, err))
+    if (gr_sim_require(m, GR_OP_CONTACTS, who, err) ||
+        (sc->run.stress && gr_sim_require(m, GR_OP_SNAPSHOT, who, err)))
         return err->code;
     io->net = gr_contacts_create(0, err);
+    if (io->net && sc->run.stress && sc->run.field_nx > 0 &&
+        !(io->sbuf = malloc((size_t)sc->run.field_nx * (size_t)sc->run.field_ny * 4 * sizeof *io->sbuf)))
+        return gr_fail(err, GR_ERUN, "out of memory");
     return io->net ? GR_OK : err->code;
+}
+
+/* A method without snapshots (a lattice): the picture of the final state is
+ * its packing field on cells of about one grain diameter. */
+static int plot_density(const char *png, gr_sim *st, gr_err *err)
+{
+    const gr_scene *sc = gr_sim_scene(st);
+    int nx = (int)ceil(sc->width), ny = (int)ceil(sc->height);
+    nx = nx > 1200 ? 1200 : nx < 1 ? 1 : nx, ny = ny > 1200 ? 1200 : ny < 1 ? 1 : ny;
+    gr_field *f = gr_field_create(nx, ny, 0, 0, sc->width / nx, sc->height / ny, err);
+    double *phi = f ? malloc(gr_field_ncells(f) * sizeof *phi) : NULL;
+    int rc = !f || !phi ? (err->code ? err->code : gr_fail(err, GR_ERUN, "out of memory"))
+                        : gr_sim_fields(st, f, 1.0, err);
+    if (!rc) {
+        gr_field_packing(f, phi);
+        gr_plot_grid g = {nx, ny, 0, 0, f->cx, f->cy, phi, "packing fraction (lattice: occupied channels / 7)"};
+        rc = gr_plot_field(png, &g, sc->width, sc->height, gr_sim_time(st), sc->name, err);
+    }
+    free(phi);
+    gr_field_free(f);
+    return rc;
 }
 
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
@@ -278,18 +368,25 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     }
     if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
-    if (sc->run.contacts && (rc = want_contacts(sc, m, &io, err)))
+    if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
+    int at_end = 0;
     double t0 = gr_sim_time(st);
     if (o->restart) {
-        if ((rc = gr_run_load(o->restart, st, k, err)))
+        gr_runctl was;
+        if ((rc = gr_run_load(o->restart, st, k, o, &was, err)))
             goto done;
-        if (gr_sim_time(st) >= sc->run.until - 1e-9 * (sc->run.until > 1 ? sc->run.until : 1)) {
-            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, already at the end time until = %g; nothing to run",
+        resume_counters(sc, &was, gr_sim_time(st), t0, o->branch, k);
+        /* Past the end: refused. At the end (killed while closing): the
+         * result is reopened and closed, nothing run or written twice. */
+        double eps = 1e-9 * (sc->run.until > 1 ? sc->run.until : 1);
+        if (gr_sim_time(st) > sc->run.until + (o->branch ? -eps : eps)) {
+            rc = gr_fail(err, GR_EINPUT, "--restart: %s holds t = %g, at or past the end time until = %g; nothing to run",
                          o->restart, gr_sim_time(st), sc->run.until);
             goto done;
         }
+        at_end = gr_sim_time(st) >= sc->run.until - eps;
     }
     if (sc->run.field_nx > 0) {
         io.field = gr_field_create(sc->run.field_nx, sc->run.field_ny, 0, 0,
@@ -309,13 +406,14 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
     struct stat ost;
-    int cont = o->restart && stat(o->out, &ost) == 0;
+    int cont = o->restart && !o->branch && stat(o->out, &ost) == 0;
+    ho.any_text = cont;
     if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, gr_sim_time(st), err)
                       : gr_h5md_create(o->out, sc, &ho, err))) {
         rc = err->code;
         goto done;
     }
-    rc = loop(sc, st, &io, o, k, t0, err);
+    rc = at_end ? GR_OK : loop(sc, st, &io, o, k, t0, err);
     if (rc == GR_ERUN && o->ckpt) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};
@@ -324,7 +422,9 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     } else if (rc == GR_OK && o->ckpt) {
         rc = gr_run_save(o->ckpt, st, k, err);
     }
-    if (rc == GR_OK && o->snapshot) {
+    if (rc == GR_OK && o->snapshot && !m->snapshot)
+        rc = plot_density(o->snapshot, st, err);
+    else if (rc == GR_OK && o->snapshot) {
         if (!(rc = gr_sim_snapshot(st, io.snap, err)))
             rc = gr_plot_snapshot(o->snapshot, io.snap, sc->width, sc->height, gr_sim_time(st), sc->name, err);
     }
@@ -338,6 +438,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
 done:
     gr_h5md_free(io.h);
     free(io.buf);
+    free(io.sbuf);
     gr_field_free(io.field);
     gr_contacts_free(io.net);
     gr_sim_free(st);

@@ -16,6 +16,9 @@ typedef struct {
     const char *snapshot; /* PNG of the final state (NULL: none) */
     int force;            /* replace existing files */
     int progress;         /* progress line on a terminal */
+    int branch;           /* restart into a new output, physical changes allowed */
+    char *notes;          /* receives the scene differences a restart allowed */
+    size_t notes_cap;
 } gr_run_opts;
 
 /* "<out minus .h5>.ckpt" */
@@ -33,6 +36,9 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
 
 /* Save / restore a method's full state and the run counters. */
 int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_err *err);
-int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], gr_err *err);
+/* Load: the scene may differ from the checkpoint's as restart.h allows
+ * (o->branch, o->notes); *old_run receives the checkpoint's [run]. */
+int gr_run_load(const char *path, gr_sim *sim, uint64_t counters[3], const gr_run_opts *o, gr_runctl *old_run,
+                gr_err *err);
 
 #endif

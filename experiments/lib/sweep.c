@@ -138,6 +138,7 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
     }
     size_t ntodo = plan_units(sw, label, keyf, ctx, paths, keys, slot, todo, done_before);
     gr_progress *pg = sw->progress && ntodo ? gr_progress_create(stderr, 0, (double)ntodo, 1.0) : NULL;
+    gr_progress_label(pg, "units");
     size_t next = 0, running = 0, finished = 0;
     int rc = GR_OK;
     int jobs = sw->jobs > 0 ? sw->jobs : 1;

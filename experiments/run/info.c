@@ -6,6 +6,7 @@
 
 #include "cmd.h"
 #include "h5md.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -18,7 +19,8 @@ static void usage(FILE *f)
         "options:\n"
         "  --xdmf       also (re)write the ParaView sidecar FILE.xdmf from what the file\n"
         "               holds (a killed run's sidecar may miss its last frames)\n"
-        "  -h, --help   this help\n\n"
+        "  -h, --help   this help\n"
+        "  --version    grano's version\n\n"
         "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
         "missing file, a file grano did not write, or bad usage.\n");
 }
@@ -33,6 +35,10 @@ static size_t count_lines(const char *s)
 
 static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
 {
+    if (!in->nframes && !(isfinite(in->box[0]) && isfinite(in->box[1]))) {
+        printf("trajectory   none: a file of result tables (below), e.g. of grano course\n");
+        return GR_OK;
+    }
     printf("box          %g x %g d; boundaries x %s, y %s\n", in->box[0], in->box[1],
            in->periodic[0] ? "periodic" : "none", in->periodic[1] ? "periodic" : "none");
     if (!in->nframes) {
@@ -117,10 +123,35 @@ static int print_fields(gr_h5md_reader *r, gr_err *err)
             !(rc = gr_h5md_series_info(r, path, &samples, &t0, &t1, err)))
             printf("%-12s %s: %d x %d cells of %g x %g d%s, %zu samples, t = %g .. %g\n",
                    i ? "" : "fields", names[i], f.nx, f.ny, f.dx, f.dy,
-                   f.ncomp > 1 ? ", vector" : "", samples, t0, t1);
+                   f.ncomp == 2 ? ", vector" : f.ncomp == 4 ? ", 2x2 tensor" : "", samples, t0, t1);
     }
     gr_h5md_names_free(names, n);
     return rc;
+}
+
+/* A result's description and columns, and its values when it is small
+ * (a course exercise's table, a fit). */
+static int print_table(gr_h5md_reader *r, const char *name, size_t rows, size_t cols, gr_err *err)
+{
+    char desc[512], names[512];
+    double *v = NULL;
+    int rc = gr_h5md_result_text(r, name, desc, sizeof desc, names, sizeof names, err);
+    printf("%s%s\n", desc[0] ? ": " : "", desc);
+    if (!rc && names[0])
+        printf("%-12s   columns: %s\n", "", names);
+    size_t nc = cols ? cols : 1;
+    if (rc || rows * nc > 120 || nc > 10)
+        return rc;
+    if ((rc = gr_h5md_read_result(r, name, &rows, &cols, &v, err)))
+        return rc;
+    for (size_t i = 0; i < rows; i++) {
+        printf("%-12s  ", "");
+        for (size_t j = 0; j < nc; j++)
+            printf(" %11.5g", v[i * nc + j]);
+        printf("\n");
+    }
+    free(v);
+    return GR_OK;
 }
 
 /* results/ may hold subgroups: walk them. */
@@ -139,39 +170,38 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
             continue;
         }
         if (cols)
-            printf("%-12s %s [%zu x %zu]\n", *shown ? "" : "results", path + 8, rows, cols);
+            printf("%-12s %s [%zu x %zu]", *shown ? "" : "results", path + 8, rows, cols);
         else
-            printf("%-12s %s [%zu]\n", *shown ? "" : "results", path + 8, rows);
+            printf("%-12s %s [%zu]", *shown ? "" : "results", path + 8, rows);
         (*shown)++;
+        rc = print_table(r, path + 8, rows, cols, err);
     }
     gr_h5md_names_free(names, n);
     return rc;
 }
 
+static int info_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    (void)arg;
+    if (id != 'x')
+        return gr_fail(err, GR_EINPUT, "unknown option");
+    *(int *)ctx = 1;
+    return 0;
+}
+
 int cmd_info(int argc, char **argv)
 {
-    const char *file = NULL;
-    int xdmf = 0, nfiles = 0;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--xdmf")) {
-            xdmf = 1;
-        } else if (argv[i][0] == '-' && argv[i][1]) {
-            fprintf(stderr, "grano info: unknown option '%s'\n", argv[i]);
-            usage(stderr);
-            return 2;
-        } else {
-            file = argv[i];
-            nfiles++;
-        }
-    }
-    if (nfiles != 1) {
+    static const struct option opts[] = {{"xdmf", no_argument, NULL, 'x'}, {NULL, 0, NULL, 0}};
+    int xdmf = 0, first = 0;
+    int prc = exp_getopt_main("info", argc, argv, opts, info_option, &xdmf, usage, 1, &first);
+    if (prc >= 0)
+        return prc;
+    if (first != argc - 1) {
         fprintf(stderr, "grano info: expected one FILE\n");
         usage(stderr);
         return 2;
     }
+    const char *file = argv[first];
     gr_err err = {0};
     gr_h5md_reader *r = gr_h5md_open(file, &err);
     if (!r) {
@@ -187,9 +217,11 @@ int cmd_info(int argc, char **argv)
     printf("method       %s, seed %llu\n", in->method[0] ? in->method : "?",
            (unsigned long long)in->seed);
     int rc = print_frames(r, in, &err);
-    if (!rc)
+    /* a table file (no trajectory, no series) has no observables or fields to list */
+    int series = in->nframes || in->nobs;
+    if (!rc && series)
         rc = print_obs(r, in, &err);
-    if (!rc)
+    if (!rc && series)
         rc = print_fields(r, &err);
     int shown = 0;
     if (!rc)

@@ -6,10 +6,11 @@
 
 #include "cmd.h"
 #include "method.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: grano methods [NAME]\n\n"
+    fprintf(f, "usage: grano methods [NAME] [--help] [--version]\n\n"
                "Each registered method (or only NAME): what it represents, the scene features\n"
                "it supports (a scene asking for another is refused), its optional operations,\n"
                "and the keys of its scene section with type, default, range, unit and meaning.\n");
@@ -30,7 +31,7 @@ static void print_method(const gr_method_type *m)
     printf("\n  not supported:");
     first = 1;
     for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
-        if (!(m->features & (1u << b))) {
+        if (!(m->features & (1u << b)) && gr_feature_known(1u << b)) {
             printf("%s %s", first ? "" : ";", gr_feature_name(1u << b));
             first = 0;
         }
@@ -45,20 +46,27 @@ static void print_method(const gr_method_type *m)
     gr_params_print(stdout, m->params);
 }
 
+static int no_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    (void)ctx, (void)id, (void)arg;
+    return gr_fail(err, GR_EINPUT, "unknown option");
+}
+
 int cmd_methods(int argc, char **argv)
 {
-    if (argc > 1 && (!strcmp(argv[1], "--help") || !strcmp(argv[1], "-h"))) {
-        usage(stdout);
-        return 0;
-    }
-    if (argc > 2) {
+    static const struct option none[] = {{NULL, 0, NULL, 0}};
+    int first = 0;
+    int prc = exp_getopt_main("methods", argc, argv, none, no_option, NULL, usage, 1, &first);
+    if (prc >= 0)
+        return prc;
+    if (argc - first > 1) {
         usage(stderr);
         return 2;
     }
-    if (argc == 2) {
+    if (argc - first == 1) {
         const gr_method_type *m;
         gr_err err = {0};
-        if (gr_method_lookup(argv[1], "grano methods", &m, &err)) {
+        if (gr_method_lookup(argv[first], "grano methods", &m, &err)) {
             fprintf(stderr, "grano: %s\n", err.msg);
             return 2;
         }

@@ -14,6 +14,7 @@
 #include "h5md.h"
 #include "init.h"
 #include "method.h"
+#include "opts.h"
 #include "plot.h"
 #include "progress.h"
 #include "runio.h"
@@ -35,11 +36,16 @@ static void usage(FILE *f)
         "  -o, --out FILE       result file (default results/<scene>-<method>.h5)\n"
         "  -f, --force          replace an existing result file and its checkpoint\n"
         "  -r, --restart CKPT   continue from a checkpoint written by a run of SCENE;\n"
-        "                       an existing --out is continued (frames after CKPT dropped)\n"
-        "      --snapshot PNG   a picture of the final state, grains coloured by speed\n"
+        "                       an existing --out is continued (frames after CKPT dropped);\n"
+        "                       SCENE's [run] and [measure] may differ from the checkpoint's\n"
+        "      --branch         with --restart: a new --out from the checkpoint's state, where\n"
+        "                       physical parameters (and --seed) may differ too\n"
+        "      --snapshot PNG   a picture of the final state, grains coloured by speed (a lattice\n"
+        "                       method: its density field, cells of about one diameter)\n"
         "      --set S.K=V      set key K of section S as a scene line would (repeatable)\n"
-        "  -q, --quiet          no progress line\n"
-        "  -h, --help           this help\n\n"
+        "  -q, --quiet          no progress line (terminal) or thermo lines (otherwise)\n"
+        "  -h, --help           this help\n"
+        "      --version        grano's version\n\n"
         "A checkpoint <out>.ckpt is written every [run] checkpoint_every and at the end;\n"
         "a run that goes unstable stops with a diagnostic, exit code 1, and its\n"
         "checkpoint holds the last good state. Bad input exits with code 2.\n");
@@ -51,7 +57,7 @@ typedef struct {
     size_t nsets;
     double until;
     long long seed;
-    int force, quiet;
+    int force, quiet, branch;
 } run_args;
 
 static int parse_args(int argc, char **argv, run_args *a)
@@ -62,6 +68,7 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"force", no_argument, NULL, 'f'},        {"restart", required_argument, NULL, 'r'},
         {"snapshot", required_argument, NULL, 'P'}, {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},         {"set", required_argument, NULL, 'S'},
+        {"version", no_argument, NULL, 'V'},    {"branch", no_argument, NULL, 'B'},
         {NULL, 0, NULL, 0}};
     *a = (run_args){.method = "dem", .until = NAN, .seed = -1};
     int c;
@@ -99,6 +106,8 @@ static int parse_args(int argc, char **argv, run_args *a)
             a->sets[a->nsets++] = optarg;
             break;
         case 'h': usage(stdout); exit(0);
+        case 'V': exp_print_version("run"); exit(0);
+        case 'B': a->branch = 1; break;
         case ':':
             fprintf(stderr, "grano run: option '%s' needs a value\n", argv[optind - 1]);
             return 2;
@@ -129,7 +138,7 @@ static int check_outputs(const run_args *a, const char *out, const char *ckpt, g
         if (exp_remove_stale(stale) && !a->quiet)
             fprintf(stderr, "grano run: removed %s, a partial file left by an interrupted run\n", stale);
     }
-    int cont = a->restart != NULL;
+    int cont = a->restart != NULL && !a->branch;
     if (exp_check_writable(out, "--out", a->force || cont, e) ||
         exp_check_writable(ckpt, "--out (its checkpoint)", a->force || cont, e) ||
         (a->snapshot && exp_check_writable(a->snapshot, "--snapshot", 1, e)))
@@ -179,10 +188,21 @@ int cmd_run(int argc, char **argv)
         gr_scene_free(sc);
         return fail_msg(&e);
     }
+    if (a.branch && !a.restart) {
+        gr_scene_free(sc);
+        fprintf(stderr, "grano run: --branch needs --restart CKPT\n");
+        return 2;
+    }
+    char notes[2048] = "";
     gr_run_opts ro = {.out = out, .ckpt = ckpt, .restart = a.restart, .force = a.force,
-                      .progress = !a.quiet, .snapshot = a.snapshot};
+                      .progress = !a.quiet, .snapshot = a.snapshot, .branch = a.branch,
+                      .notes = notes, .notes_cap = sizeof notes};
     rc = gr_run_scene(sc, m, &ro, &e);
     gr_scene_name_sets(sc, a.sets, a.nsets, &e);
+    if (notes[0] && !a.quiet)
+        fprintf(stderr, "grano run: %s from %s with these differences (%s): %s\n",
+                a.branch ? "branched" : "restarted", a.restart,
+                a.branch ? "--branch allows any" : "[run] and [measure] may differ", notes);
     if (rc)
         fail_msg(&e);
     else if (!a.quiet)

@@ -6,11 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dist.h"
 #include "opts.h"
+#include "progress.h"
 
 /* a long option without a short one */
 #define OPT_METHOD 0x100
 #define OPT_PARAM 0x101
+#define OPT_VERSION 0x102
 /* room for the common options, the command's own and the end mark */
 #define MAX_OPTS 24
 
@@ -22,7 +25,7 @@ static const struct option common_opts[] = {
     {"param", required_argument, NULL, OPT_PARAM},
     {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
     {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
-    {NULL, 0, NULL, 0}};
+    {"version", no_argument, NULL, OPT_VERSION}, {NULL, 0, NULL, 0}};
 
 void silo_unit_label(const double *orifice, int nreal, size_t unit, char *buf, size_t n)
 {
@@ -115,6 +118,10 @@ int silo_cli_parse(const silo_cli *cli, int argc, char **argv, silo_opts *o, voi
             cli->usage(stdout);
             return 0;
         }
+        if (ch == OPT_VERSION) {
+            exp_print_version(cli->name);
+            return 0;
+        }
         if (ch == ':') {
             fprintf(stderr, "grano %s: option '%s' needs a value\n", cli->name, argv[optind - 1]);
             return 2;
@@ -180,22 +187,66 @@ const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, siz
     return dir;
 }
 
-int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t nunits, const char *dir)
+/* "estimated ..." before a full run: the units' CPU seconds (the
+ * command's estimate at the rate measured unloaded) spread over the
+ * workers, phase by phase. */
+static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t nunits, int workers)
 {
+    double pre = 0, unit = 0;
+    cli->estimate(ctx, &pre, &unit);
+    if (!isfinite(pre) || !isfinite(unit))
+        return;
+    size_t w = workers > 0 ? (size_t)workers : 1;
+    double wall = (double)((npre + w - 1) / w) * pre + (double)((nunits + w - 1) / w) * unit;
+    char first[96] = "";
+    if (npre)
+        snprintf(first, sizeof first, "%zu %s of ~%.0f CPU s, then ", npre, cli->pre_what, pre);
+    fprintf(stderr,
+            "grano %s: estimated %.0f min wall on %zu worker%s: %s%zu %s of ~%.0f CPU s (at the rate measured "
+            "on an idle core; a loaded machine is slower)\n",
+            cli->name, wall / 60, w, w > 1 ? "s" : "", first, nunits, cli->units_what, unit);
+}
+
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,
+                   const char *dir)
+{
+    exp_dist d;
+    exp_dist_begin(&d);
     char pdir[1100];
     snprintf(pdir, sizeof pdir, "%s/parts", dir);
     gr_err e = {0};
-    int jobs = (int)o->jobs;
+    /* one process per rank under MPI: mpirun places the ranks on the cores */
+    int jobs = d.size > 1 ? 1 : (int)o->jobs;
     size_t reused = 0;
+    if (d.rank == 0 && !o->quiet && !o->quick && cli->estimate)
+        print_estimate(cli, ctx, npre, nunits, jobs * d.size);
+    double t0 = gr_wall_seconds();
+    int rc = GR_OK;
+    if (npre && cli->pre_unit) {
+        exp_sweep pre = {npre, jobs, pdir, cli->pre_prefix, !o->quiet, cli->pre_what, o->force};
+        rc = exp_dist_sweep(&d, &pre, cli->pre_unit, cli->pre_label, cli->pre_key, ctx, &e);
+    }
     exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force};
+    if (!rc && d.size > 1) {
+        rc = exp_dist_sweep(&d, &sw, cli->unit, cli->label, cli->key, ctx, &e);
+        sw.force = 0; /* rank 0 reads the parts every rank wrote */
+    }
     char summary[4096] = "";
     double t_units = 0;
-    int rc = exp_sweep_and_report(&sw, cli->unit, cli->label, cli->key, cli->report, ctx, summary,
+    if (!rc && d.rank == 0)
+        rc = exp_sweep_and_report(&sw, cli->unit, cli->label, cli->key, cli->report, ctx, summary,
                                    sizeof summary, &t_units, &reused, &e);
+    t_units = gr_wall_seconds() - t0;
     if (rc)
         fprintf(stderr, "grano %s: %s\n", cli->name, e.msg);
-    else if (!o->quiet)
-        fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s; wrote %s/\n%s", cli->name,
-                nunits, cli->units_what, reused, t_units, jobs, jobs > 1 ? "s" : "", dir, summary);
+    else if (d.rank == 0) {
+        /* Results on standard output, messages on standard error. */
+        if (!o->quiet)
+            fprintf(stderr, "grano %s: %zu %s (%zu reused) in %.1f s wall with %d job%s%s; wrote %s/\n", cli->name,
+                    nunits, cli->units_what, d.size > 1 ? (size_t)0 : reused, t_units, jobs * d.size,
+                    jobs * d.size > 1 ? "s" : "", d.size > 1 ? " (MPI ranks)" : "", dir);
+        fputs(summary, stdout);
+    }
+    exp_dist_end(&d);
     return rc;
 }

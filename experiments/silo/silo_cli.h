@@ -43,6 +43,14 @@ typedef struct {
     exp_unit_fn unit;
     exp_label_fn label, key;
     exp_report_fn report;
+    /* units run first (NULL: none), whose parts <pre_prefix>-<label>.part
+       the units read: silo-flow's fillings, one per realisation */
+    exp_unit_fn pre_unit;
+    exp_label_fn pre_label, pre_key;
+    const char *pre_prefix, *pre_what;
+    /* CPU seconds of a first unit and of a unit, printed as the estimated
+       time before a full (not --quick) run; NULL: none */
+    void (*estimate)(const void *ctx, double *pre, double *unit);
 } silo_cli;
 
 /* The label of unit `unit` of a sweep over orifices x nreal realisations
@@ -67,8 +75,10 @@ int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, doubl
 /* The output directory: --out, else results/<name>[-quick]; returns dir. */
 const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, size_t n);
 
-/* Run (or reuse) the nunits units of ctx into dir/parts, then the
- * report; the closing line unless --quiet. Returns the exit code. */
-int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t nunits, const char *dir);
+/* Run (or reuse) the npre first units (cli->pre_unit), then the nunits
+ * units of ctx into dir/parts, then the report; the closing line unless
+ * --quiet. Returns the exit code. */
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,
+                   const char *dir);
 
 #endif

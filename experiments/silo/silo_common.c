@@ -136,6 +136,13 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
     return sc;
 }
 
+double silo_cpu_estimate(const silo_cfg *c, double steps)
+{
+    /* the wall grains: two sides and the base */
+    double grains = (double)c->n + 2 * c->height + c->width;
+    return uses_steps(c) ? steps * grains / SILO_DEM_RATE : NAN;
+}
+
 double silo_top(const gr_particles *p)
 {
     double top = -INFINITY;
@@ -244,20 +251,14 @@ static int keep_filling(silo_settled *out, const gr_particles *p, double t, gr_e
     return GR_OK;
 }
 
-int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err)
+/* Run p (closed orifice, scene sc) until every grain is inside the
+ * container and the kinetic energy per grain is below ke_tol; p becomes
+ * out->p. keep: take the picture of the filling. */
+static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int keep, silo_settled *out,
+                  volatile double *progress, gr_err *err)
 {
-    *out = (silo_settled){0};
-    const gr_method_type *m = c->method;
-    if (!m)
-        return gr_fail(err, GR_ERUN, "silo filling: no method");
-    gr_scene *sc = silo_scene(c, INFINITY, err);
-    if (!sc)
-        return err->code;
-    gr_particles *p = gr_particles_create(0, err);
     gr_sim *st = NULL;
-    int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
-    if (!rc)
-        rc = gr_sim_create(m, sc, p, &st, err);
+    int rc = gr_sim_create(c->method, sc, p, &st, err);
     /* Inside: below the hopper's outlet, less half a diameter: the grains
      * fill the container to its rim, and one resting on the pile just above
      * the rim is settled, not still falling. */
@@ -278,15 +279,14 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
             break;
         }
         ek /= (double)(nm - nm / 100);
-        if (!out->filling && (!c->hopper || inside >= nm / 2) && (rc = keep_filling(out, p, t, err)))
+        if (keep && !out->filling && (!c->hopper || inside >= nm / 2) && (rc = keep_filling(out, p, t, err)))
             break;
         if (progress)
             *progress = fmin(0.99, t / c->fill_max);
         if (inside == nm && ek < c->ke_tol) {
             out->p = p;
-            p = NULL;
             out->t_settle = t;
-            out->top = silo_top(out->p);
+            out->top = silo_top(p);
             out->ekin = ek;
             break;
         }
@@ -298,9 +298,82 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
         }
     }
     gr_sim_free(st);
-    gr_particles_free(p);
-    gr_scene_free(sc);
     free(ebuf);
+    return rc;
+}
+
+int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err)
+{
+    *out = (silo_settled){0};
+    if (!c->method)
+        return gr_fail(err, GR_ERUN, "silo filling: no method");
+    gr_scene *sc = silo_scene(c, INFINITY, err);
+    if (!sc)
+        return err->code;
+    gr_particles *p = gr_particles_create(0, err);
+    int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
+    if (!rc)
+        rc = settle(c, sc, p, 1, out, progress, err);
+    if (rc || out->p != p)
+        gr_particles_free(p);
+    gr_scene_free(sc);
+    if (rc)
+        silo_settled_free(out);
+    return rc;
+}
+
+/* The lift that frees every mobile grain of p (its first nm grains) from
+ * the base and gate grains (centres below ybase) after them; the side
+ * walls do not depend on the orifice. */
+static double rebase_lift(const gr_particles *p, size_t nm, double ybase)
+{
+    double lift = 0;
+    for (size_t j = nm; j < p->n; j++)
+        for (size_t i = 0; i < nm && p->y[j] < ybase; i++) {
+            double dx = p->x[i] - p->x[j], s = p->radius[i] + p->radius[j];
+            if (fabs(dx) >= s || p->y[i] < p->y[j] || p->y[i] - p->y[j] > s)
+                continue;
+            double need = p->y[j] + sqrt(s * s - dx * dx) - p->y[i];
+            lift = need > lift ? need : lift;
+        }
+    return lift;
+}
+
+int silo_rebase(const silo_cfg *c, const silo_settled *s, silo_settled *out, volatile double *progress,
+                gr_err *err)
+{
+    *out = (silo_settled){0};
+    gr_scene *sc = silo_scene(c, INFINITY, err);
+    if (!sc)
+        return err->code;
+    gr_particles *walls = gr_particles_create(0, err), *p = gr_particles_create(0, err);
+    int rc = !walls || !p ? GR_ERUN : gr_init_particles(sc, walls, err);
+    for (size_t i = 0; i < s->p->n && !rc; i++)
+        if (!(s->p->flags[i] & GR_PF_FIXED) &&
+            gr_particles_push(p, s->p->x[i], s->p->y[i], s->p->radius[i], s->p->mass[i], s->p->flags[i],
+                              s->p->species[i], err) < 0)
+            rc = err->code;
+    size_t nm = rc ? 0 : p->n; /* at rest, as pushed */
+    for (size_t j = 0; j < walls->n && !rc; j++)
+        if ((walls->flags[j] & GR_PF_FIXED) &&
+            gr_particles_push(p, walls->x[j], walls->y[j], walls->radius[j], walls->mass[j], walls->flags[j],
+                              walls->species[j], err) < 0)
+            rc = err->code;
+    if (!rc) {
+        /* a clearance of 1e-3 d: the packing drops onto the new base */
+        double lift = rebase_lift(p, nm, c->base);
+        lift = lift > 0 ? lift + 1e-3 : 0;
+        for (size_t i = 0; i < nm; i++)
+            p->y[i] += lift;
+        for (size_t i = 0; i < p->n; i++)
+            p->id[i] = (int64_t)i;
+        out->lift = lift;
+        rc = settle(c, sc, p, 0, out, progress, err);
+    }
+    if (rc || out->p != p)
+        gr_particles_free(p);
+    gr_particles_free(walls);
+    gr_scene_free(sc);
     if (rc)
         silo_settled_free(out);
     return rc;

@@ -61,6 +61,7 @@ typedef struct {
     double ekin;         /* kinetic energy per grain at the end */
     gr_particles *filling; /* a picture of the filling (thesis fig. 3.1), may be NULL */
     double t_filling;
+    double lift;         /* silo_rebase: how far the packing was lifted */
 } silo_settled;
 
 /* Fill and settle: run with the orifice closed until every grain is inside
@@ -68,6 +69,15 @@ typedef struct {
  * every 0.5 tau). progress (may be NULL) receives the fraction done. */
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err);
 void silo_settled_free(silo_settled *s);
+
+/* A settled silo branched to the orifice of c (settle once, branch many):
+ * the mobile grains of s, at rest, on the walls and closed gates of c. The
+ * base grains sit from the orifice's edges outwards, so another orifice
+ * moves them under the bottom layer: the packing is lifted by the least
+ * height that clears them (at most about 0.14 d) and settles again onto
+ * the new base, a few tau instead of the whole filling. */
+int silo_rebase(const silo_cfg *c, const silo_settled *s, silo_settled *out, volatile double *progress,
+                gr_err *err);
 
 /* An instance on the settled grains whose orifice opens at its first step
  * (its clock restarts at 0, so times are times after opening). Grains that
@@ -85,6 +95,16 @@ int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err);
 /* Append the --param lines (if any) to a unit's key in buf, so that a
  * part made with other parameters is not reused. */
 void silo_key_params(const silo_cfg *c, char *buf, size_t n);
+
+/* dem's speed on the flowing silo, one thread, on an idle core
+ * (particle-steps per CPU second, wall grains included; docs/experiments.md
+ * "Measured cost"), and the steps of a thesis-size filling: the estimates
+ * printed before a full run. */
+#define SILO_DEM_RATE 2.4e7
+#define SILO_FILL_STEPS 3.7e5
+/* CPU seconds of `steps` steps of the silo c with dem; NAN for another
+ * method (no estimate). */
+double silo_cpu_estimate(const silo_cfg *c, double steps);
 
 /* Highest mobile grain of a snapshot (-INFINITY if none). */
 double silo_top(const gr_particles *p);

@@ -24,18 +24,95 @@ void sf_label(size_t unit, void *ctx, char *buf, size_t n)
     silo_unit_label(c->orifice, c->nreal, unit, buf, n);
 }
 
+/* The filling's parameters: the part of the settled silo of realisation
+ * r is reused by every orifice and by a later run with the same key. */
+static int fill_key(const sf_ctx *c, size_t r, char *buf, size_t n)
+{
+    const silo_cfg *b = &c->base;
+    int k = snprintf(buf, n, "silo-fill 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
+                     b->n, b->width, b->height, b->base, b->hopper, SF_FILL_D, (unsigned long long)(c->seed + r),
+                     b->method->name, b->dt, b->ke_tol);
+    silo_key_params(b, buf, n);
+    return k;
+}
+
+void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n)
+{
+    (void)ctx;
+    snprintf(buf, n, "r%02zu", unit);
+}
+
+void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n)
+{
+    fill_key(ctx, unit, buf, n);
+}
+
 void sf_key(size_t unit, void *ctx, char *buf, size_t n)
 {
     const sf_ctx *c = ctx;
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    const silo_cfg *b = &c->base;
-    snprintf(buf, n,
-             "silo-flow 2 band=top+1..5 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g ke=%.17g "
-             "discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g",
-             b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
-             (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->discard, c->block, c->nblocks,
-             c->sample_every, c->lift);
-    silo_key_params(b, buf, n);
+    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
+                     c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
+    if (k > 0 && (size_t)k < n)
+        fill_key(c, r, buf + k, n - (size_t)k);
+}
+
+/* Realisation r's filling: fill and settle with the orifice SF_FILL_D
+ * closed; the part holds the settled grains, which every orifice's unit
+ * branches from (silo_rebase). */
+int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress, gr_err *err)
+{
+    const sf_ctx *c = ctx;
+    silo_cfg cfg = c->base;
+    cfg.orifice = SF_FILL_D;
+    cfg.seed = c->seed + unit;
+    silo_settled set;
+    double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
+    int rc = silo_fill(&cfg, &set, progress, err);
+    if (rc)
+        return rc;
+    double cost[5] = {gr_wall_seconds() - w0, (double)clock() / CLOCKS_PER_SEC - c0, 0, 0, 0};
+    gr_ckpt *ck = gr_ckpt_create(part, err);
+    rc = ck ? GR_OK : err->code;
+    if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
+    if (!rc) rc = exp_put_particles(ck, "settled", set.p, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (rc && ck)
+        gr_ckpt_discard(ck);
+    else if (!rc)
+        rc = gr_ckpt_close(ck, err);
+    silo_settled_free(&set);
+    return rc;
+}
+
+int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n)
+{
+    char label[32], key[1024];
+    sf_fill_label(r, NULL, label, sizeof label);
+    snprintf(path, n, "%s/parts/fill-%s.part", c->dir, label);
+    fill_key(c, r, key, sizeof key);
+    return exp_part_key_matches(path, key);
+}
+
+int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
+{
+    char path[1200];
+    sf_fill_path(c, r, path, sizeof path);
+    *set = (silo_settled){0};
+    gr_ckpt *ck = gr_ckpt_open(path, err);
+    if (!ck)
+        return err->code;
+    set->p = gr_particles_create(0, err);
+    int rc = set->p ? exp_get_particles(ck, "settled", set->p, err) : err->code;
+    set->t_settle = exp_get_scalar(ck, "t_settle");
+    exp_get_cost(ck, fill_cost);
+    gr_ckpt_close(ck, NULL);
+    if (!rc)
+        set->top = silo_top(set->p);
+    else
+        silo_settled_free(set);
+    return rc;
 }
 
 /* The measured blocks after the discarded transient: the grains that
@@ -75,10 +152,12 @@ static int measure_blocks(const sf_ctx *c, const silo_cfg *cfg, gr_sim *st, gr_p
 }
 
 /* The unit's part file: the key, the block series, the settled silo's
- * bulk packing and height, the final grains and the cost. */
+ * bulk packing and height, the branch (its settling time, the lift, the
+ * shared filling's CPU seconds), the final grains and the cost (the
+ * branch's settling in place of the filling). */
 static int write_part(const sf_ctx *c, const char *part, const char *key, const double *count, const double *phi,
                       const double *top, double bulk, const silo_settled *set, const gr_particles *snap,
-                      const double *cost, gr_err *err)
+                      const double *cost, const double *branch, gr_err *err)
 {
     int rc = GR_OK;
     gr_ckpt *ck = gr_ckpt_create(part, err);
@@ -91,6 +170,7 @@ static int write_part(const sf_ctx *c, const char *part, const char *key, const 
     if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
     if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
     if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 3, err);
     if (!rc) rc = exp_put_particles(ck, "final", snap, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (rc) {
@@ -109,11 +189,19 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     cfg.orifice = c->orifice[o];
     cfg.seed = c->seed + r;
     cfg.reinsert = 1;
-    silo_settled set;
+    silo_settled fill, set;
     volatile double fillp = 0;
+    double fill_cost[5];
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = silo_fill(&cfg, &set, &fillp, err);
+    int rc = sf_load_fill(c, r, &fill, fill_cost, err);
+    if (!rc)
+        rc = silo_rebase(&cfg, &fill, &set, &fillp, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
+    /* the part's t_settle stays the filling's; the branch's own settling apart */
+    double branch[3] = {rc ? 0 : set.t_settle, rc ? 0 : set.lift, fill_cost[1]};
+    if (!rc)
+        set.t_settle = fill.t_settle;
+    silo_settled_free(&fill);
     if (rc)
         return rc;
     gr_scene *sc = NULL;
@@ -139,7 +227,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)total};
     if (!rc)
-        rc = write_part(c, part, key, count, phi, top, bulk, &set, snap, cost, err);
+        rc = write_part(c, part, key, count, phi, top, bulk, &set, snap, cost, branch, err);
     gr_sim_free(st);
     gr_scene_free(sc);
     gr_particles_free(snap);
@@ -177,6 +265,11 @@ static void usage(FILE *f)
         "                       Steps stay dem's (1.25e-4 tau); cd runs its own dt\n"
         "                       (2.5e-3 tau, 20 steps) on rigid disks, mu 0.5, e = 0\n"
         "      --param K=V      a key of the method's section (repeatable), e.g. tol=1e-4\n"
+        "      --peer lammps    instead of the sweep: the first orifice's silo, settled and\n"
+        "                       branched as the sweep does, run without reinsertion by dem\n"
+        "                       and by LAMMPS (lmp; apt-get install lammps) from the same\n"
+        "                       state with the same contact law; both flow rates with\n"
+        "                       their errors and CPU times in DIR/peer.dat\n"
         "  -Q, --quick          900 grains in a 24 d x 48 d silo filled without hopper,\n"
         "                       7 orifices, 16 blocks of 2000 steps: a smoke test\n"
         "  -f, --force          redo every part, even finished ones\n"
@@ -195,20 +288,33 @@ static int sf_report_any(const void *ctx, char *const *parts, char *summary, siz
 /* silo-flow's own options; a number not given is -1 */
 typedef struct {
     long blocks, bsteps, discard;
+    int peer;
 } sf_own;
 
 static const struct option sf_own_opts[] = {
     {"blocks", required_argument, NULL, 'b'}, {"block-steps", required_argument, NULL, 'B'},
-    {"discard", required_argument, NULL, 'X'}, {NULL, 0, NULL, 0}};
+    {"discard", required_argument, NULL, 'X'}, {"peer", required_argument, NULL, 'P'}, {NULL, 0, NULL, 0}};
 
 static int sf_own_option(int ch, const char *arg, void *own);
+
+/* The branch's settling onto its new base: SF_BRANCH_STEPS steps, measured */
+#define SF_BRANCH_STEPS 4e4
+
+static void sf_estimate(const void *ctx, double *pre, double *unit)
+{
+    const sf_ctx *c = ctx;
+    *pre = silo_cpu_estimate(&c->base, SILO_FILL_STEPS);
+    *unit = silo_cpu_estimate(&c->base, SF_BRANCH_STEPS + (double)c->discard + (double)c->block * c->nblocks);
+}
 
 static const silo_cli sf_cli = {
     .name = "silo-flow", .usage = usage, .own = sf_own_opts, .own_short = "b:", .own_parse = sf_own_option,
     .orifices = "3.56,4.5,5.3,6.24,7.2,8.2,9.2,10.5,12,13.5,15,16.04",
     .quick_orifices = "3.56,4.2,6.24,8,10,12,14", .quick_n = 900, .quick_width = 24, .reinsert = 1,
     .prefix = "flow", .progress_what = "orifices", .units_what = "units",
-    .unit = sf_unit, .label = sf_label, .key = sf_key, .report = sf_report_any};
+    .unit = sf_unit, .label = sf_label, .key = sf_key, .report = sf_report_any,
+    .pre_unit = sf_fill_unit, .pre_label = sf_fill_label, .pre_key = sf_fill_key, .pre_prefix = "fill",
+    .pre_what = "fillings", .estimate = sf_estimate};
 
 static int sf_own_option(int ch, const char *arg, void *own)
 {
@@ -220,6 +326,11 @@ static int sf_own_option(int ch, const char *arg, void *own)
     case 'X':
         return silo_parse_long(arg, 0, &w->discard) ? silo_bad(&sf_cli, "--discard", arg, "a non-negative integer")
                                                     : 0;
+    case 'P':
+        if (strcmp(arg, "lammps"))
+            return silo_bad(&sf_cli, "--peer", arg, "lammps");
+        w->peer = 1;
+        return 0;
     default: return 1;
     }
 }
@@ -227,7 +338,7 @@ static int sf_own_option(int ch, const char *arg, void *own)
 int cmd_silo_flow(int argc, char **argv)
 {
     silo_opts o;
-    sf_own w = {-1, -1, -1};
+    sf_own w = {-1, -1, -1, 0};
     int rc = silo_cli_parse(&sf_cli, argc, argv, &o, &w);
     if (rc >= 0)
         return rc;
@@ -248,5 +359,15 @@ int cmd_silo_flow(int argc, char **argv)
     c.split = 9;
     char dir[1024];
     c.dir = silo_cli_dir(&sf_cli, &o, dir, sizeof dir);
-    return silo_cli_sweep(&sf_cli, &o, &c, c.norif * (size_t)c.nreal, c.dir);
+    if (w.peer) {
+        char summary[1024] = "";
+        gr_err e = {0};
+        if (sf_peer_lammps(&c, summary, sizeof summary, &e)) {
+            fprintf(stderr, "grano silo-flow: %s\n", e.msg);
+            return e.code == GR_EINPUT ? 2 : 1;
+        }
+        fprintf(stderr, "grano silo-flow --peer lammps: wrote %s/peer.dat, %s/peer/\n%s", c.dir, c.dir, summary);
+        return 0;
+    }
+    return silo_cli_sweep(&sf_cli, &o, &c, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
 }

@@ -115,12 +115,14 @@ static int fig4_2(const sf_ctx *c, const double *tab, const double *fits, const 
         fprintf(gp, "%g %g\n", tab[o * NCOL + C_D], tab[o * NCOL + C_SIGW]);
     fprintf(gp, "EOD\n");
     fprintf(gp, "set multiplot layout 1,2 title 'Reduced flow w = W/<W> (thesis fig. 4.2)'\n");
-    fprintf(gp, "set xlabel 'steps after opening'\nset ylabel 'w'\nset key top right\nplot ");
+    fprintf(gp, "set xlabel 'steps after opening'\nset ylabel 'reduced flow w = W/<W> (dimensionless)'\n"
+                "set key top right\nplot ");
     for (int k = 0; k < 3; k++)
         fprintf(gp, "%s$w using 1:%d with lines lw 1.5 lc rgb '%s' title 'D = %g d'", k ? ", " : "", k + 2, col[k],
                 c->orifice[nearest(c, want[k])]);
     const double *fa = fits + FIT_SIG_ALL * 9, *fsm = fits + FIT_SIG_SMALL * 9, *fl = fits + FIT_SIG_LARGE * 9;
-    fprintf(gp, "\nset logscale xy\nset xlabel 'D / d'\nset ylabel '{/Symbol s}_w'\nset key bottom left\n");
+    fprintf(gp, "\nset logscale xy\nset xlabel 'D / d'\nset ylabel '{/Symbol s}_w, standard deviation of w (dimensionless)'\n"
+                "set key bottom left\n");
     fprintf(gp, "plot $s using 1:2 with points pt 7 lc rgb 'black' title 'grano'");
     if (fa[8] > 0)
         fprintf(gp, ", %g*x**%g lw 2 lc rgb 'blue' title 'all: (D/d)^{%.2f}'", fa[0], fa[2], fa[2]);
@@ -146,13 +148,17 @@ static int fig4_3(const sf_ctx *c, const double *pdf, gr_err *err)
     for (int b = 0; b < NB; b++)
         fprintf(gp, "%g %g %g\n", pdf[b * 5], pdf[b * 5 + 1], pdf[b * 5 + 3]);
     fprintf(gp, "EOD\nset logscale y\nset format y '10^{%%L}'\nset yrange [1e-4:2]\nset xrange [-%g:%g]\n", UMAX, UMAX);
-    fprintf(gp, "set title 'Reduced flow fluctuations {/Symbol D}w / {/Symbol s}_w (thesis fig. 4.3)'\nset xlabel '{/Symbol D}w / {/Symbol s}_w'\nset ylabel 'P'\nset key bottom center\n");
+    fprintf(gp, "set title 'Reduced flow fluctuations {/Symbol D}w / {/Symbol s}_w (thesis fig. 4.3)'\nset xlabel '{/Symbol D}w / {/Symbol s}_w'\nset ylabel 'probability density P'\nset key bottom center\n");
     fprintf(gp, "plot $p using 1:($2>0?$2:1/0) with points pt 6 ps 1.2 lc rgb 'black' title 'D <= %g d', $p using 1:($3>0?$3:1/0) with points pt 4 ps 1.2 lc rgb 'black' title 'D > %g d', (2/pi)/(1+x*x)**2 lw 2 lc rgb 'red' title 'eq. 4.4', exp(-x*x/2)/sqrt(2*pi) lw 2 lc rgb 'blue' title 'Gaussian'\n",
             c->split, c->split);
     return gr_plot_close(gp, png, err);
 }
 
-/* Thesis fig. 4.5: the packing fraction above the orifice against D. */
+/* Thesis fig. 4.5: the packing fraction above the orifice against D. The
+ * thesis calls it the density rho and fits rho_0 (1 - a e^{-bD}) (eq. 4.7),
+ * but its caption defines that density as the packing fraction (area
+ * covered by grains over the area measured): the same quantity, named phi
+ * here, and its fit phi_0 (1 - a e^{-bD}) is the thesis's rho_0 etc. */
 static int fig4_5(const sf_ctx *c, const double *tab, const double *fits, gr_err *err)
 {
     size_t n = c->norif;
@@ -166,10 +172,11 @@ static int fig4_5(const sf_ctx *c, const double *tab, const double *fits, gr_err
     for (size_t o = 0; o < n; o++)
         fprintf(gp, "%g %g %g\n", tab[o * NCOL + C_D], tab[o * NCOL + C_PHI], tab[o * NCOL + C_PHIERR]);
     fprintf(gp, "EOD\nset title 'Packing fraction in the D x D square %g d above the base (thesis fig. 4.5)'\n", c->lift);
-    fprintf(gp, "set xlabel 'D / d'\nset ylabel '{/Symbol f}'\nset key bottom right\n");
+    fprintf(gp, "set xlabel 'D / d'\nset ylabel 'packing fraction {/Symbol f} (the thesis'' {/Symbol r})'\n"
+                "set key bottom right\n");
     fprintf(gp, "plot $t using 1:2:3 with yerrorbars pt 5 lc rgb 'black' title 'grano'");
     if (fd[8] > 0)
-        fprintf(gp, ", %g*(1-%g*exp(-%g*x)) lw 2 lc rgb 'red' title '{/Symbol r}_0(1 - a e^{-bD}): {/Symbol r}_0 = %.3f, a = %.2f, b = %.2f%s'",
+        fprintf(gp, ", %g*(1-%g*exp(-%g*x)) lw 2 lc rgb 'red' title '{/Symbol f}_0(1 - a e^{-bD}) (eq. 4.7): {/Symbol f}_0 = %.3f, a = %.2f, b = %.2f%s'",
                 fd[0], fd[2], fd[4], fd[0], fd[2], fd[4], fd[8] == 2 ? " (b at a bound)" : "");
     fprintf(gp, "\n");
     return gr_plot_close(gp, png, err);

@@ -32,10 +32,10 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
                      "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
-                     "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu lags=",
+                     "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu sub=%d/%d lags=",
                      b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
                      (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->fs, c->min_steps,
-                     c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap);
+                     c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap, c->subtract, SS_SUB_N);
     for (size_t s = 0; s < c->nslots && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "%ld,", c->lag[s]);
     for (size_t s = 0; s < c->ntimes && k > 0 && (size_t)k < n; s++)
@@ -72,6 +72,8 @@ typedef struct {
     int32_t *widx;
     double *wx, *wy;
     size_t wm;
+    size_t *cell;      /* subtraction cell of each displacement */
+    double win[2];     /* the window's lower left corner */
 } ustate;
 
 static void ustate_free(ustate *u)
@@ -83,7 +85,7 @@ static void ustate_free(ustate *u)
     }
     gr_msd_free(u->msd);
     gr_rng_free(u->rng);
-    free(u->dx), free(u->dy), free(u->widx), free(u->wx), free(u->wy);
+    free(u->dx), free(u->dy), free(u->widx), free(u->wx), free(u->wy), free(u->cell);
 }
 
 static int ustate_init(ustate *u, const ss_ctx *c, uint64_t seed, gr_err *err)
@@ -95,8 +97,9 @@ static int ustate_init(ustate *u, const ss_ctx *c, uint64_t seed, gr_err *err)
     u->rng = gr_rng_create(seed, GR_STREAM_SILO_START, err);
     u->dx = malloc(u->wcap * sizeof *u->dx), u->dy = malloc(u->wcap * sizeof *u->dy);
     u->widx = malloc(u->wcap * sizeof *u->widx);
+    u->cell = malloc(u->wcap * sizeof *u->cell);
     u->wx = malloc(u->wcap * sizeof *u->wx), u->wy = malloc(u->wcap * sizeof *u->wy);
-    int bad = !u->msd || !u->rng || !u->dx || !u->dy || !u->widx || !u->wx || !u->wy;
+    int bad = !u->msd || !u->rng || !u->cell || !u->dx || !u->dy || !u->widx || !u->wx || !u->wy;
     for (size_t k = 0; k < c->nslots && !bad; k++) {
         slotbuf *s = &u->sl[k];
         s->sx = malloc(c->sample_cap * sizeof *s->sx), s->sy = malloc(c->sample_cap * sizeof *s->sy);
@@ -131,20 +134,41 @@ static void window_scan(ustate *u, const gr_particles *p, double x0, double y0)
     }
 }
 
-/* Displacements of an origin's grains now: the mean flow (the mean of the
- * selection, both components) subtracted, as in thesis section 3.2. */
+/* The cell of the subtraction grid a grain starting at (x, y) belongs to:
+ * one cell (the window), columns across x, or a square grid (SS_SUB_*). */
+static size_t sub_cell(const ss_ctx *c, const double *win, double x, double y)
+{
+    if (c->subtract == SS_SUB_WINDOW)
+        return 0;
+    long nc = c->subtract == SS_SUB_COLUMNS ? SS_SUB_N : SS_SUB_N / 2;
+    double h = c->window / (double)nc;
+    long i = lround(floor((x - win[0]) / h)), j = lround(floor((y - win[1]) / h));
+    i = i < 0 ? 0 : i >= nc ? nc - 1 : i;
+    j = j < 0 ? 0 : j >= nc ? nc - 1 : j;
+    return c->subtract == SS_SUB_COLUMNS ? (size_t)i : (size_t)(j * nc + i);
+}
+
+/* Displacements of an origin's grains now, the local mean flow subtracted
+ * (thesis section 3.2: "sustraemos el movimiento debido al flujo"): the
+ * mean displacement over the same lag of the grains that started in the
+ * same cell of the window (c->subtract). The window's mean alone leaves
+ * the shear of the velocity profile across the window in the
+ * displacements. A cell with fewer than 2 grains gives no sample. */
 static int complete(ustate *u, size_t k, origin *o, const gr_particles *p, double lag_time,
                     gr_err *err)
 {
     slotbuf *s = &u->sl[k];
     size_t m = 0;
     double mx = 0, my = 0;
+    double cx[SS_SUB_N * SS_SUB_N] = {0}, cy[SS_SUB_N * SS_SUB_N] = {0}, cn[SS_SUB_N * SS_SUB_N] = {0};
     for (size_t a = 0; a < o->m; a++) {
         size_t i = (size_t)o->idx[a];
         if (p->flags[i] & GR_PF_GONE)
             continue;
         u->dx[m] = p->x[i] - o->x[a], u->dy[m] = p->y[i] - o->y[a];
+        size_t q = u->cell[m] = sub_cell(u->c, u->win, o->x[a], o->y[a]);
         mx += u->dx[m], my += u->dy[m];
+        cx[q] += u->dx[m], cy[q] += u->dy[m], cn[q] += 1;
         m++;
     }
     o->live = 0;
@@ -153,16 +177,21 @@ static int complete(ustate *u, size_t k, origin *o, const gr_particles *p, doubl
     mx /= (double)m, my /= (double)m;
     s->fall_sum += -my * (double)m;
     s->fall_n += (double)m;
+    size_t kept = 0;
     for (size_t a = 0; a < m; a++) {
-        u->dx[a] -= mx, u->dy[a] -= my;
+        size_t q = u->cell[a];
+        if (cn[q] < 2)
+            continue;
+        double ddx = u->dx[a] - cx[q] / cn[q], ddy = u->dy[a] - cy[q] / cn[q];
+        u->dx[kept] = ddx, u->dy[kept] = ddy, kept++;
         /* reservoir sampling keeps a uniform subset of every sample seen */
         size_t slot = s->seen < u->c->sample_cap ? s->seen : gr_rng_below(u->rng, s->seen + 1);
         if (slot < u->c->sample_cap)
-            s->sx[slot] = u->dx[a], s->sy[slot] = u->dy[a];
+            s->sx[slot] = ddx, s->sy[slot] = ddy;
         s->seen++;
     }
     s->ns = s->seen < u->c->sample_cap ? s->seen : u->c->sample_cap;
-    return gr_msd_add(u->msd, k, lag_time, u->dx, u->dy, m, err);
+    return kept ? gr_msd_add(u->msd, k, lag_time, u->dx, u->dy, kept, err) : GR_OK;
 }
 
 static int write_part(const char *part, const char *key, const ss_ctx *c, ustate *u,
@@ -362,6 +391,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         rc = create_fields(c, &cfg, xl, fld, err);
     /* the window is centred in the silo across and in the settled packing's height */
     double win[2] = {xl + 0.5 * (W - c->window), base + 0.5 * (set.top - base) - 0.5 * c->window};
+    u.win[0] = win[0], u.win[1] = win[1];
     /* the thesis follows the discharge "hasta que el grano más alto cae dos
      * veces su diámetro"; the highest single grain is often a loose one
      * perched on the surface that rolls off at once, so the surface is the
@@ -410,6 +440,11 @@ static void usage(FILE *f)
         "      --grains N       mobile grains (default 5000)\n"
         "      --width W        container width in d (default 50; height 2 W)\n"
         "      --max-steps N    stop a discharge after N steps at most\n"
+        "      --subtract MODE  the mean flow subtracted from the window's displacements:\n"
+        "                       columns (default: the mean of the grains that started\n"
+        "                       in the same tenth of the window across x, the velocity\n"
+        "                       profile), cells (a 5 x 5 grid over the window) or\n"
+        "                       window (the whole window's mean)\n"
         "      --method M       the method (default dem); one without the silo's features\n"
         "                       (walls made of fixed grains, an orifice, ...) is refused.\n"
         "                       Steps stay dem's (1.25e-4 tau); cd runs its own dt\n"
@@ -464,29 +499,57 @@ static int ss_report_any(const void *ctx, char *const *parts, char *summary, siz
     return ss_report(ctx, parts, summary, nsum, err);
 }
 
-static const struct option ss_own_opts[] = {{"max-steps", required_argument, NULL, 'M'}, {NULL, 0, NULL, 0}};
+static const struct option ss_own_opts[] = {{"max-steps", required_argument, NULL, 'M'},
+                                            {"subtract", required_argument, NULL, 'S'}, {NULL, 0, NULL, 0}};
+
+/* silo-start's own options; a number not given is -1 */
+typedef struct {
+    long maxsteps;
+    int subtract;
+} ss_own;
 
 static int ss_own_option(int ch, const char *arg, void *own);
+
+/* A discharge: the filling, then the time for the surface to fall 2 d,
+ * which scales as 1 / flow rate ~ D^-3/2 (measured 1.82e5 steps at
+ * D = 3.8 d, docs/experiments.md), within [min_steps, max_steps]. */
+static void ss_estimate(const void *ctx, double *pre, double *unit)
+{
+    const ss_ctx *c = ctx;
+    double s = 0;
+    for (size_t o = 0; o < c->norif; o++)
+        s += fmin((double)c->max_steps, fmax((double)c->min_steps, 1.82e5 * pow(3.8 / c->orifice[o], 1.5)));
+    *pre = 0;
+    *unit = silo_cpu_estimate(&c->base, SILO_FILL_STEPS + s / (double)c->norif);
+}
 
 static const silo_cli ss_cli = {
     .name = "silo-start", .usage = usage, .own = ss_own_opts, .own_short = "", .own_parse = ss_own_option,
     .orifices = "3.8,11", .quick_orifices = "3.8,11", .reinsert = 0,
     .prefix = "start", .progress_what = "discharges", .units_what = "discharges",
-    .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any};
+    .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any, .estimate = ss_estimate};
 
-/* --max-steps into *(long *)own */
+/* --max-steps and --subtract into the ss_own at own */
 static int ss_own_option(int ch, const char *arg, void *own)
 {
+    ss_own *w = own;
+    if (ch == 'S') {
+        static const char *const names[] = {"window", "columns", "cells"};
+        for (int k = 0; k < 3; k++)
+            if (!strcmp(arg, names[k]))
+                return w->subtract = k, 0;
+        return silo_bad(&ss_cli, "--subtract", arg, "window, columns or cells");
+    }
     if (ch != 'M')
         return 1;
-    return silo_parse_long(arg, 100, own) ? silo_bad(&ss_cli, "--max-steps", arg, "an integer >= 100") : 0;
+    return silo_parse_long(arg, 100, &w->maxsteps) ? silo_bad(&ss_cli, "--max-steps", arg, "an integer >= 100") : 0;
 }
 
 int cmd_silo_start(int argc, char **argv)
 {
     silo_opts o;
-    long maxsteps = -1;
-    int rc = silo_cli_parse(&ss_cli, argc, argv, &o, &maxsteps);
+    ss_own w = {-1, SS_SUB_COLUMNS};
+    int rc = silo_cli_parse(&ss_cli, argc, argv, &o, &w);
     if (rc >= 0)
         return rc;
     ss_ctx c = {0};
@@ -498,14 +561,15 @@ int cmd_silo_start(int argc, char **argv)
     c.seed = (uint64_t)o.seed;
     c.fs = 20;
     c.min_steps = quick ? 4000 : 10000;
-    c.max_steps = maxsteps > 0 ? maxsteps : quick ? 12000 : 800000;
+    c.max_steps = w.maxsteps > 0 ? w.maxsteps : quick ? 12000 : 800000;
     c.fall_stop = 2.0;
     c.window = quick ? 8 : 15;
     c.cell = quick ? 1 : 2;
     c.sample_cap = quick ? 4000 : 20000;
+    c.subtract = w.subtract;
     make_lags(&c);
     make_times(&c);
     char dir[1024];
     c.dir = silo_cli_dir(&ss_cli, &o, dir, sizeof dir);
-    return silo_cli_sweep(&ss_cli, &o, &c, c.norif * (size_t)c.nreal, c.dir);
+    return silo_cli_sweep(&ss_cli, &o, &c, 0, c.norif * (size_t)c.nreal, c.dir);
 }

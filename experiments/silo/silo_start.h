@@ -15,6 +15,13 @@
 #define SS_MAX_SLOTS 64
 #define SS_MAX_TIMES 32
 
+/* The mean flow subtracted from the window's displacements: the window's
+ * mean, the mean of each of SS_SUB_N columns across x (the profile
+ * v(x) at the window's height), or of each cell of a 5 x 5 grid over the
+ * window (cells of 3 d at full size, about 10 grains each). */
+enum { SS_SUB_WINDOW, SS_SUB_COLUMNS, SS_SUB_CELLS };
+#define SS_SUB_N 10
+
 typedef struct {
     silo_cfg base;          /* size; orifice and seed set per unit */
     int quick;
@@ -32,6 +39,7 @@ typedef struct {
     size_t ntimes;
     long times[SS_MAX_TIMES]; /* velocity field times, steps after opening */
     size_t sample_cap;      /* displacement samples kept per slot and unit */
+    int subtract;           /* the local mean flow subtracted: SS_SUB_* */
     const char *dir;
 } ss_ctx;
 

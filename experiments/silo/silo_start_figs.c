@@ -32,7 +32,7 @@ int ss_fig_velocity(const char *png, const ss_ctx *c, const ss_res *r, const lon
                         size_t nsteps, gr_err *err)
 {
     int nx = (int)r->grid[0], ny = (int)r->grid[1];
-    FILE *gp = gr_plot_open(png, 200 * (int)nsteps + 120, 560, err);
+    FILE *gp = gr_plot_open(png, 200 * (int)nsteps + 190, 580, err);
     if (!gp)
         return err->code;
     double vmax = 1e-9;
@@ -56,15 +56,17 @@ int ss_fig_velocity(const char *png, const ss_ctx *c, const ss_res *r, const lon
     fprintf(gp, "set multiplot title 'Mean downward velocity -v_y, D = %g d, %d discharges (thesis fig. 3.2)'\n",
             r->D, c->nreal);
     fprintf(gp, "set size ratio -1\nset cbrange [0:%g]\nunset key\nset tics font ',8'\n", vmax);
+    fprintf(gp, "set xlabel 'x / d' font ',9'\nset cblabel '-v_y / (g d)^{1/2}'\n");
     fprintf(gp, "set palette defined (0 '#ffffff', 0.15 '#fdbb2d', 0.5 '#b21f1f', 1 '#1a2a6c')\n");
     for (size_t k = 0; k < nsteps; k++) {
         /* panels placed by hand up to 0.92 of the width: the colour bar
          * has the rest, clear of the last panel */
-        double w = 0.89 / (double)nsteps, x0 = 0.03 + (double)k * w;
+        double w = 0.86 / (double)nsteps, x0 = 0.03 + (double)k * w;
         fprintf(gp, "set lmargin at screen %g\nset rmargin at screen %g\nset tmargin at screen 0.86\n"
-                    "set bmargin at screen 0.08\n", x0 + 0.022, x0 + w - 0.004);
+                    "set bmargin at screen 0.12\n", x0 + 0.022, x0 + w - 0.004);
+        fprintf(gp, k ? "unset ylabel\n" : "set ylabel 'y / d' font ',9'\n");
         fprintf(gp, "set title '%ld steps'\n%s", steps[k], k + 1 < nsteps ? "unset colorbox\n"
-                    : "set colorbox user origin screen 0.94, 0.2 size screen 0.012, 0.6\n");
+                    : "set colorbox user origin screen 0.91, 0.2 size screen 0.012, 0.6\n");
         fprintf(gp, "plot $f%zu using 1:2:3 with image\n", k);
     }
     fprintf(gp, "unset multiplot\n");
@@ -90,7 +92,8 @@ int ss_fig_pdf(const char *png, const ss_res *res, size_t nr, int w, int vert_fi
     fprintf(gp, "P(u) = (2/pi)/(1+u*u)**2\nG(u) = exp(-u*u/2)/sqrt(2*pi)\n");
     for (int panel = 0; panel < 2; panel++) {
         int col = (panel == 0) == vert_first ? 3 : 2; /* 3: vertical, 2: horizontal */
-        fprintf(gp, "set xlabel '%s / {/Symbol s}'\nset ylabel 'P'\n", col == 3 ? "{/Symbol D}y" : "{/Symbol D}x");
+        fprintf(gp, "set xlabel '%s / {/Symbol s}'\nset ylabel 'probability density P'\n",
+                col == 3 ? "{/Symbol D}y" : "{/Symbol D}x");
         fprintf(gp, "set title '(%c) %s'\nplot ", 'a' + panel, col == 3 ? "vertical" : "horizontal");
         for (size_t o = 0; o < nr; o++)
             fprintf(gp, "$q%zu using 1:($%d>0?$%d:1/0) with points %s lc rgb 'black' title 'D = %g d (fall %.2g d)', ",
@@ -135,7 +138,8 @@ int ss_fig_kurtosis(const char *png, const ss_res *res, size_t nr, gr_err *err)
     if (!gp)
         return err->code;
     fprintf(gp, "set multiplot layout 1,%zu title 'Excess kurtosis <x^4>/(3<x^2>^2) - 1 against distance fallen (thesis fig. 3.6)'\n", nr);
-    fprintf(gp, "set logscale x\nset format x '10^{%%L}'\nset xlabel 'mean distance fallen / d'\nset ylabel '{/Symbol k}'\nset key top right\n");
+    fprintf(gp, "set logscale x\nset format x '10^{%%L}'\nset xlabel 'mean distance fallen / d'\nset ylabel 'excess kurtosis {/Symbol k} (dimensionless)'\n"
+                "set key below\n");
     for (size_t o = 0; o < nr; o++) {
         const ss_res *r = &res[o];
         double v[SS_MAX_SLOTS * 3];

@@ -133,6 +133,7 @@ typedef struct gr_dem {
     double ekin_last;        /* kinetic + elastic energy of the last good step */
     double eel_eval;         /* elastic energy of the last force evaluation */
     double e_floor;          /* energy below which jumps are not checked */
+    double e_ref;            /* mechanical energy when the growth check began (NAN: not yet) */
     uint64_t outflow;
     int gates_open;
     double wall_impulse;     /* normal impulse on segments since last observe */

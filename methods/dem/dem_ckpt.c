@@ -174,6 +174,7 @@ int gr_dem_load(gr_dem *d, gr_ckpt *ck, gr_err *err)
     d->t = real[R_T];
     d->t0 = real[R_T0];
     d->ekin_last = real[R_EKIN];
+    d->e_ref = NAN;
     d->wall_impulse = real[R_WIMP];
     d->wall_time = real[R_WTIME];
     d->max_ovl = real[R_MAXOVL];

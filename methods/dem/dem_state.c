@@ -250,6 +250,7 @@ static int first_forces(gr_dem *d, gr_err *err)
     d->e_floor = msum * (d->g * d->dmax + 0.005 * d->par.v_impact * d->par.v_impact);
     gr_dem_energy(d, &ek, NULL);
     d->ekin_last = ek + d->eel_eval;
+    d->e_ref = NAN;
     return GR_OK;
 }
 

@@ -114,6 +114,7 @@ typedef struct {
 
 struct gr_edmd {
     gr_edmd_params prm;
+    gr_edmd_collapse collapse_asked; /* prm.collapse is it only while collisions dissipate */
     size_t n;
     edmd_p *p;
     double *w, *m, *inertia, *tlast, *tacc;

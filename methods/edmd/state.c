@@ -308,6 +308,14 @@ static int setup_cells(gr_edmd *s, gr_err *err)
     return GR_OK;
 }
 
+/* Elastic collisions never collapse: the guard (on by default) then keeps
+ * no collision clocks, whose random writes would slow every collision. */
+static void set_guard(gr_edmd *s)
+{
+    int dissipative = s->alpha < 1.0 || s->alpha_w < 1.0 || (s->rough && s->beta < 1.0);
+    s->prm.collapse = dissipative ? s->collapse_asked : GR_EDMD_COLLAPSE_NONE;
+}
+
 int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm,
                    gr_edmd **out, gr_err *err)
 {
@@ -317,7 +325,9 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
         return gr_fail(err, GR_ERUN, "edmd: out of memory");
     s->prm = *prm;
     s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
+    s->collapse_asked = prm->collapse;
     int rc = setup_scene(s, sc, err);
+    set_guard(s);
     if (!rc)
         rc = setup_particles(s, init, err);
     if (!rc)
@@ -357,6 +367,7 @@ void gr_edmd_set_restitution(gr_edmd *s, double alpha, double alpha_wall)
 {
     s->alpha = alpha;
     s->alpha_w = isnan(alpha_wall) ? alpha : alpha_wall;
+    set_guard(s);
 }
 
 void gr_edmd_get_counters(const gr_edmd *s, gr_edmd_counters *c) { *c = s->cnt; }

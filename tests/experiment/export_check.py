@@ -14,18 +14,11 @@ import sys
 import h5py
 import numpy as np
 
+from tap import Tap, skip
+
 TOL = 1e-12
-fails = 0
-n = 0
-
-
-def check(ok, what, detail=""):
-    global fails, n
-    n += 1
-    print("%s %d - %s" % ("ok" if ok else "not ok", n, what))
-    if not ok:
-        fails += 1
-        print("# " + str(detail).replace("\n", "\n# "))
+TAP = Tap()
+check = TAP.check
 
 
 def grano(*args):
@@ -54,8 +47,7 @@ def main():
     try:
         import ase.io
     except ImportError:
-        print("1..0 # SKIP python3-ase is not installed (./grano.sh deps installs it)")
-        return 0
+        skip("python3-ase is not installed (./grano.sh deps installs it)")
     os.makedirs(work, exist_ok=True)
     h5 = os.path.join(work, "box.h5")
     # rotating frictional grains with walls, three frames
@@ -117,8 +109,7 @@ def main():
         check(close(p2[0], pos[-1]) and close(v2[0], vel[-1]) and close(np.broadcast_to(r2, (npart,)),
                                                                         np.broadcast_to(rad, (npart,)))
               and close(w2, w1), "[init] kind = file reads a %s frame back exactly (x, v, radius, spin)" % fmt)
-    print("1..%d" % n)
-    return 1 if fails else 0
+    return TAP.finish()
 
 
 def frames_omega(path):

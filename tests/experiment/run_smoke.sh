@@ -52,7 +52,7 @@ then ok "restart from the checkpoint continues bit for bit"; else notok "restart
 # A restart against another scene is refused.
 sed 's/count = 400/count = 399/' "$scene" >"$tmp/other.ini"
 "$GRANO" run "$tmp/other.ini" --method dem --restart "$tmp/a.ckpt" --out "$tmp/d.h5" -q 2>"$tmp/err"
-if [ $? = 2 ] && grep -q "different scene" "$tmp/err" && [ ! -e "$tmp/d.h5" ]; then
+if [ $? = 2 ] && grep -q "physical parameter differs" "$tmp/err" && [ ! -e "$tmp/d.h5" ]; then
     ok "restart with another scene refused"; else notok "restart with another scene refused"; fi
 
 # Killed mid-run: the file is readable up to its last flush.

@@ -16,6 +16,8 @@ declare -A RUNS=(
     [silo-demo]="dem"
     [silo]="dem"
     [vibrated]="dem edmd cd dsmc"
+    [lgca-pipe]="lgca"
+    [lgca-silo]="lgca"
 )
 methods=$("$GRANO" methods | sed -n 's/^\([a-z0-9_]*\): .*/\1/p')
 n=0

@@ -3,16 +3,11 @@
 # same parser and checks), its errors naming the flag, nothing written on
 # bad input, the text run stored in the result. TAP.
 set -u
+. "$(dirname "$0")/tap.sh"
 GRANO=$1
 SRC=$2
 PY=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 scene=$SRC/experiments/scenes/box.ini
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); sed 's/^/# /' "$tmp/err"; }
 
 # Good settings: a new value of a key the file has, and a key it lacks.
 if "$GRANO" run "$scene" --until 0.05 --set species.count=100 --set run.observe_every=0.01 \
@@ -55,5 +50,4 @@ bad "--set 'mu=0.3': expected SECTION.KEY=VALUE" --set mu=0.3
 bad "--set material.mu: given twice" --set material.mu=0.3 --set material.mu=0.2
 bad "--set run.contacts: [run] key 'contacts' = yes needs contact networks" --method edmd --set run.contacts=yes
 bad "--set dem.dtt: unknown key 'dtt' in [dem]; did you mean 'dt'?" --set dem.dtt=1
-echo "1..$n"
-exit $((fails > 0))
+finish

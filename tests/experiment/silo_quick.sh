@@ -6,6 +6,7 @@
 set -u
 GRANO=$1
 PY=/usr/bin/python3
+# shellcheck source=tap.sh
 . "$(dirname "$0")/tap.sh"
 if ! $PY -c 'import h5py, numpy' 2>/dev/null; then
     echo "1..0 # SKIP /usr/bin/python3 lacks h5py"
@@ -18,7 +19,7 @@ check $? "silo-start --help"
 "$GRANO" silo-flow --help >"$tmp/out" 2>&1 && grep -q "usage: grano silo-flow" "$tmp/out"
 check $? "silo-flow --help"
 for args in "silo-start --bogus:--bogus" "silo-start --jobs 0:--jobs" "silo-flow --orifices 3,abc:--orifices" \
-            "silo-flow --blocks x:--blocks" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
+            "silo-flow --blocks x:--blocks" "silo-start --subtract mean:--subtract" "silo-flow --peer gromacs:--peer" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
     cmd=${args%%:*}
     flag=${args##*:}
     # shellcheck disable=SC2086
@@ -54,9 +55,13 @@ assert s.shape == (2, 20), s.shape
 for row in s:
     D = row[0]
     ex, ey = row[6], row[8]
-    # fits converged, and the motion is superdiffusive (thesis: 1.33-1.51)
+    # fits converged; the local mean flow (columns) subtracted, the motion
+    # is superdiffusive and below ballistic over the fitted range (quick
+    # mode measured 1.65-1.84 on 2 discharges, errors 0.02-0.05; the quick
+    # runs reach a fall of 0.06-0.3 d only, so the band is wider than the
+    # thesis's 1.33-1.51 at a 1 d fall: docs/experiments.md)
     assert np.isfinite([ex, ey, row[7], row[9]]).all(), row
-    assert 1.0 < ex < 2.2 and 1.0 < ey < 2.2, (D, ex, ey)
+    assert 1.4 < ex < 1.95 and 1.4 < ey < 1.95, (D, ex, ey)
     # the short lag is a fall of about 0.01 d
     assert 0.003 < row[3] < 0.03, row[3]
     assert np.isfinite(row[15:19]).all(), row
@@ -72,7 +77,7 @@ for D in ("3.8", "11"):
         area = p[:, col].sum() * du
         assert 0.9 < area <= 1.0 + 1e-9, (D, col, area)
 PY
-check $? "silo-start: fits converge, MSD exponents in (1, 2.2), densities normalised"
+check $? "silo-start: fits converge, MSD exponents in (1.4, 1.95), densities normalised"
 
 cp "$S/silo-start.h5" "$tmp/start-first.h5"
 "$GRANO" silo-start --quick --jobs 2 -o "$S" 2>"$tmp/err" && grep -q "(4 reused)" "$tmp/err"
@@ -101,6 +106,9 @@ for f in silo-flow.h5 flow.dat fits.dat pdf_fluctuations.dat reduced_flow.dat fi
 done
 [ -z "$missing" ]
 check $? "silo-flow writes every table and figure${missing:+ (missing:$missing)}"
+# settle once, branch many: one filling for the 7 orifices of realisation 0
+[ -s "$F/parts/fill-r00.part" ] && [ "$(find "$F/parts" -name 'fill-*.part' | wc -l)" = 1 ]
+check $? "silo-flow fills once (parts/fill-r00.part) and branches every orifice from it"
 $PY - "$F/silo-flow.h5" >"$tmp/err" 2>&1 <<'PY'
 import sys, h5py, numpy as np
 r = h5py.File(sys.argv[1], "r")["results"]
@@ -144,5 +152,4 @@ assert 0.5 * Wd < Wc < 1.2 * Wd, (Wc, Wd)
 assert 0.7 < cd[0, 5] < 0.91, cd[0, 5]
 PY
 check $? "silo-flow --method cd: grains leave once open, rate within [0.5, 1.2] of dem's at D = 8"
-echo "1..$n"
-exit $((fails > 0))
+finish

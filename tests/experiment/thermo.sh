@@ -5,16 +5,11 @@
 # none with thermo_every = 0, nothing at all with --quiet, and none on a
 # terminal (the progress line is there instead). TAP.
 set -u
+. "$(dirname "$0")/tap.sh"
 GRANO=$1
 SRC=$2
 PY=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 scene=$SRC/experiments/scenes/box.ini
-n=0
-fails=0
-ok() { n=$((n + 1)); echo "ok $n - $1"; }
-notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); sed 's/^/# /' "$tmp/err" "$tmp/log" 2>/dev/null; }
 
 # box.ini writes a frame every 0.5: thermo_every defaults to it.
 "$GRANO" run "$scene" --until 1 --out "$tmp/a.h5" 2>"$tmp/log" >/dev/null
@@ -60,5 +55,4 @@ if command -v script >/dev/null; then
     script -qec "'$GRANO' run '$scene' --until 0.5 --out '$tmp/e.h5'" /dev/null >"$tmp/log" 2>&1
     if [ $? = 0 ] && ! grep -q "Step" "$tmp/log"; then ok "on a terminal: no thermo lines"; else notok "terminal"; fi
 fi
-echo "1..$n"
-exit $((fails > 0))
+finish

@@ -49,5 +49,11 @@ const conf_scene conf_scenes[] = {
     {"hf-floor", GR_FEAT_HF_FLOOR,
      DOMG MAT SP INIT "region = 1 1 19 6\n[floor]\nmotion = sine-hf\namplitude = 0.01\nomega = 100\n", 4.0, 2,
      40},
+    /* a lattice state: random channel occupations, granular rules with
+     * dissipation and rough walls on the closed sides */
+    {"lattice", GR_FEAT_LATTICE,
+     "[scene]\nseed = 3\n[domain]\nwidth = 20\nheight = 20\nleft = periodic\nright = periodic\n"
+     "[init]\nkind = occupation\noccupation = 0.2\nrest_occupation = 0.1\n[lgca]\np = 0.2\nb = 0.5\n",
+     4.0, 3, 4000},
 };
 const size_t conf_nscenes = sizeof conf_scenes / sizeof conf_scenes[0];

@@ -1,0 +1,193 @@
+/* grano bench lgca: site updates per second (one node, one step) of the
+ * lattice gas on periodic square lattices, on 1 and 2 threads. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cmd.h"
+#include "init.h"
+#include "lgca/lgca_int.h"
+#include "method.h"
+
+static double now_wall(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static double now_cpu(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static int parse_ints(const char *s, long *out, int cap)
+{
+    int n = 0;
+    char *end;
+    while (*s && n < cap) {
+        out[n++] = strtol(s, &end, 10);
+        if (end == s || out[n - 1] <= 0 || (*end && *end != ','))
+            return -1;
+        s = *end == ',' ? end + 1 : end;
+    }
+    return n;
+}
+
+static void usage(FILE *f)
+{
+    fprintf(f,
+            "usage: grano bench lgca [--size N1,N2,...] [--threads T1,T2,...] [--rules fhp3|granular]\n"
+            "                        [--p P] [--updates U] [--quick] [--ratio R]\n\n"
+            "A periodic lattice of N x N nodes at occupation 1/4 per channel; each case runs at least\n"
+            "U site updates (default 2e9; --quick: 2e8) after one warm-up step. Defaults: --size\n"
+            "256,1024,4096,8192 --threads 1,2 --rules fhp3 (granular with --p P > 0 adds the\n"
+            "dissipation bits). Prints per case:\n"
+            "  RESULT method=lgca nx=NX ny=NY threads=T site_updates_per_s=X cpu_site_updates_per_s=Y ...\n"
+            "(Y: per second of CPU time of all threads).\n"
+            "--ratio R: for the first size, R alternating rounds of 1 and 2 threads, printing the\n"
+            "speed-up of each round and of all (the host's drift hits both alike).\n");
+}
+
+static gr_sim *make(long n, int threads, const char *rules, double p, gr_scene **scp, gr_err *e)
+{
+    char text[1024];
+    double h = sqrt(3.0) / 2;
+    snprintf(text, sizeof text,
+             "[scene]\nname = bench-lgca\nseed = 1\n[domain]\nwidth = %.17g\nheight = %.17g\n"
+             "left = periodic\nright = periodic\nbottom = periodic\ntop = periodic\n"
+             "[init]\nkind = occupation\noccupation = 0\n[lgca]\ndt = 1\nrules = %s\np = %.17g\nthreads = %d\n",
+             (double)n * h * (1 + 1e-12), (double)n * (1 + 1e-12), rules, p, threads);
+    const char *extra[] = {"lgca", NULL};
+    gr_scene *sc = gr_scene_parse(text, "bench-lgca", extra, e);
+    if (!sc)
+        return NULL;
+    gr_particles *q = gr_particles_create(0, e);
+    gr_sim *s = NULL;
+    if (q)
+        gr_sim_create(gr_method_find("lgca"), sc, q, &s, e);
+    gr_particles_free(q);
+    if (!s) {
+        gr_scene_free(sc);
+        return NULL;
+    }
+    /* occupation 1/4: the AND of two random words (a bench needs no
+     * statistics, only a typical mix of collisions) */
+    lgca *L = gr_sim_state(s);
+    size_t nw = (size_t)L->nw;
+    for (size_t j = 0; j < (size_t)L->nj; j++)
+        for (size_t c = 0; c < LGCA_CH; c++)
+            for (size_t w = 0; w < nw; w++) {
+                uint64_t k = (j * LGCA_CH + c) * nw + w;
+                L->s[k] = lgca_rand_word(L->key, k, 60, 0) & lgca_rand_word(L->key, k, 61, 0) & L->valid[w];
+            }
+    *scp = sc;
+    return s;
+}
+
+/* Site updates per second of wall time over at least `updates` updates;
+ * *cpu: per second of the process's CPU time (all threads), which a
+ * host shared with other jobs distorts less. */
+static double timed(gr_sim *s, long n, double updates, double *cpu, gr_err *e)
+{
+    long steps = (long)ceil(updates / ((double)n * (double)n));
+    if (gr_sim_step(s, e))
+        return NAN;
+    double t0 = now_wall(), c0 = now_cpu();
+    if (gr_sim_advance(s, gr_sim_time(s) + (double)steps * 1.0, 0, e))
+        return NAN;
+    double done = (double)steps * (double)n * (double)n;
+    if (cpu)
+        *cpu = done / (now_cpu() - c0);
+    return done / (now_wall() - t0);
+}
+
+static int run_case(long n, int threads, const char *rules, double p, double updates)
+{
+    gr_err e = {0};
+    gr_scene *sc;
+    gr_sim *s = make(n, threads, rules, p, &sc, &e);
+    if (!s) {
+        fprintf(stderr, "grano bench lgca: %s\n", e.msg);
+        return 1;
+    }
+    lgca *L = gr_sim_state(s);
+    double cpu = NAN, rate = timed(s, n, updates, &cpu, &e);
+    double bytes = (double)((LGCA_CH + 1) * (size_t)L->nw * 8 * (size_t)L->nj) / ((double)L->ni * L->nj);
+    printf("RESULT method=lgca nx=%d ny=%d threads=%d site_updates_per_s=%.4g cpu_site_updates_per_s=%.4g "
+           "rules=%s bytes_per_node=%.3f\n",
+           L->nj, L->ni, threads, rate, cpu, rules, bytes);
+    fflush(stdout);
+    gr_sim_free(s);
+    gr_scene_free(sc);
+    return isnan(rate) ? 1 : 0;
+}
+
+static int run_ratio(long n, int rounds, const char *rules, double p, double updates)
+{
+    gr_err e = {0};
+    gr_scene *sa, *sb;
+    gr_sim *a = make(n, 1, rules, p, &sa, &e), *b = a ? make(n, 2, rules, p, &sb, &e) : NULL;
+    if (!a || !b) {
+        fprintf(stderr, "grano bench lgca: %s\n", e.msg);
+        return 1;
+    }
+    double ta = 0, tb = 0;
+    for (int r = 0; r < rounds; r++) {
+        double ra = timed(a, n, updates, NULL, &e), rb = timed(b, n, updates, NULL, &e);
+        ta += updates / ra, tb += updates / rb;
+        printf("round %d: 1 thread %.4g, 2 threads %.4g site updates/s, speed-up %.3f\n", r + 1, ra, rb, rb / ra);
+    }
+    printf("RESULT method=lgca nx=%ld ny=%ld speedup_2_threads=%.3f rounds=%d\n", n, n, ta / tb, rounds);
+    gr_sim_free(a), gr_sim_free(b);
+    gr_scene_free(sa), gr_scene_free(sb);
+    return 0;
+}
+
+int bench_lgca(int argc, char **argv)
+{
+    long sizes[16] = {256, 1024, 4096, 8192}, threads[8] = {1, 2};
+    int ns = 4, nt = 2, rounds = 0;
+    double updates = 2e9, p = 0;
+    const char *rules = "fhp3";
+    for (int k = 1; k < argc; k++) {
+        const char *v = k + 1 < argc ? argv[k + 1] : NULL;
+        if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
+            usage(stdout);
+            return 0;
+        } else if (!strcmp(argv[k], "--quick"))
+            updates = 2e8, ns = 2, sizes[0] = 256, sizes[1] = 1024;
+        else if (v && !strcmp(argv[k], "--size") && (ns = parse_ints(v, sizes, 16)) > 0)
+            k++;
+        else if (v && !strcmp(argv[k], "--threads") && (nt = parse_ints(v, threads, 8)) > 0)
+            k++;
+        else if (v && !strcmp(argv[k], "--rules") && (!strcmp(v, "fhp3") || !strcmp(v, "granular")))
+            rules = v, k++;
+        else if (v && !strcmp(argv[k], "--p") && (p = atof(v)) >= 0 && p <= 1)
+            k++;
+        else if (v && !strcmp(argv[k], "--updates") && (updates = atof(v)) > 0)
+            k++;
+        else if (v && !strcmp(argv[k], "--ratio") && (rounds = atoi(v)) > 0)
+            k++;
+        else {
+            fprintf(stderr, "grano bench lgca: bad option '%s'%s%s\n", argv[k], v ? " " : "", v ? v : "");
+            usage(stderr);
+            return 2;
+        }
+    }
+    if (p > 0 && !strcmp(rules, "fhp3")) {
+        fprintf(stderr, "grano bench lgca: --p needs --rules granular\n");
+        return 2;
+    }
+    if (rounds)
+        return run_ratio(sizes[0], rounds, rules, p, updates);
+    for (int i = 0; i < ns; i++)
+        for (int t = 0; t < nt; t++)
+            if (run_case(sizes[i], (int)threads[t], rules, p, updates))
+                return 1;
+    return 0;
+}

@@ -1,0 +1,211 @@
+/* The lattice of a scene: its size, the wall nodes (the domain's wall sides
+ * and the scene's segments, rasterised), the silo's exit and reinsertion
+ * band, and the initial state (grains put on nodes, or random channel
+ * occupations). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lgca_int.h"
+
+/* Wall candidates before duplicates are merged. */
+typedef struct {
+    lgca_wall *w;
+    size_t n, cap;
+} wall_list;
+
+static int wall_push(wall_list *l, int i, int j, unsigned mirror, uint64_t open_step)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 256;
+        lgca_wall *q = realloc(l->w, cap * sizeof *q);
+        if (!q)
+            return GR_ERUN;
+        l->w = q, l->cap = cap;
+    }
+    l->w[l->n++] = (lgca_wall){(uint32_t)i, (uint32_t)j, mirror, open_step};
+    return GR_OK;
+}
+
+static int wall_cmp(const void *a, const void *b)
+{
+    const lgca_wall *x = a, *y = b;
+    if (x->j != y->j)
+        return x->j < y->j ? -1 : 1;
+    if (x->i != y->i)
+        return x->i < y->i ? -1 : 1;
+    return x->open_step < y->open_step ? 1 : x->open_step > y->open_step ? -1 : 0;
+}
+
+/* The domain's wall sides: a lane or a row of wall nodes; where two meet,
+ * the corner bounces back. */
+static int side_walls(lgca *L, wall_list *l)
+{
+    const gr_scene *sc = L->sc;
+    int rc = GR_OK;
+    for (int j = 0; j < L->nj && !rc; j++)
+        for (int i = 0; i < L->ni && !rc; i++) {
+            int v = (j == 0 && sc->side[GR_LEFT] == GR_BC_WALL) ||
+                    (j == L->nj - 1 && sc->side[GR_RIGHT] == GR_BC_WALL);
+            int hz = (i == 0 && sc->side[GR_BOTTOM] == GR_BC_WALL) ||
+                     (i == L->ni - 1 && sc->side[GR_TOP] == GR_BC_WALL);
+            if (v || hz)
+                rc = wall_push(l, i, j, v && hz ? 6u : v ? 3u : 0u, UINT64_MAX);
+        }
+    return rc;
+}
+
+/* A segment covers the nodes closer than 0.6 a to it (thick enough that no
+ * particle hops across); its mirror is the lattice mirror axis nearest to
+ * its direction. A gate opens at the first step at or after its time. */
+static int segment_walls(lgca *L, const gr_segment *s, wall_list *l)
+{
+    double dx = s->x1 - s->x0, dy = s->y1 - s->y0, len2 = dx * dx + dy * dy, reach = 0.6 * L->a;
+    double ang = atan2(dy, dx) * 180.0 / M_PI;
+    unsigned m = (unsigned)((long)lround(ang / 30.0) % 6 + 6) % 6;
+    uint64_t open = isfinite(s->open_time) ? (uint64_t)ceil(fmax(0.0, s->open_time) / L->par.dt - 1e-9) : UINT64_MAX;
+    int j0 = (int)floor((fmin(s->x0, s->x1) - reach) / L->h - 1), j1 = (int)ceil((fmax(s->x0, s->x1) + reach) / L->h);
+    int i0 = (int)floor((fmin(s->y0, s->y1) - reach) / L->a - 2), i1 = (int)ceil((fmax(s->y0, s->y1) + reach) / L->a);
+    for (int j = j0 < 0 ? 0 : j0; j <= j1 && j < L->nj; j++)
+        for (int i = i0 < 0 ? 0 : i0; i <= i1 && i < L->ni; i++) {
+            double x, y;
+            lgca_node_xy(L, i, j, &x, &y);
+            double t = len2 > 0 ? ((x - s->x0) * dx + (y - s->y0) * dy) / len2 : 0;
+            t = t < 0 ? 0 : t > 1 ? 1 : t;
+            double ex = x - s->x0 - t * dx, ey = y - s->y0 - t * dy;
+            if (ex * ex + ey * ey < reach * reach && wall_push(l, i, j, m, open))
+                return GR_ERUN;
+        }
+    return GR_OK;
+}
+
+/* Merge duplicates: a permanent wall wins over a gate, the earlier gate
+ * over a later one (sorted so the first of a node is the one kept). */
+static int build_walls(lgca *L, gr_err *err)
+{
+    wall_list l = {NULL, 0, 0};
+    int rc = side_walls(L, &l);
+    for (int k = 0; k < L->sc->nsegments && !rc; k++)
+        rc = segment_walls(L, &L->sc->segments[k], &l);
+    if (rc) {
+        free(l.w);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    if (l.n)
+        qsort(l.w, l.n, sizeof *l.w, wall_cmp);
+    size_t n = 0;
+    for (size_t k = 0; k < l.n; k++)
+        if (!n || l.w[k].i != l.w[n - 1].i || l.w[k].j != l.w[n - 1].j)
+            l.w[n++] = l.w[k];
+    L->walls = l.w, L->nwalls = n;
+    for (size_t k = 0; k < n; k++)
+        L->has_gates |= l.w[k].open_step != UINT64_MAX;
+    for (size_t k = 0; k < n; k++)
+        L->solid[(size_t)l.w[k].j * (size_t)L->nw + (l.w[k].i >> 6)] |= (uint64_t)1 << (l.w[k].i & 63);
+    return GR_OK;
+}
+
+/* Rows of lane parity q whose node height is below y: i < rows_below. */
+static int rows_below(const lgca *L, double y, int q)
+{
+    double x = y / L->a - 0.25 - 0.5 * q;
+    int n = (int)ceil(x - 1e-12);
+    return n < 0 ? 0 : n > L->ni ? L->ni : n;
+}
+
+static void silo_exits(lgca *L)
+{
+    const gr_silo *s = &L->sc->silo;
+    if (!s->present)
+        return;
+    L->exits = 1;
+    L->reinsert = s->reinsert;
+    for (int q = 0; q < 2; q++) {
+        L->exit_n[q] = rows_below(L, s->exit_below, q);
+        L->band_i0[q] = rows_below(L, s->reinsert_bottom, q);
+        L->band_i1[q] = rows_below(L, s->reinsert_top, q);
+    }
+    L->band_j0 = (int)ceil(s->x0 / L->h - 0.5);
+    L->band_j1 = (int)ceil((s->x0 + s->width) / L->h - 0.5);
+    L->band_j0 = L->band_j0 < 0 ? 0 : L->band_j0;
+    L->band_j1 = L->band_j1 > L->nj ? L->nj : L->band_j1;
+}
+
+static int check_size(lgca *L, gr_err *err)
+{
+    const gr_scene *sc = L->sc;
+    char where[1200];
+    gr_scene_where(sc, "domain", "width", where, sizeof where);
+    if (L->ni < 3 || L->nj < 4)
+        return gr_fail(err, GR_EINPUT, "%s: the domain holds %d x %d lattice nodes of spacing %g; lgca needs at least 4 lanes and 3 rows",
+                       where, L->nj, L->ni, L->a);
+    if ((double)L->ni * L->nj * LGCA_CH > 1e12 || L->nw > (1 << 24))
+        return gr_fail(err, GR_EINPUT, "%s: a lattice of %d x %d nodes is too large", where, L->nj, L->ni);
+    return GR_OK;
+}
+
+static int alloc_lattice(lgca *L, gr_err *err)
+{
+    size_t nj = (size_t)L->nj, nw = (size_t)L->nw, T = (size_t)L->nthreads;
+    L->s = calloc(nj * LGCA_CH * nw, sizeof *L->s);
+    L->solid = calloc(nj * nw, sizeof *L->solid);
+    L->valid = calloc(nw, sizeof *L->valid);
+    L->scratch = calloc(T * 6 * nw, sizeof *L->scratch);
+    L->edge = calloc(T * 4 * nw, sizeof *L->edge);
+    if (!L->s || !L->solid || !L->valid || !L->scratch || !L->edge)
+        return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
+    for (int i = 0; i < L->ni; i++)
+        L->valid[i >> 6] |= (uint64_t)1 << (i & 63);
+    return GR_OK;
+}
+
+int lgca_create(const gr_scene *sc, const lgca_params *par, const uint32_t key[2],
+                const gr_particles *init, gr_rng *rng, lgca **out, gr_err *err)
+{
+    *out = NULL;
+    lgca *L = calloc(1, sizeof *L);
+    if (!L)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    L->sc = sc;
+    L->par = *par;
+    L->key[0] = key[0], L->key[1] = key[1];
+    L->a = gr_scene_max_diameter(sc);
+    L->h = L->a * sqrt(3.0) / 2;
+    L->mass = sc->species[0].density * M_PI * L->a * L->a / 4;
+    L->per_i = sc->side[GR_BOTTOM] == GR_BC_PERIODIC;
+    L->per_j = sc->side[GR_LEFT] == GR_BC_PERIODIC;
+    for (int s = 0; s < 4; s++)
+        L->open[s] = sc->side[s] == GR_BC_OPEN;
+    L->ni = (int)floor(sc->height / L->a + 1e-9);
+    L->nj = (int)floor(sc->width / L->h + 1e-9);
+    if (L->per_j)
+        L->nj &= ~1; /* lanes alternate their offset: a period is even */
+    L->nw = (L->ni + 63) / 64;
+    L->nthreads = par->threads;
+    L->thr_p = (uint32_t)lround(par->p * 65536.0);
+    L->thr_g = (uint32_t)lround(par->g * 65536.0);
+    L->thr_b = (uint64_t)llround(par->b * 4294967296.0);
+    int rc = check_size(L, err);
+    if (!rc)
+        rc = alloc_lattice(L, err);
+    if (!rc)
+        rc = build_walls(L, err);
+    if (!rc) {
+        silo_exits(L);
+        rc = lgca_init_state(L, init, rng, err);
+    }
+    if (rc) {
+        lgca_free(L);
+        return rc;
+    }
+    *out = L;
+    return GR_OK;
+}
+
+void lgca_free(lgca *L)
+{
+    if (!L)
+        return;
+    free(L->s), free(L->solid), free(L->valid), free(L->walls), free(L->scratch), free(L->edge);
+    free(L);
+}

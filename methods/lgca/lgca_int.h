@@ -1,0 +1,163 @@
+/* The lattice-gas backend (docs/methods/lgca.md): a granular FHP lattice
+ * gas on a triangular lattice, seven channels per node stored as bit
+ * planes, 64 nodes per machine word.
+ *
+ * Lattice coordinates: node (i, j), i along a lattice axis that points up
+ * (+y), j the lane across it (+x). Node (i, j) sits at
+ *   x = (j + 1/2) h,  y = (i + 1/4 + (j odd) / 2) a,  h = a sqrt(3) / 2,
+ * so gravity (-y) lies along a lattice direction. Channel k < 6 moves along
+ * c_k = (sin 60k, cos 60k) in (x, y): 0 up, 1 up-right, 2 down-right, 3
+ * down, 4 down-left, 5 up-left; channel 6 is the rest particle. */
+#ifndef GR_LGCA_INT_H
+#define GR_LGCA_INT_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "err.h"
+#include "fields.h"
+#include "observe.h"
+#include "params.h"
+#include "particles.h"
+#include "rng.h"
+#include "scene.h"
+
+#define LGCA_CH 7
+#define LGCA_REST 6
+
+enum { LGCA_RULES_FHP3 = 0, LGCA_RULES_GRANULAR = 1, LGCA_NRULES = 2 };
+
+typedef struct {
+    double dt;   /* time per step (tau) */
+    double p;    /* dissipation probability (granular rules) */
+    double g;    /* gravity probability per node and step; NaN: from the scene */
+    double b;    /* wall roughness: bounce-back probability */
+    int rules;   /* LGCA_RULES_* */
+    int threads;
+} lgca_params;
+
+extern const gr_param lgca_param_table[];
+void lgca_params_from(const gr_param_values *pv, lgca_params *p);
+
+/* ---- collision rules (lgca_table.c): the readable reference ----
+ * out[s | ch << 7 | pb << 8]: the state after the collision of state s with
+ * chirality bit ch and dissipation bit pb (granular rules only). */
+#define LGCA_TABLE_SIZE 512
+void lgca_table_build(int rules, uint8_t out[LGCA_TABLE_SIZE]);
+/* Momentum of a state in integer units: qx = sum of sign(sin 60k) (units of
+ * sqrt(3)/2 lattice speeds along x), qy = sum of 2 cos 60k (units of half a
+ * lattice speed along y). Exact, for conservation checks. */
+void lgca_state_momentum(unsigned s, int *qx, int *qy);
+/* Channel k after the mirror of kind m (axis at 30 m degrees from +x);
+ * m = 6: bounce-back. */
+static inline int lgca_mirror(int m, int k)
+{
+    if (k == LGCA_REST)
+        return k;
+    return m == 6 ? (k + 3) % 6 : ((3 - m - k) % 6 + 12) % 6;
+}
+
+/* ---- the generated bit-parallel collision (lgca_kernel.c, made by
+ * lgca_gen.c from the table above) ---- */
+/* d: the bits that change (apply as s ^= d & fluid). */
+void lgca_delta_fhp3(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t d[LGCA_CH]);
+void lgca_delta_granular(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t pb, uint64_t d[LGCA_CH]);
+/* The collision of a lane's nw words (lane: 7 planes of nw words) at its
+ * fluid nodes. */
+void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);
+void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch,
+                              const uint64_t *pb);
+
+/* ---- random bits (lgca_rand.c): Philox4x32-10 keyed by the run's key,
+ * counted by word, purpose and step ---- */
+enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34, LGCA_RND_REINSERT = 35 };
+uint64_t lgca_rand_word(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step);
+/* 64 bits each set with probability thr / 2^16 (thr <= 65536). */
+uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step,
+                          uint32_t thr);
+uint32_t lgca_rand_u32(const uint32_t key[2], uint64_t node, unsigned purpose, uint64_t step);
+
+/* A wall node: where, its mirror kind, whether it is a gate. */
+typedef struct {
+    uint32_t i, j;
+    uint32_t mirror;   /* 0..5 mirror axis at 30 m degrees; 6 bounce-back (corners) */
+    uint64_t open_step; /* a gate: fluid from this step on; UINT64_MAX: never */
+} lgca_wall;
+
+typedef struct lgca {
+    const gr_scene *sc;
+    lgca_params par;
+    int ni, nj, nw;         /* nodes per lane, lanes, words per lane */
+    double a, h, mass;      /* spacing, lane spacing, particle mass */
+    int per_i, per_j;       /* periodic along the axis (y) and across (x) */
+    int open[4];            /* GR_LEFT.. side open (particles leaving vanish) */
+    uint64_t *s;            /* [(j * 7 + c) * nw + w] */
+    uint64_t *solid;        /* [j * nw + w] wall nodes */
+    uint64_t *valid;        /* [w] nodes that exist in a lane */
+    lgca_wall *walls;
+    size_t nwalls;
+    int has_gates;
+    uint32_t thr_p, thr_g;  /* probabilities in units of 2^-16 */
+    uint64_t thr_b;         /* in units of 2^-32 */
+    uint32_t key[2];
+    uint64_t step;
+    int exits;              /* a silo: nodes below exit_below empty out */
+    int exit_n[2];          /* rows i < exit_n[j & 1] lie below exit_below */
+    int band_i0[2], band_i1[2]; /* reinsertion band rows [i0, i1) per lane parity */
+    int band_j0, band_j1;   /* and lanes */
+    int reinsert;
+    uint64_t outflow, reinserted, lost;
+    int nthreads;
+    uint64_t *scratch;      /* per thread: 6 nw words (random bits, shifts) */
+    uint64_t *edge;         /* per thread: 4 planes of a block's edge lanes */
+} lgca;
+
+/* lgca_geom.c: lattice size, walls, the initial state. */
+/* init: the scene's grains, rasterised onto nodes; rng fills the channels
+ * of an occupation initial state. */
+int lgca_create(const gr_scene *sc, const lgca_params *par, const uint32_t key[2],
+                const gr_particles *init, gr_rng *rng, lgca **out, gr_err *err);
+void lgca_free(lgca *L);
+static inline void lgca_node_xy(const lgca *L, int i, int j, double *x, double *y)
+{
+    *x = (j + 0.5) * L->h;
+    *y = (i + 0.25 + 0.5 * (j & 1)) * L->a;
+}
+static inline int lgca_get(const lgca *L, int i, int j, int c)
+{
+    return (int)(L->s[((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw + (size_t)(i >> 6)] >> (i & 63) & 1u);
+}
+static inline void lgca_put(lgca *L, int i, int j, int c, int v)
+{
+    uint64_t *w = &L->s[((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw + (size_t)(i >> 6)];
+    uint64_t m = (uint64_t)1 << (i & 63);
+    *w = v ? *w | m : *w & ~m;
+}
+static inline int lgca_is_solid(const lgca *L, int i, int j)
+{
+    return (int)(L->solid[(size_t)j * (size_t)L->nw + (size_t)(i >> 6)] >> (i & 63) & 1u);
+}
+/* lgca_init.c. The neighbour of (i, j) along channel k, or 0 when it is off
+ * the lattice (non-periodic side). */
+int lgca_neighbour(const lgca *L, int i, int j, int k, int *ni, int *nj);
+/* Fill the lattice from the scene's grains or its occupations. */
+int lgca_init_state(lgca *L, const gr_particles *init, gr_rng *rng, gr_err *err);
+
+/* lgca_exit.c: particles below the silo's exit height leave (counted);
+ * with reinsertion each goes back, in its channel, to the highest free node
+ * of the band in a lane drawn at random (or the next lane with room). */
+void lgca_exits(lgca *L);
+
+/* lgca_step.c: n steps (collision, gravity, walls, propagation, exits). */
+int lgca_steps(lgca *L, uint64_t n, gr_err *err);
+/* lgca_ref.c: the same step on one byte per node through the table, for
+ * the tests (bytes[j * ni + i] in, out). */
+int lgca_ref_step(const lgca *L, uint8_t *bytes, uint64_t step, gr_err *err);
+void lgca_to_bytes(const lgca *L, uint8_t *bytes);
+
+/* lgca_observe.c */
+void lgca_observe(const lgca *L, gr_obs *o);
+int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err);
+void lgca_populations(const lgca *L, uint64_t *moving, uint64_t *resting);
+
+#endif

@@ -1,0 +1,139 @@
+/* The lattice-gas backend's table (methods/method.h): a lattice, so no
+ * snapshot; fields and observables from the node occupations. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "lgca_int.h"
+#include "method.h"
+
+/* What the table cannot check: the probabilities against the rule set and
+ * the scene's gravity. */
+static int check(const gr_scene *sc, lgca_params *p, gr_err *err)
+{
+    char where[1200];
+    if (p->rules == LGCA_RULES_FHP3 && p->p > 0) {
+        gr_scene_where(sc, "lgca", "p", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: p = %g needs rules = granular (fhp3 conserves energy)", where, p->p);
+    }
+    if (isnan(p->g))
+        p->g = sc->gravity * p->dt * p->dt / gr_scene_max_diameter(sc);
+    else if (p->g > 0 && !(sc->gravity > 0)) {
+        gr_scene_where(sc, "lgca", "g", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: g = %g needs [domain] gravity > 0", where, p->g);
+    }
+    if (p->g > 1) {
+        gr_scene_where(sc, "lgca", "dt", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: gravity dt^2 / d = %g exceeds 1 (a probability per step); lower dt or give g",
+                       where, p->g);
+    }
+    return GR_OK;
+}
+
+static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
+{
+    lgca_params par;
+    lgca_params_from(ctx->params, &par);
+    if (check(ctx->scene, &par, err))
+        return err->code;
+    /* stream 0: the Philox key; stream 1: the initial occupations */
+    gr_rng *keys = gr_sim_stream(ctx->sim, 0, err), *occ;
+    if (!keys || !(occ = gr_sim_stream(ctx->sim, 1, err)))
+        return err->code;
+    uint32_t key[2] = {(uint32_t)gr_rng_below(keys, 4294967295ul), (uint32_t)gr_rng_below(keys, 4294967295ul)};
+    lgca *L;
+    if (lgca_create(ctx->scene, &par, key, init, occ, &L, err))
+        return err->code;
+    *state = L;
+    return GR_OK;
+}
+
+static int m_advance(void *s, double t_end, uint64_t max_steps, gr_err *err)
+{
+    lgca *L = s;
+    double eps = isfinite(t_end) ? 1e-12 * (1 + fabs(t_end)) : 0;
+    /* the first step count whose time reaches t_end */
+    double need = isfinite(t_end) ? ceil((t_end - eps) / L->par.dt) : INFINITY;
+    uint64_t n = need > (double)L->step ? (need > 1e18 ? UINT64_MAX : (uint64_t)need - L->step) : 0;
+    if (max_steps && n > max_steps)
+        n = max_steps;
+    return lgca_steps(L, n, err);
+}
+
+static int m_step(void *s, gr_err *err) { return lgca_steps(s, 1, err); }
+
+static double m_time(const void *s)
+{
+    const lgca *L = s;
+    return (double)L->step * L->par.dt;
+}
+
+static int m_observe(void *s, gr_obs *o, gr_err *err)
+{
+    (void)err;
+    lgca_observe(s, o);
+    return GR_OK;
+}
+
+static int m_fields(void *s, gr_field *f, double w, gr_err *err) { return lgca_fields(s, f, w, err); }
+
+static size_t m_counters(const void *s, gr_counter *out, size_t cap)
+{
+    const lgca *L = s;
+    uint64_t moving, resting;
+    lgca_populations(L, &moving, &resting);
+    gr_counter c[] = {{"steps", L->step},         {"moving", moving},         {"resting", resting},
+                      {"outflow", L->outflow},    {"reinserted", L->reinserted}, {"lost", L->lost}};
+    return gr_counters_put(out, cap, c, sizeof c / sizeof c[0]);
+}
+
+static int m_save(const void *s, gr_ckpt *ck, gr_err *err)
+{
+    const lgca *L = s;
+    uint64_t misc[6] = {L->step, L->outflow, L->reinserted, L->lost, (uint64_t)L->ni, (uint64_t)L->nj};
+    size_t n = (size_t)L->nj * LGCA_CH * (size_t)L->nw;
+    if (gr_ckpt_put_u64(ck, "lgca_misc", misc, 6, err) || gr_ckpt_put_u64(ck, "lgca_state", L->s, n, err))
+        return err->code;
+    return GR_OK;
+}
+
+/* The gates are recomputed from the step by the next lgca_step. */
+static int m_load(void *s, gr_ckpt *ck, gr_err *err)
+{
+    lgca *L = s;
+    uint64_t misc[6];
+    size_t n = (size_t)L->nj * LGCA_CH * (size_t)L->nw, len;
+    if (gr_ckpt_get_u64(ck, "lgca_misc", misc, 6, err))
+        return err->code;
+    if (misc[4] != (uint64_t)L->ni || misc[5] != (uint64_t)L->nj)
+        return gr_fail(err, GR_EINPUT, "checkpoint: a lattice of %llu x %llu nodes, the scene makes %d x %d",
+                       (unsigned long long)misc[5], (unsigned long long)misc[4], L->nj, L->ni);
+    if (gr_ckpt_len(ck, "lgca_state", &len, err))
+        return err->code;
+    if (len != n)
+        return gr_fail(err, GR_EINPUT, "checkpoint: lattice state of %zu words, expected %zu", len, n);
+    if (gr_ckpt_get_u64(ck, "lgca_state", L->s, n, err))
+        return err->code;
+    L->step = misc[0], L->outflow = misc[1], L->reinserted = misc[2], L->lost = misc[3];
+    return GR_OK;
+}
+
+static void m_free(void *s) { lgca_free(s); }
+
+const gr_method_type gr_lgca_method = {
+    .name = "lgca",
+    .summary = "granular lattice gas (FHP-III and Peng-Herrmann rules), 64 nodes per machine word",
+    .repr = GR_REPR_LATTICE,
+    .features = GR_FEAT_GRAVITY | GR_FEAT_PERIODIC | GR_FEAT_OPEN_SIDE | GR_FEAT_SEGMENTS |
+                GR_FEAT_ORIFICE | GR_FEAT_REINSERT | GR_FEAT_LATTICE,
+    .params = lgca_param_table,
+    .create = m_create,
+    .advance = m_advance,
+    .time = m_time,
+    .observe = m_observe,
+    .save = m_save,
+    .load = m_load,
+    .free = m_free,
+    .fields = m_fields,
+    .counters = m_counters,
+    .step = m_step,
+};

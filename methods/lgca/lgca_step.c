@@ -1,0 +1,236 @@
+/* One step of the automaton on bit planes: collision (and dissipation) and
+ * gravity at fluid nodes, reflection at wall nodes, propagation, then the
+ * silo's exit and reinsertion. Lanes are split into one block per thread;
+ * every random bit is a function of (key, word, purpose, step), so the
+ * result does not depend on the split. */
+#include <omp.h>
+#include <string.h>
+
+#include "lgca_int.h"
+
+/* Gravity: at a fluid node drawn with probability g, one unit of downward
+ * momentum: a rest particle starts down, or else up-right turns down-right,
+ * or else up-left turns down-left (each only into an empty channel). */
+static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m)
+{
+    uint64_t *c = lane + w;
+    uint64_t g1 = m & c[6 * nw] & ~c[3 * nw];
+    c[6 * nw] ^= g1, c[3 * nw] |= g1;
+    m &= ~g1;
+    uint64_t g2 = m & c[1 * nw] & ~c[2 * nw];
+    c[1 * nw] ^= g2, c[2 * nw] |= g2;
+    m &= ~g2;
+    uint64_t g3 = m & c[5 * nw] & ~c[4 * nw];
+    c[5 * nw] ^= g3, c[4 * nw] |= g3;
+}
+
+static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
+{
+    size_t nw = (size_t)L->nw;
+    uint64_t *fluid = scr, *ch = scr + nw, *pb = scr + 2 * nw;
+    int granular = L->par.rules == LGCA_RULES_GRANULAR;
+    for (int j = j0; j < j1; j++) {
+        uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
+        uint64_t base = (uint64_t)j * nw;
+        for (size_t w = 0; w < nw; w++) {
+            fluid[w] = L->valid[w] & ~L->solid[base + w];
+            ch[w] = lgca_rand_word(L->key, base + w, LGCA_RND_CHIRAL, L->step);
+        }
+        if (granular) {
+            for (size_t w = 0; w < nw; w++)
+                pb[w] = lgca_rand_biased(L->key, base + w, LGCA_RND_P, L->step, L->thr_p);
+            lgca_delta_granular_lane(lane, nw, fluid, ch, pb);
+        } else
+            lgca_delta_fhp3_lane(lane, nw, fluid, ch);
+        if (L->thr_g)
+            for (size_t w = 0; w < nw; w++)
+                gravity(lane, nw, w, fluid[w] & lgca_rand_biased(L->key, base + w, LGCA_RND_G, L->step, L->thr_g));
+    }
+}
+
+/* Wall nodes: the mirror image of every particle (bounce-back with
+ * probability b). Serial: walls are a perimeter, not an area. */
+static void reflect(lgca *L)
+{
+    for (size_t k = 0; k < L->nwalls; k++) {
+        const lgca_wall *w = &L->walls[k];
+        int i = (int)w->i, j = (int)w->j;
+        if (!lgca_is_solid(L, i, j))
+            continue; /* an open gate */
+        int in[6], any = 0;
+        for (int c = 0; c < 6; c++)
+            any |= in[c] = lgca_get(L, i, j, c);
+        if (!any)
+            continue;
+        int m = (int)w->mirror;
+        uint64_t node = (uint64_t)j * (uint64_t)L->ni + (uint64_t)i;
+        if (L->thr_b && lgca_rand_u32(L->key, node, LGCA_RND_WALL, L->step) < L->thr_b)
+            m = 6;
+        for (int c = 0; c < 6; c++)
+            lgca_put(L, i, j, lgca_mirror(m, c), in[c]);
+    }
+}
+
+/* ---- propagation ---- */
+
+/* Node i moves to i + 1; returns the particles that fell off the end
+ * (re-entering at i = 0 when the axis is periodic). */
+static uint64_t shift_up(const lgca *L, uint64_t *dst, const uint64_t *src)
+{
+    size_t nw = (size_t)L->nw;
+    int top = L->ni - 1;
+    uint64_t out = src[top >> 6] >> (top & 63) & 1u;
+    for (size_t w = nw; w-- > 0;)
+        dst[w] = src[w] << 1 | (w ? src[w - 1] >> 63 : 0);
+    dst[nw - 1] &= L->valid[nw - 1];
+    if (L->per_i) {
+        dst[0] |= out;
+        return 0;
+    }
+    return out;
+}
+
+static uint64_t shift_down(const lgca *L, uint64_t *dst, const uint64_t *src)
+{
+    size_t nw = (size_t)L->nw;
+    int top = L->ni - 1;
+    uint64_t out = src[0] & 1u;
+    for (size_t w = 0; w < nw; w++)
+        dst[w] = src[w] >> 1 | (w + 1 < nw ? src[w + 1] << 63 : 0);
+    if (L->per_i) {
+        dst[top >> 6] |= out << (top & 63);
+        return 0;
+    }
+    return out;
+}
+
+static uint64_t *plane(lgca *L, int j, int c)
+{
+    return L->s + ((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw;
+}
+
+static uint64_t count(const uint64_t *x, size_t nw)
+{
+    uint64_t n = 0;
+    for (size_t w = 0; w < nw; w++)
+        n += (uint64_t)__builtin_popcountll(x[w]);
+    return n;
+}
+
+/* Channel c of a lane from src, the plane of source lane js: channels 1
+ * and 5 climb half a node, 2 and 4 descend; the half is a whole row from an
+ * odd lane for 1 and 5, from an even lane for 2 and 4. */
+static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_t *dst)
+{
+    int odd = js & 1;
+    if ((c == 1 || c == 5) && odd)
+        return shift_up(L, dst, src);
+    if ((c == 2 || c == 4) && !odd)
+        return shift_down(L, dst, src);
+    memcpy(dst, src, (size_t)L->nw * sizeof *dst);
+    return 0;
+}
+
+/* Block [j0, j1) of thread t of T, after the barrier that follows the
+ * saving of every block's edge lanes: rightward channels (1, 2) take lane
+ * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
+ * before it is overwritten; the block's first (last) lane takes the edge
+ * lane saved by its neighbour. */
+static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1)
+{
+    size_t nw = (size_t)L->nw;
+    uint64_t lost = 0;
+    if (c == 1 || c == 2) {
+        for (int j = j1 - 1; j > j0; j--)
+            lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
+        const uint64_t *e = L->edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
+        if (j0 > 0 || L->per_j)
+            lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
+        else
+            memset(plane(L, j0, c), 0, nw * sizeof *e);
+    } else {
+        for (int j = j0; j < j1 - 1; j++)
+            lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
+        const uint64_t *e = L->edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
+        if (j1 < L->nj || L->per_j)
+            lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
+        else
+            memset(plane(L, j1 - 1, c), 0, nw * sizeof *e);
+    }
+    return lost;
+}
+
+/* The block's edge lane that a neighbouring block reads (slot q of the
+ * thread's four); particles leaving the lattice sideways are counted. */
+static uint64_t save_edge(lgca *L, int q, int c, int t, int j0, int j1)
+{
+    size_t nw = (size_t)L->nw;
+    int right = c == 1 || c == 2;
+    int je = right ? j1 - 1 : j0;
+    memcpy(L->edge + ((size_t)t * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
+    int off = right ? je == L->nj - 1 : je == 0;
+    return off && !L->per_j ? count(plane(L, je, c), nw) : 0;
+}
+
+/* Gates whose time has come turn fluid (idempotent, so a load needs no
+ * more than the step number). */
+static void open_gates(lgca *L)
+{
+    if (!L->has_gates)
+        return;
+    for (size_t k = 0; k < L->nwalls; k++)
+        if (L->walls[k].open_step <= L->step) {
+            const lgca_wall *w = &L->walls[k];
+            L->solid[(size_t)w->j * (size_t)L->nw + (w->i >> 6)] &= ~((uint64_t)1 << (w->i & 63));
+        }
+}
+
+/* n steps by thread t of a team of T (four synchronisations a step). */
+static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
+{
+    int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
+    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->nw;
+    static const int across[4] = {1, 2, 4, 5};
+    for (uint64_t k = 0; k < n; k++) {
+        uint64_t out = 0;
+        collide_block(L, j0, j1, scr);
+#pragma omp barrier
+#pragma omp single
+        reflect(L);
+        for (int q = 0; q < 4; q++)
+            out += save_edge(L, q, across[q], t, j0, j1);
+        for (int j = j0; j < j1; j++) {
+            out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
+            out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
+        }
+#pragma omp barrier
+        for (int q = 0; q < 4; q++)
+            out += propagate_across(L, q, across[q], t, T, j0, j1);
+        lost[t] += out;
+#pragma omp barrier
+#pragma omp single
+        {
+            if (L->exits)
+                lgca_exits(L);
+            L->step++;
+            open_gates(L);
+        }
+    }
+}
+
+int lgca_steps(lgca *L, uint64_t n, gr_err *err)
+{
+    (void)err;
+    open_gates(L);
+    int T = L->nthreads < L->nj / 2 ? L->nthreads : L->nj / 2;
+    uint64_t lost[256] = {0};
+    if (T > 1 && n > 0) {
+        /* the team may be smaller than asked: blocks follow its size */
+#pragma omp parallel num_threads(T)
+        run_block(L, omp_get_thread_num(), omp_get_num_threads(), n, lost);
+    } else
+        run_block(L, 0, 1, n, lost);
+    for (int t = 0; t < 256; t++)
+        L->lost += lost[t];
+    return GR_OK;
+}

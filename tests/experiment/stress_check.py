@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""[run] stress = yes against a static analytic case: a square stack of
+10 x 10 frictionless unit disks (m = 1) on a floor between walls 10 d
+apart under g = 1. Every contact is vertical, so sigma_xx = sigma_xy = 0;
+the cell of row k (centres at y = k + 1/2, cells 1 d tall) carries
+sigma_yy = (9.5 - k) m g / d^2, the weight above its middle over the width
+(hydrostatic, no wall friction); and over the domain, at static
+equilibrium, sigma_yy A = sum m g y (the virial identity, the floor
+at y = 0). Contact dynamics is rigid: to 1e-9. Soft DEM (k_n = 1e5)
+compresses each contact by about 1e-4 d, which shortens the levers: cells
+to 1e-3, the identity (which holds with the actual levers) to 1e-5.
+A method without contact networks is refused by name.
+
+usage: stress_check.py GRANO WORKDIR
+"""
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+from tap import Tap
+
+SCENE = """[scene]
+name = stack
+[domain]
+width = 10
+height = 20
+gravity = 1
+[material]
+normal = linear
+tangential = none
+kn = 1e5
+gamma_n = 440
+[species]
+diameter = 1
+count = 100
+[init]
+kind = lattice
+spacing = 1
+velocity = zero
+[measure]
+field_cells = 1 20
+[run]
+until = 3
+output_every = 1
+stress = yes
+"""
+
+TAP = Tap()
+check = TAP.check
+
+
+def main():
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    grano, work = sys.argv[1:]
+    os.makedirs(work, exist_ok=True)
+    scene = os.path.join(work, "stack.ini")
+    with open(scene, "w") as f:
+        f.write(SCENE)
+    for method, tol_cell, tol_vir in (("cd", 1e-9, 1e-9), ("dem", 1e-3, 1e-5)):
+        out = os.path.join(work, method + ".h5")
+        r = subprocess.run([grano, "run", scene, "--method", method, "--out", out, "--force", "-q"],
+                           capture_output=True, text=True)
+        if r.returncode:
+            check(False, "%s runs the stack" % method, r.stderr)
+            continue
+        with h5py.File(out, "r") as f:
+            g = f["fields/stress_global/value"][-1].reshape(4)
+            cells = f["fields/stress"]
+            unit = cells["value"].attrs["unit"]
+            s = cells["value"][-1]              # [ny][nx][4]
+            y = f["particles/trajectory/position/value"][-1][:, 1]
+            m = f["particles/trajectory/mass"][:]
+        want = np.array([9.5 - k for k in range(10)] + [0.0] * 10)
+        syy = s[:, 0, 3]
+        err = np.max(np.abs(syy - want)) / 9.5
+        check(err < tol_cell, "%s: cell sigma_yy = (9.5 - k) m g per row (max error %.2g of the base, tol %g)"
+              % (method, err, tol_cell), syy)
+        off = max(np.max(np.abs(s[:, 0, :3])), np.max(np.abs(g[:3]))) / 9.5
+        check(off < 1e-9, "%s: sigma_xx, sigma_xy, sigma_yx vanish (%.2g)" % (method, off), s[:, 0, :3])
+        vir = g[3] * 10 * 20 / np.sum(m * y) - 1
+        check(abs(vir) < tol_vir, "%s: sigma_yy A = sum m g y (relative %.2g, tol %g)" % (method, vir, tol_vir))
+        check(unit in (b"m tau-2", "m tau-2"), "%s: unit m tau-2" % method, unit)
+    for method in ("edmd", "dsmc"):
+        r = subprocess.run([grano, "run", scene, "--method", method, "--out", os.path.join(work, "x.h5"),
+                            "--force", "-q"], capture_output=True, text=True)
+        check(r.returncode == 2 and "[run] key 'stress' = yes needs contact networks" in r.stderr,
+              "%s refuses [run] stress by name" % method, r.stderr)
+    return TAP.finish()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

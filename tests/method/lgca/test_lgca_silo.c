@@ -1,0 +1,75 @@
+/* The lattice silo: outflow rate W against orifice width D with
+ * reinsertion (g = 0.002, p = 0.3, b = 1). Asserts that W grows with D,
+ * that no particle is lost to reinsertion, and that W stays below the
+ * lattice's largest flux through the orifice (three downward channels of
+ * every orifice lane full at every step). Prints the 2D Beverloo fit
+ * W = C (D - k)^{3/2} (gr_fit_beverloo) and a free power law: the lattice
+ * does not follow Beverloo (W is close to linear in D, docs/methods/lgca.md).
+ * Suite slow. */
+#include "lgca_test.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "stats.h"
+
+/* Mean outflow per unit time over nb blocks of bs steps after a transient;
+ * *sd: the standard error of the mean from the blocks. */
+static double flow(double D, int nb, int bs, double *sd, uint64_t *lost)
+{
+    char text[2048];
+    snprintf(text, sizeof text,
+             "[scene]\nseed = 4\n[domain]\nwidth = 62\nheight = 130\nbottom = open\ngravity = 1\n"
+             "[silo]\nwidth = 60\nheight = 120\nbase = 6\norifice = %.17g\nopen_time = 0\nreinsert = yes\n"
+             "[init]\nkind = occupation\noccupation = 0.3\n[lgca]\ndt = 1\n%s\n",
+             D, "g = 0.002\np = 0.3\nb = 1");
+    gr_scene *sc;
+    gr_sim *s = lgca_make(text, &sc);
+    gr_err e = {0};
+    assert_int_equal(gr_sim_advance(s, 2000, 0, &e), GR_OK);
+    double sum = 0, sum2 = 0;
+    for (int k = 0; k < nb; k++) {
+        gr_obs a, b;
+        assert_int_equal(gr_sim_observe(s, &a, &e), GR_OK);
+        assert_int_equal(gr_sim_advance(s, gr_sim_time(s) + bs, 0, &e), GR_OK);
+        assert_int_equal(gr_sim_observe(s, &b, &e), GR_OK);
+        double w = (double)(b.outflow - a.outflow) / (b.t - a.t);
+        sum += w, sum2 += w * w;
+    }
+    double mean = sum / nb;
+    assert_int_equal(gr_sim_counter(s, "lost", lost), 1);
+    *sd = sqrt(fmax(sum2 / nb - mean * mean, 0) / (nb - 1));
+    lgca_drop(s, sc);
+    return mean;
+}
+
+static void beverloo(void **unused)
+{
+    (void)unused;
+    double D[] = {4, 6, 8, 10, 12, 16, 20}, W[7], sW[7];
+    size_t n = sizeof D / sizeof D[0];
+    for (size_t i = 0; i < n; i++) {
+        uint64_t lost;
+        W[i] = flow(D[i], 10, 500, &sW[i], &lost);
+        printf("# D = %4.1f: W = %.4f +- %.4f particles per step\n", D[i], W[i], sW[i]);
+        assert_true(lost == 0);
+        assert_true(W[i] < 3 * (D[i] / (sqrt(3.0) / 2) + 1));
+        if (i)
+            assert_true(W[i] > W[i - 1]);
+    }
+    gr_beverloo_par par = {1, 1, 1.5};
+    gr_fit fit;
+    gr_err e = {0};
+    assert_int_equal(gr_fit_beverloo(&par, D, W, sW, n, NULL, &fit, &e), GR_OK);
+    printf("# Beverloo W = C (D - k)^1.5: C = %.4f +- %.4f, k = %.3f +- %.3f, chi2/dof = %.2f\n", fit.p[0],
+           fit.err[0], fit.p[1], fit.err[1], fit.chi2_dof);
+    gr_fit pw;
+    assert_int_equal(gr_fit_loglog(D, W, sW, n, &pw, &e), GR_OK);
+    printf("# free power law W = A D^q: A = %.4f, q = %.3f +- %.3f\n", pw.p[0], pw.p[1], pw.err[1]);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {cmocka_unit_test(beverloo)};
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
