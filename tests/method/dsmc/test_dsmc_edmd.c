@@ -138,7 +138,7 @@ static void bed(const char *method, int seed, int n, double width, double dy, in
  * least a tenth of its largest: density within 10 %, temperature within
  * 20 %. The measured departure (docs/methods/dsmc.md): dsmc has some 5 %
  * fewer collisions than edmd (chi = 1.05 at this density, which the
- * Boltzmann rate leaves out) and runs up to 16 % hotter in the upper bed;
+ * Boltzmann rate leaves out) and runs up to 18 % hotter in the upper bed;
  * the Enskog mode with these cells is further off (its displacement thins
  * the pairs within a cell). Slow: 4 seeds, 4 times longer. */
 static void test_vibrated_bed(void **st)

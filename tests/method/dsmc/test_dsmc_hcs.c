@@ -70,17 +70,17 @@ static void scaled_hcs(double alpha, int n, double dtf, int K, double *a2, doubl
 }
 
 /* a2 to its statistics (blocks of 20 mean free times) and against van
- * Noije and Ernst within 0.012 + 3 standard errors: the measured
- * departure, 0.003 to 0.010 toward lower a2 for alpha 0.5 to 0.95, is 4
- * to 30 standard errors, so not statistics; nor the rescaling (free
- * cooling gives the same, test_free_a2_edmd); the cooling per collision
- * agrees with the first-Sonine relation at the measured a2 to 0.1 %, so
- * the collision rule and rate are not in question. What is left is the
- * truncation of the Sonine expansion at a2 or a bias of the DSMC
- * velocity statistics that none of these sees (docs/methods/dsmc.md).
- * The cooling per collision within 1 % of
- * (1 - alpha^2)/2 (1 + 3 a2/16)/(1 - a2/16). Slow: alpha 0.5 to 0.99
- * over 20000 mean free times. */
+ * Noije and Ernst within 0.04 (1 - alpha) + 3 standard errors. The
+ * measured departure, 0.0008 to 0.010 toward lower a2 for alpha 0.99 to
+ * 0.5, is 4 to 37 standard errors, so not statistics; nor the rescaling
+ * (free cooling gives the same, test_free_a2_edmd); the cooling per
+ * collision agrees with the first-Sonine relation at the measured a2 to
+ * 0.07 %, so the collision rule and rate are not in question. It scales
+ * with 1 - alpha (0.02 to 0.08 of it) as the truncation of the Sonine
+ * expansion at a2 would, and the bound does too, so that an offset that
+ * stays as alpha -> 1 fails (docs/methods/dsmc.md). The cooling per
+ * collision within 1 % of (1 - alpha^2)/2 (1 + 3 a2/16)/(1 - a2/16).
+ * Slow: alpha 0.5 to 0.99 over 20000 mean free times. */
 static void test_hcs_a2(void **st)
 {
     (void)st;
@@ -95,7 +95,7 @@ static void test_hcs_a2(void **st)
                       "%.5f, (1-a^2)/2 (1+3a2/16)/(1-a2/16) %.5f, ratio %.4f\n",
                       al[k], a2, err, want, sl, sw, sl / sw);
         assert_true(fabs(sl / sw - 1) < 0.01);
-        assert_true(fabs(a2 - want) < 0.012 + 3 * err);
+        assert_true(fabs(a2 - want) < 0.04 * (1 - al[k]) + 3 * err);
     }
 }
 
