@@ -6,7 +6,9 @@
 
 FILE *gr_plot_open(const char *png, int w, int h, gr_err *err)
 {
-    FILE *gp = popen("gnuplot", "w");
+    /* gnuplot writes the picture to its standard output when it cannot
+     * open png: never onto grano's results. */
+    FILE *gp = popen("gnuplot >/dev/null", "w");
     if (!gp) {
         gr_fail(err, GR_ERUN, "%s: cannot start gnuplot (install gnuplot-nox: ./grano.sh deps)", png);
         return NULL;
