@@ -8,7 +8,7 @@ cd "$(dirname "$0")"
 BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
-          hdf5-tools libinih-dev libcmocka-dev gnuplot-nox python3-h5py python3-numpy
+          hdf5-tools libcmocka-dev gnuplot-nox python3-h5py python3-numpy
           libsiconos-numerics-dev librandom123-dev python3-ase)
 # optional peers, installed by `deps --optional` only: lammps (lmp) for
 # `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`

@@ -84,7 +84,9 @@ static int render(const char *gp_path, const char *fmt, const char *out, gr_err 
         return gr_fail(err, GR_ERUN, "%s: cannot read the figure's script", gp_path);
     char line[4096];
     int w = 800, h = 600, skip = 0;
-    FILE *gp = popen("gnuplot", "w");
+    /* gnuplot writes the picture to its standard output when it cannot
+     * open the file: never onto grano's results. */
+    FILE *gp = popen("gnuplot >/dev/null", "w");
     while (gp && fgets(line, sizeof line, in)) {
         if (sscanf(line, "# size %d %d", &w, &h) == 2 && strcmp(fmt, "png")) {
             terminal(gp, fmt, out, w, h);

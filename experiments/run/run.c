@@ -146,6 +146,22 @@ static int check_outputs(const run_args *a, const char *out, const char *ckpt, g
     return GR_OK;
 }
 
+/* An interval longer than the run is legal (--until may shorten a scene)
+ * but not silent: it samples only the start or the end. */
+static void warn_intervals(const gr_scene *sc, int quiet)
+{
+    const char *keys[3] = {"observe_every", "output_every", "checkpoint_every"};
+    const double every[3] = {sc->run.observe_every, sc->run.output_every, sc->run.checkpoint_every};
+    for (int j = 0; j < 3 && !quiet; j++) {
+        if (every[j] > sc->run.until && gr_scene_find(sc, "run", keys[j])) {
+            char where[1200];
+            gr_scene_where(sc, "run", keys[j], where, sizeof where);
+            fprintf(stderr, "grano run: warning: %s: %g is longer than the run (until = %g)\n", where, every[j],
+                    sc->run.until);
+        }
+    }
+}
+
 static int fail_msg(const gr_err *e)
 {
     fprintf(stderr, "grano run: %s\n", e->msg);
@@ -174,6 +190,7 @@ int cmd_run(int argc, char **argv)
     if (!isnan(a.until))
         sc->run.until = a.until;
 
+    warn_intervals(sc, a.quiet);
     char out[1200], ckpt[1300];
     if (a.out)
         snprintf(out, sizeof out, "%s", a.out);

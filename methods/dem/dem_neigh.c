@@ -75,9 +75,12 @@ static int grid_size(gr_dem *d, double cutoff, gr_err *err)
             break;
         nx = nx2, ny = ny2;
     }
-    if ((double)nx * (double)ny > 1e8)
-        return gr_fail(err, GR_EINPUT, "domain %g x %g needs %ld x %ld neighbour cells of %g, more than 1e8",
-                       d->sc.width, d->sc.height, nx, ny, cutoff);
+    if ((double)nx * (double)ny > 1e8) {
+        char where[1200];
+        gr_scene_where(&d->sc, "domain", "width", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: domain %g x %g needs %ld x %ld neighbour cells of %g, more than 1e8",
+                       where, d->sc.width, d->sc.height, nx, ny, cutoff);
+    }
     g->nx = (int)nx;
     g->ny = (int)ny;
     g->x0 = xmin;

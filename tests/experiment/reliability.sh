@@ -74,6 +74,11 @@ assert len(t) > 10 and np.all(np.diff(t) > 0), t[:20]
 PY
 check "3: observe_every below dt: strictly increasing sample times" $?
 
+# 3: an interval longer than the run is said
+sed 's/^until = 0.2/until = 0.02/; s/^output_every = 0.02/output_every = 1e50/' rs.ini >long.ini
+"$GRANO" run long.ini -o l.h5 2>err && grep -q "warning: .*long.ini:.*'output_every'.*longer than the run" err
+check "3: output_every longer than the run: a warning naming the line" $?
+
 # 14: 20 000 walls load (the key check was quadratic: 44 s)
 $PY -c "
 s = open('rs.ini').read()

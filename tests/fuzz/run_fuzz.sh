@@ -60,7 +60,8 @@ export LSAN_OPTIONS="suppressions=$SRC/tests/fuzz/lsan.supp"
 # before any frame in the HDF5 library, else the library's (HDF5 1.10 has
 # crashes of its own on damaged files, which grano cannot prevent).
 whose() { # target input
-    ./"$1" "$2" 2>&1 | grep -E '^ *#[0-9]+ ' | grep -E "libhdf5|$SRC/" | head -1 | grep -q libhdf5 && echo hdf5 || echo grano
+    ./"$1" "$2" 2>&1 | grep -E '^ *#[0-9]+ ' | grep -E "libhdf5|$SRC/(common|methods|experiments|tests)/[^ ]*\.c:" |
+        head -1 | grep -q libhdf5 && echo hdf5 || echo grano
 }
 fuzz() { # target corpus max_len rss_mb
     n=$((n + 1))
