@@ -51,8 +51,8 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
 {
     const sf_ctx *c = ctx;
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
-                     c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
+    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 branchmax=%g D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
+                     SILO_BRANCH_MAX, c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
     if (k > 0 && (size_t)k < n)
         fill_key(c, r, buf + k, n - (size_t)k);
 }
@@ -153,7 +153,7 @@ static int measure_blocks(const sf_ctx *c, const silo_cfg *cfg, gr_sim *st, gr_p
 
 /* The unit's part file: the key, the block series, the settled silo's
  * bulk packing and height, the branch (its settling time, the lift, the
- * shared filling's CPU seconds), the final grains and the cost (the
+ * shared filling's CPU seconds, the kinetic energy per grain at opening), the final grains and the cost (the
  * branch's settling in place of the filling). */
 static int write_part(const sf_ctx *c, const char *part, const char *key, const double *count, const double *phi,
                       const double *top, double bulk, const silo_settled *set, const gr_particles *snap,
@@ -170,7 +170,7 @@ static int write_part(const sf_ctx *c, const char *part, const char *key, const 
     if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
     if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
     if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 3, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 4, err);
     if (!rc) rc = exp_put_particles(ck, "final", snap, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (rc) {
@@ -198,7 +198,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         rc = silo_rebase(&cfg, &fill, &set, &fillp, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
     /* the part's t_settle stays the filling's; the branch's own settling apart */
-    double branch[3] = {rc ? 0 : set.t_settle, rc ? 0 : set.lift, fill_cost[1]};
+    double branch[4] = {rc ? 0 : set.t_settle, rc ? 0 : set.lift, fill_cost[1], rc ? 0 : set.ekin};
     if (!rc)
         set.t_settle = fill.t_settle;
     silo_settled_free(&fill);
