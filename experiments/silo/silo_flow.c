@@ -1,6 +1,7 @@
 /* grano silo-flow: the outflow against the orifice size (thesis chapter 4).
- * Each unit of work is one orifice size and one realisation: fill, settle,
- * open with reinsertion at the top, discard the transient, then count the
+ * The fillings come first, one per realisation (silo_fill.c); each unit of
+ * work is then one orifice size and one realisation: branch the settled
+ * silo to the orifice (silo_rebase), open with reinsertion at the top, discard the transient, then count the
  * grains that leave in each block and sample the packing fraction of the
  * D x D square above the orifice. */
 #include <getopt.h>
@@ -162,8 +163,9 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: grano silo-flow [options]\n\n"
         "The outflow of a silo against its orifice size (thesis chapter 4) on the soft\n"
-        "DEM backend: for each orifice, fill, settle, open with the grains that leave\n"
-        "reinserted at the top, discard the first steps, then count the grains that\n"
+        "DEM backend: fill and settle once per realisation, then for each orifice branch\n"
+        "that settled silo to it, open with the grains that leave reinserted at the\n"
+        "top, discard the first steps, then count the grains that\n"
         "leave in each block and the packing fraction of the D x D square 6 d above\n"
         "the base. Writes DIR/silo-flow.h5, .dat tables and the figures fig4_1 ... fig4_6.\n\n"
         "options:\n"
@@ -194,7 +196,10 @@ static void usage(FILE *f)
         "  -f, --force          redo every part, even finished ones\n"
         "  -q, --quiet          no progress line\n"
         "  -h, --help           this help\n\n"
-        "Each unit writes DIR/parts/flow-D<D>-r<r>.part when done; a run that is\n"
+        "Under mpirun -n K (a build with MPI) the units are spread over the ranks and\n"
+        "rank 0 writes the results, the same numbers as one process.\n\n"
+        "Each filling writes DIR/parts/fill-r<r>.part, each unit\n"
+        "DIR/parts/flow-D<D>-r<r>.part when done; a run that is\n"
         "interrupted and started again with the same options redoes only the missing\n"
         "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
 }
