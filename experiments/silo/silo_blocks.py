@@ -40,9 +40,16 @@ def main(paths):
         block_tau = cfg[6] * cfg[3]
         Ds = r["orifices"][:]
         nreal = int(cfg[4])
-        bulk = [r["D%g/r%02d/meta" % (D, q)][3] for D in Ds for q in range(nreal)]
-        bulk = np.unique(np.round(bulk, 12))
-        print("%s: bulk packing %.4f +- %.4f (sd over %d settled states, branches included)" % (path, bulk.mean(), bulk.std(ddof=1) if len(bulk) > 1 else 0, len(bulk)))
+        # bulk packing of each realisation's settled silo (its branches to
+        # every orifice averaged: they differ only in the bottom layer)
+        bulk = np.array([[r["D%g/r%02d/meta" % (D, q)][3] for D in Ds] for q in range(nreal)])
+        per_real = bulk.mean(axis=1)
+        print("%s: bulk packing per realisation %s, mean %.4f, sd %.4f; sd over the branches of one realisation %.4f" % (
+            path, " ".join("%.4f" % v for v in per_real), per_real.mean(),
+            per_real.std(ddof=1) if nreal > 1 else 0, bulk.std(axis=1, ddof=1).mean() if len(Ds) > 1 else 0))
+        for D in Ds:
+            w = [r["D%g/r%02d/counts" % (D, q)][:].mean() / block_tau for q in range(nreal)]
+            print("  D %g: W per realisation %s" % (D, " ".join("%.2f" % v for v in w)))
         flow = r["flow"][:]
         print("  D W W_err packing: " + "; ".join("%g %.2f %.2f %.3f" % (f[0], f[1], f[2], f[5]) for f in flow))
         for merge in (1, 2, 4, 8):

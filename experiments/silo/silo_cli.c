@@ -200,11 +200,11 @@ static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t n
     double wall = (double)((npre + w - 1) / w) * pre + (double)((nunits + w - 1) / w) * unit;
     char first[96] = "";
     if (npre)
-        snprintf(first, sizeof first, "%zu %s of ~%.0f CPU s, then ", npre, cli->pre_what, pre);
+        snprintf(first, sizeof first, "%s: %zu of ~%.0f CPU s, then ", cli->pre_what, npre, pre);
     fprintf(stderr,
-            "grano %s: estimated %.0f min wall on %zu worker%s: %s%zu %s of ~%.0f CPU s (at the rate measured "
+            "grano %s: estimated %.0f min wall on %zu worker%s: %s%s: %zu of ~%.0f CPU s (at the rate measured "
             "on an idle core; a loaded machine is slower)\n",
-            cli->name, wall / 60, w, w > 1 ? "s" : "", first, nunits, cli->units_what, unit);
+            cli->name, wall / 60, w, w > 1 ? "s" : "", first, cli->units_what, nunits, unit);
 }
 
 int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,

@@ -205,6 +205,8 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n)
 
 int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err)
 {
+    if (!steps) /* gr_sim_advance reads 0 steps as "no step limit" */
+        return GR_OK;
     if (uses_steps(c))
         return gr_sim_advance(sim, 1e300, steps, err);
     return gr_sim_advance(sim, gr_sim_time(sim) + (double)steps * c->dt, 0, err);
@@ -253,9 +255,10 @@ static int keep_filling(silo_settled *out, const gr_particles *p, double t, gr_e
 
 /* Run p (closed orifice, scene sc) until every grain is inside the
  * container and the kinetic energy per grain is below ke_tol; p becomes
- * out->p. keep: take the picture of the filling. */
-static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int keep, silo_settled *out,
-                  volatile double *progress, gr_err *err)
+ * out->p. keep: take the picture of the filling. tmax > 0: accept the
+ * state reached at tmax (a branch) instead of failing at fill_max. */
+static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int keep, double tmax,
+                  silo_settled *out, volatile double *progress, gr_err *err)
 {
     gr_sim *st = NULL;
     int rc = gr_sim_create(c->method, sc, p, &st, err);
@@ -283,7 +286,7 @@ static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int ke
             break;
         if (progress)
             *progress = fmin(0.99, t / c->fill_max);
-        if (inside == nm && ek < c->ke_tol) {
+        if ((inside == nm && ek < c->ke_tol) || (tmax > 0 && t >= tmax)) {
             out->p = p;
             out->t_settle = t;
             out->top = silo_top(p);
@@ -313,7 +316,7 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
     gr_particles *p = gr_particles_create(0, err);
     int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
     if (!rc)
-        rc = settle(c, sc, p, 1, out, progress, err);
+        rc = settle(c, sc, p, 1, 0, out, progress, err);
     if (rc || out->p != p)
         gr_particles_free(p);
     gr_scene_free(sc);
@@ -368,7 +371,7 @@ int silo_rebase(const silo_cfg *c, const silo_settled *s, silo_settled *out, vol
         for (size_t i = 0; i < p->n; i++)
             p->id[i] = (int64_t)i;
         out->lift = lift;
-        rc = settle(c, sc, p, 0, out, progress, err);
+        rc = settle(c, sc, p, 0, SILO_BRANCH_MAX, out, progress, err);
     }
     if (rc || out->p != p)
         gr_particles_free(p);

@@ -75,7 +75,12 @@ void silo_settled_free(silo_settled *s);
  * base grains sit from the orifice's edges outwards, so another orifice
  * moves them under the bottom layer: the packing is lifted by the least
  * height that clears them (at most about 0.14 d) and settles again onto
- * the new base, a few tau instead of the whole filling. */
+ * the new base, until its kinetic energy is below ke_tol again or for
+ * SILO_BRANCH_MAX tau at most (a frictional pile creeps with 1e-4 to 1e-3
+ * m g d per grain for tens of tau, docs/experiments.md, so a branch must
+ * not wait on it as long as a filling may); out->ekin says where it
+ * stopped. */
+#define SILO_BRANCH_MAX 5.0
 int silo_rebase(const silo_cfg *c, const silo_settled *s, silo_settled *out, volatile double *progress,
                 gr_err *err);
 

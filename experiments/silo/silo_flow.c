@@ -1,6 +1,7 @@
 /* grano silo-flow: the outflow against the orifice size (thesis chapter 4).
- * Each unit of work is one orifice size and one realisation: fill, settle,
- * open with reinsertion at the top, discard the transient, then count the
+ * The fillings come first, one per realisation (silo_fill.c); each unit of
+ * work is then one orifice size and one realisation: branch the settled
+ * silo to the orifice (silo_rebase), open with reinsertion at the top, discard the transient, then count the
  * grains that leave in each block and sample the packing fraction of the
  * D x D square above the orifice. */
 #include <getopt.h>
@@ -24,95 +25,14 @@ void sf_label(size_t unit, void *ctx, char *buf, size_t n)
     silo_unit_label(c->orifice, c->nreal, unit, buf, n);
 }
 
-/* The filling's parameters: the part of the settled silo of realisation
- * r is reused by every orifice and by a later run with the same key. */
-static int fill_key(const sf_ctx *c, size_t r, char *buf, size_t n)
-{
-    const silo_cfg *b = &c->base;
-    int k = snprintf(buf, n, "silo-fill 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
-                     b->n, b->width, b->height, b->base, b->hopper, SF_FILL_D, (unsigned long long)(c->seed + r),
-                     b->method->name, b->dt, b->ke_tol);
-    silo_key_params(b, buf, n);
-    return k;
-}
-
-void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n)
-{
-    (void)ctx;
-    snprintf(buf, n, "r%02zu", unit);
-}
-
-void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n)
-{
-    fill_key(ctx, unit, buf, n);
-}
-
 void sf_key(size_t unit, void *ctx, char *buf, size_t n)
 {
     const sf_ctx *c = ctx;
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
-                     c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
+    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 branchmax=%g D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
+                     SILO_BRANCH_MAX, c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
     if (k > 0 && (size_t)k < n)
-        fill_key(c, r, buf + k, n - (size_t)k);
-}
-
-/* Realisation r's filling: fill and settle with the orifice SF_FILL_D
- * closed; the part holds the settled grains, which every orifice's unit
- * branches from (silo_rebase). */
-int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress, gr_err *err)
-{
-    const sf_ctx *c = ctx;
-    silo_cfg cfg = c->base;
-    cfg.orifice = SF_FILL_D;
-    cfg.seed = c->seed + unit;
-    silo_settled set;
-    double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = silo_fill(&cfg, &set, progress, err);
-    if (rc)
-        return rc;
-    double cost[5] = {gr_wall_seconds() - w0, (double)clock() / CLOCKS_PER_SEC - c0, 0, 0, 0};
-    gr_ckpt *ck = gr_ckpt_create(part, err);
-    rc = ck ? GR_OK : err->code;
-    if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
-    if (!rc) rc = exp_put_particles(ck, "settled", set.p, err);
-    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
-    if (rc && ck)
-        gr_ckpt_discard(ck);
-    else if (!rc)
-        rc = gr_ckpt_close(ck, err);
-    silo_settled_free(&set);
-    return rc;
-}
-
-int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n)
-{
-    char label[32], key[1024];
-    sf_fill_label(r, NULL, label, sizeof label);
-    snprintf(path, n, "%s/parts/fill-%s.part", c->dir, label);
-    fill_key(c, r, key, sizeof key);
-    return exp_part_key_matches(path, key);
-}
-
-int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
-{
-    char path[1200];
-    sf_fill_path(c, r, path, sizeof path);
-    *set = (silo_settled){0};
-    gr_ckpt *ck = gr_ckpt_open(path, err);
-    if (!ck)
-        return err->code;
-    set->p = gr_particles_create(0, err);
-    int rc = set->p ? exp_get_particles(ck, "settled", set->p, err) : err->code;
-    set->t_settle = exp_get_scalar(ck, "t_settle");
-    exp_get_cost(ck, fill_cost);
-    gr_ckpt_close(ck, NULL);
-    if (!rc)
-        set->top = silo_top(set->p);
-    else
-        silo_settled_free(set);
-    return rc;
+        sf_fill_key(r, (void *)c, buf + k, n - (size_t)k);
 }
 
 /* The measured blocks after the discarded transient: the grains that
@@ -153,7 +73,7 @@ static int measure_blocks(const sf_ctx *c, const silo_cfg *cfg, gr_sim *st, gr_p
 
 /* The unit's part file: the key, the block series, the settled silo's
  * bulk packing and height, the branch (its settling time, the lift, the
- * shared filling's CPU seconds), the final grains and the cost (the
+ * shared filling's CPU seconds, the kinetic energy per grain at opening), the final grains and the cost (the
  * branch's settling in place of the filling). */
 static int write_part(const sf_ctx *c, const char *part, const char *key, const double *count, const double *phi,
                       const double *top, double bulk, const silo_settled *set, const gr_particles *snap,
@@ -170,7 +90,7 @@ static int write_part(const sf_ctx *c, const char *part, const char *key, const 
     if (!rc) rc = exp_put_scalar(ck, "bulk_packing", bulk, err);
     if (!rc) rc = exp_put_scalar(ck, "t_settle", set->t_settle, err);
     if (!rc) rc = exp_put_scalar(ck, "top0", set->top, err);
-    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 3, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 4, err);
     if (!rc) rc = exp_put_particles(ck, "final", snap, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (rc) {
@@ -198,7 +118,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
         rc = silo_rebase(&cfg, &fill, &set, &fillp, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
     /* the part's t_settle stays the filling's; the branch's own settling apart */
-    double branch[3] = {rc ? 0 : set.t_settle, rc ? 0 : set.lift, fill_cost[1]};
+    double branch[4] = {rc ? 0 : set.t_settle, rc ? 0 : set.lift, fill_cost[1], rc ? 0 : set.ekin};
     if (!rc)
         set.t_settle = fill.t_settle;
     silo_settled_free(&fill);
@@ -243,8 +163,9 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: grano silo-flow [options]\n\n"
         "The outflow of a silo against its orifice size (thesis chapter 4) on the soft\n"
-        "DEM backend: for each orifice, fill, settle, open with the grains that leave\n"
-        "reinserted at the top, discard the first steps, then count the grains that\n"
+        "DEM backend: fill and settle once per realisation, then for each orifice branch\n"
+        "that settled silo to it, open with the grains that leave reinserted at the\n"
+        "top, discard the first steps, then count the grains that\n"
         "leave in each block and the packing fraction of the D x D square 6 d above\n"
         "the base. Writes DIR/silo-flow.h5, .dat tables and the figures fig4_1 ... fig4_6.\n\n"
         "options:\n"
@@ -275,7 +196,10 @@ static void usage(FILE *f)
         "  -f, --force          redo every part, even finished ones\n"
         "  -q, --quiet          no progress line\n"
         "  -h, --help           this help\n\n"
-        "Each unit writes DIR/parts/flow-D<D>-r<r>.part when done; a run that is\n"
+        "Under mpirun -n K (a build with MPI) the units are spread over the ranks and\n"
+        "rank 0 writes the results, the same numbers as one process.\n\n"
+        "Each filling writes DIR/parts/fill-r<r>.part, each unit\n"
+        "DIR/parts/flow-D<D>-r<r>.part when done; a run that is\n"
         "interrupted and started again with the same options redoes only the missing\n"
         "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
 }

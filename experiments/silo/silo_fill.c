@@ -1,0 +1,93 @@
+/* silo-flow's fillings (settle once, branch many): one unit per
+ * realisation fills and settles the silo with the orifice SF_FILL_D closed
+ * and keeps the settled grains in its part, which every orifice's unit
+ * (silo_flow.c) and --peer lammps (silo_peer.c) branch from. */
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+
+#include "parts.h"
+#include "progress.h"
+#include "silo_flow.h"
+
+/* The filling's parameters: the part of the settled silo of realisation
+ * r is reused by every orifice and by a later run with the same key. */
+static int fill_key(const sf_ctx *c, size_t r, char *buf, size_t n)
+{
+    const silo_cfg *b = &c->base;
+    int k = snprintf(buf, n, "silo-fill 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
+                     b->n, b->width, b->height, b->base, b->hopper, SF_FILL_D, (unsigned long long)(c->seed + r),
+                     b->method->name, b->dt, b->ke_tol);
+    silo_key_params(b, buf, n);
+    return k;
+}
+
+void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n)
+{
+    (void)ctx;
+    snprintf(buf, n, "r%02zu", unit);
+}
+
+void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n)
+{
+    fill_key(ctx, unit, buf, n);
+}
+
+/* Realisation r's filling: fill and settle with the orifice SF_FILL_D
+ * closed; the part holds the settled grains, which every orifice's unit
+ * branches from (silo_rebase). */
+int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress, gr_err *err)
+{
+    const sf_ctx *c = ctx;
+    silo_cfg cfg = c->base;
+    cfg.orifice = SF_FILL_D;
+    cfg.seed = c->seed + unit;
+    silo_settled set;
+    double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
+    int rc = silo_fill(&cfg, &set, progress, err);
+    if (rc)
+        return rc;
+    double cost[5] = {gr_wall_seconds() - w0, (double)clock() / CLOCKS_PER_SEC - c0, 0, 0, 0};
+    gr_ckpt *ck = gr_ckpt_create(part, err);
+    rc = ck ? GR_OK : err->code;
+    if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
+    if (!rc) rc = exp_put_particles(ck, "settled", set.p, err);
+    if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (rc && ck)
+        gr_ckpt_discard(ck);
+    else if (!rc)
+        rc = gr_ckpt_close(ck, err);
+    silo_settled_free(&set);
+    return rc;
+}
+
+int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n)
+{
+    char label[32], key[1024];
+    sf_fill_label(r, NULL, label, sizeof label);
+    snprintf(path, n, "%s/parts/fill-%s.part", c->dir, label);
+    fill_key(c, r, key, sizeof key);
+    return exp_part_key_matches(path, key);
+}
+
+int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
+{
+    char path[1200];
+    sf_fill_path(c, r, path, sizeof path);
+    *set = (silo_settled){0};
+    gr_ckpt *ck = gr_ckpt_open(path, err);
+    if (!ck)
+        return err->code;
+    set->p = gr_particles_create(0, err);
+    int rc = set->p ? exp_get_particles(ck, "settled", set->p, err) : err->code;
+    set->t_settle = exp_get_scalar(ck, "t_settle");
+    exp_get_cost(ck, fill_cost);
+    gr_ckpt_close(ck, NULL);
+    if (!rc)
+        set->top = silo_top(set->p);
+    else
+        silo_settled_free(set);
+    return rc;
+}
+
