@@ -36,7 +36,7 @@ static size_t count_lines(const char *s)
 static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
 {
     if (!in->nframes && !(isfinite(in->box[0]) && isfinite(in->box[1]))) {
-        printf("trajectory   none: a file of result tables (below), e.g. of grano course\n");
+        printf("trajectory   none: a file of result tables (below): grano course, grano compare\n");
         return GR_OK;
     }
     printf("box          %g x %g d; boundaries x %s, y %s\n", in->box[0], in->box[1],
