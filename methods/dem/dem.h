@@ -179,6 +179,9 @@ double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init);
  * derived from [material] restitution and wall_restitution). */
 double gr_dem_restitution(double kn, double gamma, double meff, int clip);
 int gr_dem_damping(const gr_scene *sc, const gr_particles *init, double *gn, double *gw, gr_err *err);
+/* Velocity Verlet's stability bound in a dense (triangular) packing of the
+ * scene's contacts; gr_dem_check_dt refuses a Verlet dt above it. */
+double gr_dem_dense_dt(const gr_scene *sc, const gr_particles *init, double v_impact);
 int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params *p, gr_err *err);
 
 int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,

@@ -84,8 +84,20 @@ static void instability_stops_with_diagnostic(void **state)
              "[init]\nkind = lattice\nregion = 0 0 14 40\nvelocity = gaussian\nv0 = 0.2\n"
              "[dem]\ndt_fraction = 3\ndt = %.9g\n", 20 * lim);
     gr_scene *sc = dt_scene(text);
-    gr_dem *d = dt_create(sc, NULL);
+    /* past gr_dem_check_dt on purpose (its dense-packing bound refuses this
+     * dt up front): what is tested is the run-time detection */
     gr_err e = {0};
+    gr_particles *init = gr_particles_create(0, &e);
+    assert_int_equal(gr_init_particles(sc, init, &e), GR_OK);
+    gr_dem_params par;
+    assert_int_equal(gr_dem_params_read(sc, &par, &e), GR_OK);
+    assert_int_equal(gr_dem_check_dt(sc, init, &par, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "dense packing"));
+    e = (gr_err){0};
+    par.dt = 20 * lim;
+    gr_dem *d = NULL;
+    assert_int_equal(gr_dem_create(sc, init, &par, &d, &e), GR_OK);
+    gr_particles_free(init);
     int rc = GR_OK;
     double t_good = 0;
     for (int k = 0; k < 100000 && !rc; k++) {
@@ -199,9 +211,44 @@ static void jammed_orifice_no_tunnelling(void **state)
     gr_scene_free(sc);
 }
 
+/* The dense-packing bound (docs/reliability.md): the figures of the
+ * dynamical-matrix analysis there (linear springs, m = 1: kn = 1e5 with
+ * gamma_n = 100 and 20, kn = 1e6 with gamma_n = 100), and a dt_fraction
+ * raised so that dt passes the pair limit but not the dense one is refused
+ * naming dt and the bound. */
+static void dense_packing_bound(void **state)
+{
+    (void)state;
+    const double cases[3][3] = {{1e5, 100, 1.77e-3}, {1e5, 20, 2.39e-3}, {1e6, 100, 7.2e-4}};
+    gr_err e = {0};
+    gr_particles *p = gr_particles_create(2, &e);
+    gr_particles_push(p, 5, 5, 0.5, 1.0, 0, 0, &e);
+    gr_particles_push(p, 8, 5, 0.5, 1.0, 0, 0, &e);
+    for (int k = 0; k < 3; k++) {
+        char text[512];
+        snprintf(text, sizeof text, "[domain]\nwidth = 20\nheight = 20\n[material]\nkn = %g\ngamma_n = %g\n"
+                 "[species]\ncount = 2\n", cases[k][0], cases[k][1]);
+        gr_scene *sc = dt_scene(text);
+        double b = gr_dem_dense_dt(sc, p, 1.0);
+        printf("# kn = %g, gamma_n = %g: dense bound %.4g (docs: %.3g)\n", cases[k][0], cases[k][1], b, cases[k][2]);
+        assert_true(fabs(b / cases[k][2] - 1) < 0.01);
+        gr_scene_free(sc);
+        snprintf(text + strlen(text), sizeof text - strlen(text), "[dem]\ndt_fraction = 1\ndt = %.9g\n", 1.05 * b);
+        sc = dt_scene(text);
+        gr_dem_params par;
+        assert_int_equal(gr_dem_params_read(sc, &par, &e), GR_OK);
+        assert_int_equal(gr_dem_check_dt(sc, p, &par, &e), GR_EINPUT);
+        assert_non_null(strstr(e.msg, "dense packing"));
+        assert_non_null(strstr(e.msg, "[dem] key 'dt'"));
+        gr_scene_free(sc);
+    }
+    gr_particles_free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
+        cmocka_unit_test(dense_packing_bound),
         cmocka_unit_test(dt_limit_refused_above_stable_below),
         cmocka_unit_test(instability_stops_with_diagnostic),
         cmocka_unit_test(tall_column_weighs_on_floor),
