@@ -172,6 +172,28 @@ static void fast_equals_reference(void **unused)
     }
 }
 
+/* The batched random words (vectorised Philox rounds) against Random123's
+ * philox4x32 word by word, over more than two batches and thresholds from
+ * never to always. */
+static void batched_random_words(void **unused)
+{
+    (void)unused;
+    const uint32_t key[2] = {0x12345678u, 0x9abcdef0u};
+    const uint32_t thr[] = {0, 1, 6554, 32768, 65535, 65536};
+    uint64_t out[37];
+    for (uint64_t step = 0; step < (uint64_t)1 << 40; step += (uint64_t)1 << 39) {
+        uint64_t word0 = ((uint64_t)3 << 32) + 1000;
+        lgca_rand_words(key, word0, 37, LGCA_RND_CHIRAL, step, out);
+        for (size_t w = 0; w < 37; w++)
+            assert_true(out[w] == lgca_rand_word(key, word0 + w, LGCA_RND_CHIRAL, step));
+        for (size_t t = 0; t < sizeof thr / sizeof thr[0]; t++) {
+            lgca_rand_biased_words(key, word0, 37, LGCA_RND_P, step, thr[t], out);
+            for (size_t w = 0; w < 37; w++)
+                assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
+        }
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -180,6 +202,7 @@ int main(void)
         cmocka_unit_test(kernel_matches_table),
         cmocka_unit_test(table_viscosity_is_frisch),
         cmocka_unit_test(fast_equals_reference),
+        cmocka_unit_test(batched_random_words),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
