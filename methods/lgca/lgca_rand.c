@@ -83,13 +83,26 @@ static inline __attribute__((always_inline)) void drawn(const uint32_t key[2], u
     }
 }
 
+/* The m <= LGCA_BATCH calls wanted, rounded up to 4, 8 or 16 (each a
+ * constant, so that all three vectorise): short lanes waste none. */
+static inline __attribute__((always_inline)) void draw_m(const uint32_t key[2], uint64_t word0, unsigned purpose,
+                                                         uint64_t step, philox_batch *b, size_t m)
+{
+    if (m > 8)
+        drawn(key, word0, purpose, step, b, LGCA_BATCH);
+    else if (m > 4)
+        drawn(key, word0, purpose, step, b, 8);
+    else
+        drawn(key, word0, purpose, step, b, 4);
+}
+
 LGCA_CLONES void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
                                  uint64_t *out)
 {
     philox_batch b;
     for (size_t w0 = 0; w0 < n; w0 += LGCA_BATCH) {
-        drawn(key, word0 + w0, purpose, step, &b, LGCA_BATCH);
         size_t m = n - w0 < LGCA_BATCH ? n - w0 : LGCA_BATCH;
+        draw_m(key, word0 + w0, purpose, step, &b, m);
         for (size_t i = 0; i < m; i++)
             out[w0 + i] = (uint64_t)b.v[0][i] | (uint64_t)b.v[1][i] << 32;
     }
@@ -105,6 +118,11 @@ LGCA_CLONES void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, s
     philox_batch b;
     for (size_t w0 = 0; w0 < n; w0 += LGCA_BATCH) {
         size_t m = n - w0 < LGCA_BATCH ? n - w0 : LGCA_BATCH;
+        if (m <= 4) { /* a batch of 256 lanes would waste more calls than it saves */
+            for (size_t i = 0; i < m; i++)
+                out[w0 + i] = lgca_rand_biased(key, word0 + w0 + i, purpose, step, thr);
+            continue;
+        }
         uint64_t lt[LGCA_BATCH] = {0}, eq[LGCA_BATCH];
         for (int i = 0; i < LGCA_BATCH; i++)
             eq[i] = thr == 0 || thr >= 65536u ? 0 : ~(uint64_t)0;
@@ -114,10 +132,10 @@ LGCA_CLONES void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, s
                 any |= eq[i];
             if (!any)
                 break;
-            drawn(key, word0 + w0, purpose + (unsigned)q, step, &b, LGCA_BATCH);
+            draw_m(key, word0 + w0, purpose + (unsigned)q, step, &b, m);
             for (int h = 1; h >= 0; h--) {
                 uint64_t tb = (thr >> (2 * q + h) & 1u) ? ~(uint64_t)0 : 0;
-                for (int i = 0; i < LGCA_BATCH; i++) {
+                for (size_t i = 0; i < m; i++) {
                     uint64_t u = (uint64_t)b.v[2 * h][i] | (uint64_t)b.v[2 * h + 1][i] << 32;
                     lt[i] |= eq[i] & ~u & tb;
                     eq[i] &= ~(u ^ tb);

@@ -180,18 +180,21 @@ static void batched_random_words(void **unused)
     (void)unused;
     const uint32_t key[2] = {0x12345678u, 0x9abcdef0u};
     const uint32_t thr[] = {0, 1, 6554, 32768, 65535, 65536};
+    const size_t ns[] = {3, 7, 37}; /* batches of 4, 8, and 16 + 16 + 8 calls */
     uint64_t out[37];
-    for (uint64_t step = 0; step < (uint64_t)1 << 40; step += (uint64_t)1 << 39) {
-        uint64_t word0 = ((uint64_t)3 << 32) + 1000;
-        lgca_rand_words(key, word0, 37, LGCA_RND_CHIRAL, step, out);
-        for (size_t w = 0; w < 37; w++)
-            assert_true(out[w] == lgca_rand_word(key, word0 + w, LGCA_RND_CHIRAL, step));
-        for (size_t t = 0; t < sizeof thr / sizeof thr[0]; t++) {
-            lgca_rand_biased_words(key, word0, 37, LGCA_RND_P, step, thr[t], out);
-            for (size_t w = 0; w < 37; w++)
-                assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
+    for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++)
+        for (uint64_t step = 0; step < (uint64_t)1 << 40; step += (uint64_t)1 << 39) {
+            size_t n = ns[k];
+            uint64_t word0 = ((uint64_t)3 << 32) + 1000;
+            lgca_rand_words(key, word0, n, LGCA_RND_CHIRAL, step, out);
+            for (size_t w = 0; w < n; w++)
+                assert_true(out[w] == lgca_rand_word(key, word0 + w, LGCA_RND_CHIRAL, step));
+            for (size_t t = 0; t < sizeof thr / sizeof thr[0]; t++) {
+                lgca_rand_biased_words(key, word0, n, LGCA_RND_P, step, thr[t], out);
+                for (size_t w = 0; w < n; w++)
+                    assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
+            }
         }
-    }
 }
 
 int main(void)
