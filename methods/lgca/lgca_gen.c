@@ -8,19 +8,25 @@
  * chirality and dissipation bits under which they make it: a group is the
  * OR of its minterms, gated once, and ORed into each bit of its mask (one
  * OR per state instead of one per changed bit: 226 ORs instead of 408 for
- * FHP-III). Build time: run once by meson. */
+ * FHP-III). The body is written twice: on one 64-bit word (the tests'
+ * entry, the tail of a lane) and on a GCC vector of four words, which the
+ * lane loop uses; the baseline build lowers it to SSE2 pairs, and an AVX2
+ * clone (target_clones, chosen at load time) to single instructions. The
+ * body is forced inline: GCC otherwise calls it once per word and
+ * vectorises nothing. Build time: run once by meson. */
 #include <stdio.h>
+#include <string.h>
 
 #include "lgca_int.h"
 
-static void literals(FILE *f)
+static void literals(FILE *f, const char *T)
 {
-    fprintf(f, "    const uint64_t a0 = s[0], a1 = s[1], a2 = s[2], a3 = s[3], a4 = s[4], a5 = s[5], r = s[6];\n");
+    fprintf(f, "    const %s a0 = s[0], a1 = s[1], a2 = s[2], a3 = s[3], a4 = s[4], a5 = s[5], r = s[6];\n", T);
     for (int p = 0; p < 3; p++)
         for (int v = 0; v < 4; v++)
-            fprintf(f, "    const uint64_t p%d_%d = %sa%d & %sa%d;\n", p, v, v & 1 ? "" : "~", p,
-                    v & 2 ? "" : "~", p + 3);
-    fprintf(f, "    const uint64_t r_0 = ~r, r_1 = r;\n");
+            fprintf(f, "    const %s p%d_%d = %sa%d & %sa%d;\n", T, p, v, v & 1 ? "" : "~", p, v & 2 ? "" : "~",
+                    p + 3);
+    fprintf(f, "    const %s r_0 = ~r, r_1 = r;\n", T);
 }
 
 /* The expression for the combinations (ch, pb) in mask t (bit ch | pb << 1). */
@@ -48,89 +54,122 @@ static const char *gate(unsigned t, int with_pb)
     }
 }
 
-static void emit(FILE *f, int rules, const char *name, int with_pb)
-{
+
+/* The changes of a rule set grouped by (change, the combinations of the
+ * chirality and dissipation bits that make it). */
+typedef struct {
     uint8_t tab[LGCA_TABLE_SIZE];
-    lgca_table_build(rules, tab);
-    int ncombo = with_pb ? 4 : 2;
-    unsigned flips[128][LGCA_CH]; /* combos in which bit k of state s flips */
-    int used[128] = {0};
-    for (unsigned s = 0; s < 128; s++)
-        for (int k = 0; k < LGCA_CH; k++) {
-            flips[s][k] = 0;
-            for (int c = 0; c < ncombo; c++)
-                if ((s ^ tab[s | (unsigned)c << 7]) >> k & 1u)
-                    flips[s][k] |= 1u << c;
-            used[s] |= flips[s][k] != 0;
-        }
-    fprintf(f, "static inline void %s_in(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n", name,
-            with_pb ? "uint64_t pb, " : "");
-    literals(f);
-    if (!with_pb)
-        fprintf(f, "    const uint64_t pb = 0;\n    (void)pb;\n");
-    for (unsigned s = 0; s < 128; s++)
-        if (used[s])
-            fprintf(f, "    const uint64_t m%u = p0_%u & p1_%u & p2_%u & r_%u;\n", s,
-                    (s & 1u) | (s >> 3 & 1u) << 1, (s >> 1 & 1u) | (s >> 4 & 1u) << 1,
-                    (s >> 2 & 1u) | (s >> 5 & 1u) << 1, s >> 6 & 1u);
-    /* group the states by (change, the combinations that make it): one OR
-     * per state, then each group gated once and ORed into its bits */
+    int ncombo, ng, used[128];
     unsigned gmask[512], gset[512];
-    int ng = 0;
-    for (unsigned s = 0; s < 128; s++)
-        for (int c = 0; c < ncombo; c++) {
+} groups;
+
+static void group(int rules, int with_pb, groups *G)
+{
+    lgca_table_build(rules, G->tab);
+    const uint8_t *tab = G->tab;
+    G->ncombo = with_pb ? 4 : 2;
+    G->ng = 0;
+    for (unsigned s = 0; s < 128; s++) {
+        G->used[s] = 0;
+        for (int c = 0; c < G->ncombo; c++) {
             unsigned m = s ^ tab[s | (unsigned)c << 7], t = 0;
             if (!m)
                 continue;
-            for (int c2 = 0; c2 < ncombo; c2++)
+            G->used[s] = 1;
+            for (int c2 = 0; c2 < G->ncombo; c2++)
                 if ((s ^ tab[s | (unsigned)c2 << 7]) == m)
                     t |= 1u << c2;
             int g = 0;
-            while (g < ng && (gmask[g] != m || gset[g] != t))
+            while (g < G->ng && (G->gmask[g] != m || G->gset[g] != t))
                 g++;
-            if (g == ng)
-                gmask[ng] = m, gset[ng] = t, ng++;
+            if (g == G->ng)
+                G->gmask[G->ng] = m, G->gset[G->ng] = t, G->ng++;
         }
-    for (int g = 0; g < ng; g++) {
-        fprintf(f, "    const uint64_t g%d = (0", g);
+    }
+}
+
+/* The collision on words of type T (a 64-bit word, or a vector of four):
+ * d gets the bits that change. */
+static void body(FILE *f, const groups *G, const char *name, const char *T, int with_pb)
+{
+    const uint8_t *tab = G->tab;
+    fprintf(f, "static inline __attribute__((always_inline)) void %s(const %s *s, %s ch, %s%s%s *d)\n{\n",
+            name, T, T, with_pb ? T : "", with_pb ? " pb, " : "", T);
+    literals(f, T);
+    for (unsigned s = 0; s < 128; s++)
+        if (G->used[s])
+            fprintf(f, "    const %s m%u = p0_%u & p1_%u & p2_%u & r_%u;\n", T, s,
+                    (s & 1u) | (s >> 3 & 1u) << 1, (s >> 1 & 1u) | (s >> 4 & 1u) << 1,
+                    (s >> 2 & 1u) | (s >> 5 & 1u) << 1, s >> 6 & 1u);
+    /* one OR per state, then each group gated once and ORed into its bits */
+    for (int g = 0; g < G->ng; g++) {
+        fprintf(f, "    const %s g%d = (m%s", T, g, "");
+        int first = 1;
         for (unsigned s = 0; s < 128; s++) {
-            int in = 0;
-            for (int c = 0; c < ncombo && !in; c++)
-                in = (gset[g] >> c & 1u) && (s ^ tab[s | (unsigned)c << 7]) == gmask[g];
             /* the state belongs if its change under exactly gset[g] is gmask[g] */
             unsigned t = 0;
-            for (int c = 0; c < ncombo; c++)
-                if ((s ^ tab[s | (unsigned)c << 7]) == gmask[g])
+            for (int c = 0; c < G->ncombo; c++)
+                if ((s ^ tab[s | (unsigned)c << 7]) == G->gmask[g])
                     t |= 1u << c;
-            if (in && t == gset[g])
-                fprintf(f, " | m%u", s);
+            if (t && t == G->gset[g]) {
+                fprintf(f, first ? "%u" : " | m%u", s);
+                first = 0;
+            }
         }
-        const char *gt = gate(gset[g], with_pb);
+        const char *gt = gate(G->gset[g], with_pb);
         fprintf(f, ")%s%s;\n", gt ? " & " : "", gt ? gt : "");
     }
     for (int k = 0; k < LGCA_CH; k++) {
-        fprintf(f, "    d[%d] = 0", k);
-        for (int g = 0; g < ng; g++)
-            if (gmask[g] >> k & 1u)
-                fprintf(f, " | g%d", g);
-        fprintf(f, ";\n");
+        int first = 1;
+        fprintf(f, "    d[%d] =", k);
+        for (int g = 0; g < G->ng; g++)
+            if (G->gmask[g] >> k & 1u) {
+                fprintf(f, "%s g%d", first ? "" : " |", g);
+                first = 0;
+            }
+        fprintf(f, "%s;\n", first ? " s[0] ^ s[0]" : "");
     }
-    (void)flips;
     fprintf(f, "}\n\n");
-    /* an exported copy for the tests, and the loop over a lane's words in
-     * the same unit so that the compiler vectorises it */
-    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s_in(s, ch, %sd);\n}\n\n",
-            name, with_pb ? "uint64_t pb, " : "", name, with_pb ? "pb, " : "");
-    fprintf(f, "void %s_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch%s)\n{\n"
-               "    for (size_t w = 0; w < nw; w++) {\n"
+}
+
+static void emit(FILE *f, int rules, const char *name, int with_pb)
+{
+    groups G;
+    group(rules, with_pb, &G);
+    char n1[64], n4[64];
+    snprintf(n1, sizeof n1, "%s_1", name);
+    snprintf(n4, sizeof n4, "%s_4", name);
+    body(f, &G, n1, "uint64_t", with_pb);
+    body(f, &G, n4, "lgca_v4", with_pb);
+    /* an exported copy for the tests, and the loop over a lane's words:
+     * four at a time, then the rest one by one */
+    const char *pa = with_pb ? "pb, " : "", *pw = with_pb ? "pb[w], " : "";
+    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, ch, %sd);\n}\n\n",
+            name, with_pb ? "uint64_t pb, " : "", n1, pa);
+    fprintf(f, "LGCA_CLONES void %s_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch%s)\n{\n"
+               "    size_t w = 0;\n"
+               "    for (; w + 4 <= nw; w += 4) {\n"
+               "        lgca_v4 s[7], d[7], c, fl%s;\n"
+               "        for (int k = 0; k < 7; k++)\n"
+               "            memcpy(&s[k], lane + k * nw + w, sizeof s[k]);\n"
+               "        memcpy(&c, ch + w, sizeof c);\n"
+               "        memcpy(&fl, fluid + w, sizeof fl);\n%s"
+               "        %s(s, c, %sd);\n"
+               "        for (int k = 0; k < 7; k++) {\n"
+               "            s[k] ^= d[k] & fl;\n"
+               "            memcpy(lane + k * nw + w, &s[k], sizeof s[k]);\n"
+               "        }\n"
+               "    }\n"
+               "    for (; w < nw; w++) {\n"
                "        uint64_t s[7], d[7];\n"
                "        for (int k = 0; k < 7; k++)\n"
                "            s[k] = lane[k * nw + w];\n"
-               "        %s_in(s, ch[w], %sd);\n"
+               "        %s(s, ch[w], %sd);\n"
                "        for (int k = 0; k < 7; k++)\n"
                "            lane[k * nw + w] = s[k] ^ (d[k] & fluid[w]);\n"
                "    }\n}\n\n",
-            name, with_pb ? ", const uint64_t *pb" : "", name, with_pb ? "pb[w], " : "");
+            name, with_pb ? ", const uint64_t *pb" : "", with_pb ? ", p" : "",
+            with_pb ? "        memcpy(&p, pb + w, sizeof p);\n" : "", n4, with_pb ? "p, " : "", n1, pw);
 }
 
 int main(int argc, char **argv)
@@ -145,7 +184,13 @@ int main(int argc, char **argv)
         return 1;
     }
     fprintf(f, "/* Generated by methods/lgca/lgca_gen.c from lgca_table.c: do not edit. */\n"
-               "#include <stddef.h>\n#include <stdint.h>\n\n"
+               "#include <stddef.h>\n#include <stdint.h>\n#include <string.h>\n\n"
+               "typedef uint64_t lgca_v4 __attribute__((vector_size(32)));\n\n"
+               "/* The build is baseline x86-64 (SSE2, two words a vector); an AVX2 copy\n"
+               " * (four words a vector) is picked at load time on CPUs that have it. */\n"
+               "#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)\n"
+               "#define LGCA_CLONES __attribute__((target_clones(\"avx2\", \"default\")))\n"
+               "#else\n#define LGCA_CLONES\n#endif\n\n"
                "void lgca_delta_fhp3(const uint64_t s[7], uint64_t ch, uint64_t d[7]);\n"
                "void lgca_delta_granular(const uint64_t s[7], uint64_t ch, uint64_t pb, uint64_t d[7]);\n"
                "void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);\n"

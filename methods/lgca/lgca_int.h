@@ -76,6 +76,20 @@ uint64_t lgca_rand_word(const uint32_t key[2], uint64_t word, unsigned purpose, 
 uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step,
                           uint32_t thr);
 uint32_t lgca_rand_u32(const uint32_t key[2], uint64_t node, unsigned purpose, uint64_t step);
+/* The same bits for words word0 .. word0 + n - 1 into out, batched so that
+ * the Philox rounds vectorise: lgca_rand_word and lgca_rand_biased word by
+ * word, bit for bit. */
+void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
+                     uint64_t *out);
+void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
+                            uint32_t thr, uint64_t *out);
+/* The baseline build is x86-64 (SSE2); hot loops get an AVX2 clone chosen
+ * at load time (GCC's target_clones) on CPUs that have it. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define LGCA_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define LGCA_CLONES
+#endif
 
 /* A wall node: where, its mirror kind, whether it is a gate. */
 typedef struct {

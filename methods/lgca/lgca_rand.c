@@ -50,3 +50,99 @@ uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose
     }
     return lt;
 }
+
+/* ---- the same bits for a run of consecutive words, 16 Philox calls side
+ * by side in arrays that GCC vectorises (pmuludq for the 32x32->64-bit
+ * products; four or eight lanes a vector in the AVX2 clone): the round of
+ * Random123's philox4x32, written out, must agree with draw() (tested). */
+#define LGCA_BATCH 16
+
+typedef struct {
+    uint32_t v[4][LGCA_BATCH];
+} philox_batch;
+
+/* nb <= LGCA_BATCH calls (a constant once inlined). */
+static inline __attribute__((always_inline)) void drawn(const uint32_t key[2], uint64_t word0, unsigned purpose,
+                                                        uint64_t step, philox_batch *b, int nb)
+{
+    uint32_t *c0 = b->v[0], *c1 = b->v[1], *c2 = b->v[2], *c3 = b->v[3];
+    for (int i = 0; i < nb; i++) {
+        uint64_t w = word0 + (uint64_t)i;
+        c0[i] = (uint32_t)w, c1[i] = (uint32_t)(w >> 32) ^ (purpose << 24);
+        c2[i] = (uint32_t)step, c3[i] = (uint32_t)(step >> 32);
+    }
+    uint32_t k0 = key[0], k1 = key[1];
+    for (int r = 0; r < 10; r++) {
+        if (r)
+            k0 += PHILOX_W32_0, k1 += PHILOX_W32_1;
+        for (int i = 0; i < nb; i++) {
+            uint64_t p0 = (uint64_t)PHILOX_M4x32_0 * c0[i], p1 = (uint64_t)PHILOX_M4x32_1 * c2[i];
+            uint32_t n0 = (uint32_t)(p1 >> 32) ^ c1[i] ^ k0, n2 = (uint32_t)(p0 >> 32) ^ c3[i] ^ k1;
+            c1[i] = (uint32_t)p1, c3[i] = (uint32_t)p0, c0[i] = n0, c2[i] = n2;
+        }
+    }
+}
+
+/* The m <= LGCA_BATCH calls wanted, rounded up to 4, 8 or 16 (each a
+ * constant, so that all three vectorise): short lanes waste none. */
+static inline __attribute__((always_inline)) void draw_m(const uint32_t key[2], uint64_t word0, unsigned purpose,
+                                                         uint64_t step, philox_batch *b, size_t m)
+{
+    if (m > 8)
+        drawn(key, word0, purpose, step, b, LGCA_BATCH);
+    else if (m > 4)
+        drawn(key, word0, purpose, step, b, 8);
+    else
+        drawn(key, word0, purpose, step, b, 4);
+}
+
+LGCA_CLONES void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
+                                 uint64_t *out)
+{
+    philox_batch b;
+    for (size_t w0 = 0; w0 < n; w0 += LGCA_BATCH) {
+        size_t m = n - w0 < LGCA_BATCH ? n - w0 : LGCA_BATCH;
+        draw_m(key, word0 + w0, purpose, step, &b, m);
+        for (size_t i = 0; i < m; i++)
+            out[w0 + i] = (uint64_t)b.v[0][i] | (uint64_t)b.v[1][i] << 32;
+    }
+}
+
+/* lgca_rand_biased on 16 words at once: a Philox call is made while any
+ * of the 16 is undecided (the others ignore it, so the bits agree). Such a
+ * batch makes more calls than one word alone would, but batches of 8 (and
+ * 64-bit counters, without repacking) measured slower. */
+LGCA_CLONES void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose,
+                                        uint64_t step, uint32_t thr, uint64_t *out)
+{
+    philox_batch b;
+    for (size_t w0 = 0; w0 < n; w0 += LGCA_BATCH) {
+        size_t m = n - w0 < LGCA_BATCH ? n - w0 : LGCA_BATCH;
+        if (m <= 4) { /* a batch of 256 lanes would waste more calls than it saves */
+            for (size_t i = 0; i < m; i++)
+                out[w0 + i] = lgca_rand_biased(key, word0 + w0 + i, purpose, step, thr);
+            continue;
+        }
+        uint64_t lt[LGCA_BATCH] = {0}, eq[LGCA_BATCH];
+        for (int i = 0; i < LGCA_BATCH; i++)
+            eq[i] = thr == 0 || thr >= 65536u ? 0 : ~(uint64_t)0;
+        for (int q = 7; q >= 0; q--) {
+            uint64_t any = 0;
+            for (size_t i = 0; i < m; i++)
+                any |= eq[i];
+            if (!any)
+                break;
+            draw_m(key, word0 + w0, purpose + (unsigned)q, step, &b, m);
+            for (int h = 1; h >= 0; h--) {
+                uint64_t tb = (thr >> (2 * q + h) & 1u) ? ~(uint64_t)0 : 0;
+                for (size_t i = 0; i < m; i++) {
+                    uint64_t u = (uint64_t)b.v[2 * h][i] | (uint64_t)b.v[2 * h + 1][i] << 32;
+                    lt[i] |= eq[i] & ~u & tb;
+                    eq[i] &= ~(u ^ tb);
+                }
+            }
+        }
+        for (size_t i = 0; i < m; i++)
+            out[w0 + i] = thr >= 65536u ? ~(uint64_t)0 : lt[i];
+    }
+}

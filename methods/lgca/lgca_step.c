@@ -32,19 +32,19 @@ static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
     for (int j = j0; j < j1; j++) {
         uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
         uint64_t base = (uint64_t)j * nw;
-        for (size_t w = 0; w < nw; w++) {
+        for (size_t w = 0; w < nw; w++)
             fluid[w] = L->valid[w] & ~L->solid[base + w];
-            ch[w] = lgca_rand_word(L->key, base + w, LGCA_RND_CHIRAL, L->step);
-        }
+        lgca_rand_words(L->key, base, nw, LGCA_RND_CHIRAL, L->step, ch);
         if (granular) {
-            for (size_t w = 0; w < nw; w++)
-                pb[w] = lgca_rand_biased(L->key, base + w, LGCA_RND_P, L->step, L->thr_p);
+            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_P, L->step, L->thr_p, pb);
             lgca_delta_granular_lane(lane, nw, fluid, ch, pb);
         } else
             lgca_delta_fhp3_lane(lane, nw, fluid, ch);
-        if (L->thr_g)
+        if (L->thr_g) {
+            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_G, L->step, L->thr_g, pb);
             for (size_t w = 0; w < nw; w++)
-                gravity(lane, nw, w, fluid[w] & lgca_rand_biased(L->key, base + w, LGCA_RND_G, L->step, L->thr_g));
+                gravity(lane, nw, w, fluid[w] & pb[w]);
+        }
     }
 }
 
