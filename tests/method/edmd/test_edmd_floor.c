@@ -102,8 +102,10 @@ static void default_guard_runs(void **st)
 static void short_guards_slow(void **st)
 {
     (void)st;
-    if (!slow)
-        skip();
+    if (!slow) {
+        printf("# the slow suite runs these (edmd_floor_slow)\n");
+        return;
+    }
     const char *modes[2] = {"edmd.collapse=none", "edmd.tc=1e-8"};
     double t;
     for (int m = 0; m < 2; m++)
