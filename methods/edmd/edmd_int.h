@@ -290,6 +290,8 @@ void edmd_cell_insert(gr_edmd *s, int32_t i, int c);
 /* roots.c */
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b);
 double edmd_floor_sine_time(const gr_edmd *s, const edmd_p *p, double a, double horizon);
+/* GR_ERUN when a grain is below the floor or into a hard wall at t (inside.c) */
+int edmd_check_inside(const gr_edmd *s, double t, gr_err *err);
 /* Where a grain can meet a floor moving in [-A, A] with the given period:
  * [*a, *b] from *a, cut at the horizon; 0 if nowhere. */
 int edmd_floor_band(const edmd_p *p, double g, double A, double period, double horizon, double *a,

@@ -356,9 +356,9 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
 
 int gr_edmd_advance(gr_edmd *s, double t_end, uint64_t max_collisions, gr_err *err)
 {
-    if (s->prm.algorithm == GR_EDMD_NAIVE)
-        return edmd_advance_naive(s, t_end, max_collisions, err);
-    return edmd_advance_tree(s, t_end, max_collisions, err);
+    int rc = s->prm.algorithm == GR_EDMD_NAIVE ? edmd_advance_naive(s, t_end, max_collisions, err)
+                                               : edmd_advance_tree(s, t_end, max_collisions, err);
+    return rc ? rc : edmd_check_inside(s, s->t, err);
 }
 
 double gr_edmd_time(const gr_edmd *s) { return s->t; }
