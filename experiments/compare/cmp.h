@@ -61,6 +61,8 @@ struct cmp_case {
     int seeds_full, seeds_quick; /* independent realisations */
     double tol_edmd;       /* edmd's relative deviation from the analytic value must stay
                               below this (--quick test); 0: none */
+    double tol_all;        /* so must every row's at its finest setting (the static
+                              cases), CMP_BIAS rows aside; 0: none */
     cmp_measure_fn measure;
     cmp_ref_fn reference;
     cmp_prepare_fn prepare;   /* NULL: the scene's [init] */
@@ -81,6 +83,7 @@ int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_mea
 double cmp_ref_column(const gr_scene *sc, double *aux_ref);
 int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 double cmp_ref_eos(const gr_scene *sc, double *aux_ref);
+double cmp_ref_silo(const gr_scene *sc, double *aux_ref);
 int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 

@@ -50,12 +50,21 @@ static const cmp_case cases[] = {
          {"dsmc", "dsmc", "dsmc.dt", "0.2,0.1,0.05,0.02", "0.2,0.05", "dsmc.cell=8"},
          {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.05", CMP_BIAS},
      }},
-    {.name = "column", .scene = "column.ini", .quantity = "wall force / weight", .aux = "top height",
-     .seeds_full = 1, .seeds_quick = 1, .tol_edmd = 0,
+    {.name = "column", .scene = "column.ini", .quantity = "base force / weight", .aux = "bulk packing fraction",
+     .seeds_full = 1, .seeds_quick = 1, .tol_edmd = 0, .tol_all = 1e-3,
      .measure = cmp_measure_column, .reference = cmp_ref_column,
      .rows = {
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,1.25e-4", NULL},
          {"cd", "cd", "cd.tol", "1e-2,1e-3,1e-4,1e-5,1e-6", "1e-2,1e-4,1e-6", NULL},
+     }},
+    {.name = "janssen", .scene = "janssen.ini", .quantity = "base force / Janssen's", .aux = "bulk packing fraction",
+     .seeds_full = 4, .seeds_quick = 2, .tol_edmd = 0, .tol_all = 0.2,
+     .measure = cmp_measure_column, .reference = cmp_ref_column,
+     .rows = {
+         /* first: the plan asks the methods about the scene with the first row's settings */
+         {"cd", "cd", "cd.tol", "1e-2,1e-3", "1e-2", NULL},
+         {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4,6.25e-5", "1.25e-4", "material.tangential=spring"},
+         {"dem", "dem-sliding", "dem.dt", "5e-4,2.5e-4", "", NULL, CMP_BIAS},
      }},
     {.name = "eos", .scene = "eos.ini", .quantity = "Z / Z_Luding(eta_bulk)", .aux = "eta_bulk",
      .quick_set = "species.count=400;domain.width=33.36043187592832;domain.height=33.36043187592832;"
@@ -77,7 +86,7 @@ static const cmp_case cases[] = {
      }},
     {.name = "silo", .scene = "silo.ini", .quantity = "outflow rate", .aux = "kinetic energy per grain",
      .quick_set = "run.until=20", .seeds_full = 3, .seeds_quick = 1, .tol_edmd = 0,
-     .measure = cmp_measure_silo, .reference = NULL,
+     .measure = cmp_measure_silo, .reference = cmp_ref_silo,
      .rows = {
          {"dem", "dem-long", "run.until", "200", "40", "dem.dt=1.25e-4", CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4", "5e-4", NULL, 0},

@@ -178,68 +178,6 @@ double cmp_ref_cooling(const gr_scene *sc, double *aux_ref)
     return 0.25;
 }
 
-/* ------------------------------------------- windows of wall pressure */
-
-/* The wall pressure in NBLOCKS windows from t0 to the scene's until, the
- * temperature at each window's end, and the highest grain at the end. */
-static int wall_blocks(gr_sim *s, const gr_scene *sc, double t0, double *P, double *T, double *top, gr_err *err)
-{
-    gr_particles *p = gr_particles_create(0, err);
-    if (!p)
-        return err->code;
-    int rc = gr_sim_advance(s, t0, 0, err);
-    for (int b = 0; b < NBLOCKS && !rc; b++) {
-        gr_obs o;
-        gr_sim_reset_window(s);
-        rc = gr_sim_advance(s, t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS, 0, err) ||
-             gr_sim_observe(s, &o, err);
-        P[b] = o.wall_pressure;
-        T[b] = o.temperature;
-    }
-    if (!rc && !(rc = gr_sim_snapshot(s, p, err))) {
-        *top = -INFINITY;
-        for (size_t i = 0; i < p->n; i++)
-            if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
-                *top = fmax(*top, p->y[i]);
-    }
-    gr_particles_free(p);
-    return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
-}
-
-/* ------------------------------------------------------------------- column */
-
-static double weight(const gr_scene *sc)
-{
-    double w = 0;
-    for (int k = 0; k < sc->nspecies; k++) {
-        const gr_species *sp = &sc->species[k];
-        w += (double)sp->count * sp->density * M_PI * sp->diameter * sp->diameter / 4;
-    }
-    return w * sc->gravity;
-}
-
-/* The force on all four walls over the last third of the run, in units
- * of the column's weight; aux: the height of the top disk. */
-int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
-{
-    (void)c;
-    double P[NBLOCKS], T[NBLOCKS], F[NBLOCKS], mean, sem;
-    if (wall_blocks(s, sc, sc->run.until * 2 / 3, P, T, &out->aux, err))
-        return err->code;
-    for (int b = 0; b < NBLOCKS; b++)
-        F[b] = P[b] * 2 * (sc->width + sc->height) / weight(sc);
-    gr_block_average(F, NBLOCKS, 1, NULL, &mean, &sem);
-    out->value = mean;
-    out->sem = sem;
-    return steps_done(s, &out->steps, err);
-}
-
-double cmp_ref_column(const gr_scene *sc, double *aux_ref)
-{
-    *aux_ref = sc->species[0].diameter * ((double)gr_scene_count(sc) - 0.5);
-    return 1;
-}
-
 /* ---------------------------------------------------- equation of state */
 
 /* The area the centres reach. */

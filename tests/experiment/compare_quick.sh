@@ -28,7 +28,7 @@ rc=$?
 sed 's/^/# /' "$tmp/log"
 check $rc "compare --quick passes its checks"
 for f in compare.h5 compare.txt summary.png summary.gp collision.png collision.gp cooling-dilute.png \
-         cooling-dense.png column.png eos.png eos.gp vibrated.png silo.png silo.gp; do
+         cooling-dense.png column.png janssen.png eos.png eos.gp vibrated.png silo.png silo.gp; do
     [ -s "$tmp/q/$f" ]
     check $? "wrote $f"
 done
@@ -37,7 +37,7 @@ if $PY -c 'import h5py, numpy' 2>/dev/null; then
     $PY - "$tmp/q/compare.h5" >"$tmp/err" 2>&1 <<'PYEOF'
 import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")
-cases = ["collision", "cooling-dilute", "cooling-dense", "column", "eos", "vibrated", "silo"]
+cases = ["collision", "cooling-dilute", "cooling-dense", "column", "janssen", "eos", "vibrated", "silo"]
 for c in cases:
     t = f["results/compare/" + c][()]
     assert t.shape[1] == 14 and t.shape[0] >= 4, (c, t.shape)
