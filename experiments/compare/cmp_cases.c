@@ -8,7 +8,10 @@
  * dsmc's rows fix a cell of 8 diameters: in its Enskog mode the rate is
  * multiplied by chi of each cell's own packing fraction, which for cells
  * of a few particles fluctuates and, chi being convex, biases the rate up
- * (the dsmc-cell rows show it).
+ * (the dsmc-cell rows show it). The dsmc-weight row moves [species]
+ * count and weight together ("count:weight", a knob of two keys) so the
+ * represented grains stay the same: fewer particles per cell as the
+ * weight grows.
  *
  * lgca (lattice gas, fields only) is not in any row yet: its rows (knob:
  * the lattice resolution) go into the vibrated and silo cases when the
@@ -38,6 +41,8 @@ static const cmp_case cases[] = {
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,2.5e-4", NULL},
          {"dsmc", "dsmc", "dsmc.dt", "0.4,0.2,0.1,0.05", "0.4,0.1", "dsmc.cell=8"},
          {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.1", CMP_BIAS},
+         {"dsmc", "dsmc-weight", "species.count+species.weight", "64:16,256:4,1024:1", "64:4,256:1",
+          "dsmc.dt=0.1;dsmc.cell=8"},
      }},
     {.name = "cooling-dense", .scene = "cooling-dense.ini", .quantity = "T/T0 at Haff's time",
      .aux = "T/T0 at half Haff's time",

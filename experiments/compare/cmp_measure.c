@@ -103,10 +103,20 @@ static double area(const gr_scene *sc)
     return sc->width * sc->height;
 }
 
+/* The grains the scene stands for: dsmc's particles may each stand for
+ * [species] weight of them. */
+static double represented(const gr_scene *sc)
+{
+    double n = 0;
+    for (int k = 0; k < sc->nspecies; k++)
+        n += (double)sc->species[k].count * sc->species[k].weight;
+    return n;
+}
+
 static double packing(const gr_scene *sc, double a)
 {
     double d = sc->species[0].diameter;
-    return (double)gr_scene_count(sc) * M_PI * d * d / 4 / a;
+    return represented(sc) * M_PI * d * d / 4 / a;
 }
 
 /* The scene's grains after an elastic edmd run of three collisions per disk,
@@ -117,8 +127,8 @@ int cmp_prepare_cooling(const gr_scene *sc, gr_particles *p, gr_err *err)
     const gr_method_type *edmd = gr_method_find("edmd");
     if (gr_init_particles(sc, p, err))
         return err->code;
-    if (!edmd)
-        return GR_OK;
+    if (!edmd || represented(sc) != (double)gr_scene_count(sc))
+        return GR_OK; /* weighted particles (dsmc) have no pair correlation to give */
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
     char *text = gr_scene_text_set(sc->text, "material", "restitution", "1", err);
@@ -154,7 +164,7 @@ int cmp_measure_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_me
     gr_particles *p = gr_particles_create(0, err);
     if (!p)
         return err->code;
-    double T0 = NAN, T1 = NAN, T2 = NAN, a = area(sc), n = (double)gr_scene_count(sc) / a;
+    double T0 = NAN, T1 = NAN, T2 = NAN, a = area(sc), n = represented(sc) / a;
     int rc = temperature(s, p, &T0, err);
     double tau = rc ? 0 : exp_haff_tau(sc->mat.restitution, n, packing(sc, a), T0, 1);
     if (!rc && tau > sc->run.until)

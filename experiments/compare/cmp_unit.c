@@ -30,6 +30,24 @@ static int apply_settings(char **text, const char *settings, const char *where, 
     return GR_OK;
 }
 
+/* A knob of several keys moved together ("species.count+species.weight")
+ * takes a value per key ("256:4"). */
+static int apply_knob(char **text, const char *knob, const char *value, gr_err *err)
+{
+    char keys[128], vals[64], set[256];
+    snprintf(keys, sizeof keys, "%s", knob);
+    snprintf(vals, sizeof vals, "%s", value);
+    char *sk = NULL, *sv = NULL, *k = strtok_r(keys, "+", &sk), *v = strtok_r(vals, ":", &sv);
+    for (; k && v; k = strtok_r(NULL, "+", &sk), v = strtok_r(NULL, ":", &sv)) {
+        snprintf(set, sizeof set, "%s=%s", k, v);
+        if (apply_settings(text, set, "the row's knob", err))
+            return err->code;
+    }
+    if (k || v)
+        return gr_fail(err, GR_EINPUT, "knob %s: value '%s' has not one part per key", knob, value);
+    return GR_OK;
+}
+
 static char *read_text(const char *path, gr_err *err)
 {
     FILE *f = fopen(path, "rb");
@@ -62,10 +80,8 @@ gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
         rc = apply_settings(&text, u->c->quick_set, "the case's quick settings", err);
     if (!rc && u->row->fixed)
         rc = apply_settings(&text, u->row->fixed, "the row's settings", err);
-    if (!rc && u->row->knob && u->value[0]) {
-        snprintf(set, sizeof set, "%s=%s", u->row->knob, u->value);
-        rc = apply_settings(&text, set, "the row's knob", err);
-    }
+    if (!rc && u->row->knob && u->value[0])
+        rc = apply_knob(&text, u->row->knob, u->value, err);
     if (!rc) {
         snprintf(set, sizeof set, "scene.seed=%d", u->seed);
         rc = apply_settings(&text, set, "the seed", err);
