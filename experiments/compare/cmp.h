@@ -9,8 +9,10 @@
 #define GR_CMP_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "err.h"
+#include "h5md.h"
 #include "method.h"
 #include "particles.h"
 #include "scene.h"
@@ -37,9 +39,12 @@ enum {
 /* What a measurement gives: the quantity, its statistical error from
  * within the run (NaN when the run gives none), a second quantity (aux),
  * and the steps or events done. */
+#define CMP_NBINS 24 /* profile bins, 1 d high from the floor's mean height */
 typedef struct {
     double value, sem, aux;
     double steps;
+    int nprof;                    /* 4 * CMP_NBINS when the case measures profiles, else 0 */
+    double prof[4 * CMP_NBINS];   /* number density, its error bar, temperature, its error bar */
 } cmp_meas;
 
 typedef struct cmp_case cmp_case;
@@ -117,6 +122,11 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
                  gr_err *err);
 void cmp_unit_label(size_t unit, void *ctx, char *label, size_t n);
 void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n);
+
+/* The profiles' table lines and HDF5 tables of case c, when its runs gave
+ * profiles: each (row, value)'s against the CMP_REFERENCE row's
+ * (cmp_profile.c). */
+int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h, gr_err *err);
 
 /* Tables, figures and checks from the parts (cmp_report.c): returns
  * GR_ERUN when a --quick check fails (after writing everything). */

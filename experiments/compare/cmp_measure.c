@@ -267,14 +267,49 @@ static int below_floor(const gr_particles *p, const gr_scene *sc, double t, gr_e
     return GR_OK;
 }
 
+/* One snapshot's share of a window's profiles: grains and kinetic energy
+ * (1/2 m v^2) per bin of height 1 d. */
+static void bin_grains(const gr_particles *p, double *cnt, double *ke)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        int b = (int)floor(p->y[i]);
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && b >= 0 && b < CMP_NBINS)
+            cnt[b] += 1, ke[b] += 0.5 * p->mass[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    }
+}
+
+/* Per bin, the number density and the temperature (kinetic energy per
+ * grain: the bed has no mean flow) block-averaged over the windows with
+ * their error bars; a bin no window reached has temperature NaN. */
+static void bed_profiles(const double (*cnt)[CMP_NBINS], const double (*ke)[CMP_NBINS], double area, cmp_meas *out)
+{
+    for (int b = 0; b < CMP_NBINS; b++) {
+        double nb[NBLOCKS], Tb[NBLOCKS];
+        int k = 0;
+        for (int w = 0; w < NBLOCKS; w++) {
+            nb[w] = cnt[w][b] / area;
+            if (cnt[w][b] > 0)
+                Tb[k++] = ke[w][b] / cnt[w][b];
+        }
+        double *o = out->prof + 4 * b;
+        gr_block_average(nb, NBLOCKS, 1, NULL, &o[0], &o[1]);
+        o[2] = o[3] = NAN;
+        if (k >= 2)
+            gr_block_average(Tb, k, 1, NULL, &o[2], &o[3]);
+    }
+    out->nprof = 4 * CMP_NBINS;
+}
+
 /* After the first fifth of the run, in NBLOCKS windows of BED_SAMPLES
  * snapshots: the mean height of the grains (the first moment of the
- * density profile) and their mean granular temperature (aux). A grain
- * found below the floor fails the run. */
+ * density profile), their mean granular temperature (aux), and the
+ * profiles of density and temperature. A grain found below the floor
+ * fails the run. */
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
 {
     (void)c;
     double H[NBLOCKS], T[NBLOCKS], t0 = sc->run.until / 5, sem;
+    double cnt[NBLOCKS][CMP_NBINS] = {{0}}, ke[NBLOCKS][CMP_NBINS] = {{0}};
     gr_particles *p = gr_particles_create(0, err);
     int rc = !p || gr_sim_advance(s, t0, 0, err);
     for (int b = 0; b < NBLOCKS && !rc; b++) {
@@ -287,6 +322,7 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
             gr_obs_from_particles(p, sc->gravity, &o);
             H[b] += o.epot_grav / (sc->gravity * (double)o.n_mobile) / BED_SAMPLES;
             T[b] += o.temperature / BED_SAMPLES;
+            bin_grains(p, cnt[b], ke[b]);
         }
     }
     gr_particles_free(p);
@@ -294,6 +330,7 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
         return err->code ? err->code : GR_ERUN;
     gr_block_average(H, NBLOCKS, 1, NULL, &out->value, &out->sem);
     gr_block_average(T, NBLOCKS, 1, NULL, &out->aux, &sem);
+    bed_profiles((const double (*)[CMP_NBINS])cnt, (const double (*)[CMP_NBINS])ke, sc->width * BED_SAMPLES, out);
     return steps_done(s, &out->steps, err);
 }
 

@@ -125,7 +125,7 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
                  gr_err *err)
 {
     const cmp_plan *pl = ctx;
-    cmp_meas m = {NAN, NAN, NAN, NAN};
+    cmp_meas m = {.value = NAN, .sem = NAN, .aux = NAN, .steps = NAN};
     double wall = NAN;
     gr_err run_err = {0};
     int rc = measure(pl, &pl->units[unit], &m, &wall, &run_err);
@@ -138,7 +138,8 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
         return err->code;
     double v[6] = {rc ? 0 : 1, m.value, m.sem, m.aux, m.steps, wall};
     int w = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err) || gr_ckpt_put_f64(ck, "result", v, 6, err) ||
-            (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err));
+            (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err)) ||
+            (!rc && m.nprof && gr_ckpt_put_f64(ck, "profile", m.prof, (size_t)m.nprof, err));
     if (w) {
         gr_ckpt_discard(ck);
         return err->code;
@@ -165,6 +166,6 @@ void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n)
     for (const char *t = sc ? sc->text : ""; *t; t++)
         h = h * 33 + (unsigned char)*t;
     gr_scene_free(sc);
-    snprintf(key, n, "compare v2 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
+    snprintf(key, n, "compare v3 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
              pl->quick ? "quick" : "full", h);
 }
