@@ -41,6 +41,8 @@ static double janssen_lambda(const gr_scene *sc)
 static int pile_now(gr_sim *s, const gr_scene *sc, gr_particles *p, gr_contacts *k, double *ratio, double *phi,
                     gr_err *err)
 {
+    if (sc->side[GR_BOTTOM] != GR_BC_WALL)
+        return gr_fail(err, GR_EINPUT, "%s: the column cases need a floor ([domain] bottom = wall)", sc->path);
     if (gr_sim_snapshot(s, p, err) || gr_sim_contacts(s, k, err))
         return err->code;
     double base = 0, M = 0, top = 0, a = 0, mb = 0;
