@@ -9,8 +9,10 @@
 #define GR_CMP_H
 
 #include <stddef.h>
+#include <stdio.h>
 
 #include "err.h"
+#include "h5md.h"
 #include "method.h"
 #include "particles.h"
 #include "scene.h"
@@ -37,9 +39,12 @@ enum {
 /* What a measurement gives: the quantity, its statistical error from
  * within the run (NaN when the run gives none), a second quantity (aux),
  * and the steps or events done. */
+#define CMP_NBINS 24 /* profile bins, 1 d high from the floor's mean height */
 typedef struct {
     double value, sem, aux;
     double steps;
+    int nprof;                    /* 4 * CMP_NBINS when the case measures profiles, else 0 */
+    double prof[4 * CMP_NBINS];   /* number density, its error bar, temperature, its error bar */
 } cmp_meas;
 
 typedef struct cmp_case cmp_case;
@@ -61,6 +66,8 @@ struct cmp_case {
     int seeds_full, seeds_quick; /* independent realisations */
     double tol_edmd;       /* edmd's relative deviation from the analytic value must stay
                               below this (--quick test); 0: none */
+    double tol_all;        /* so must every row's at its finest setting (the static
+                              cases), CMP_BIAS rows aside; 0: none */
     cmp_measure_fn measure;
     cmp_ref_fn reference;
     cmp_prepare_fn prepare;   /* NULL: the scene's [init] */
@@ -81,6 +88,7 @@ int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_mea
 double cmp_ref_column(const gr_scene *sc, double *aux_ref);
 int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 double cmp_ref_eos(const gr_scene *sc, double *aux_ref);
+double cmp_ref_silo(const gr_scene *sc, double *aux_ref);
 int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 
@@ -114,6 +122,11 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
                  gr_err *err);
 void cmp_unit_label(size_t unit, void *ctx, char *label, size_t n);
 void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n);
+
+/* The profiles' table lines and HDF5 tables of case c, when its runs gave
+ * profiles: each (row, value)'s against the CMP_REFERENCE row's
+ * (cmp_profile.c). */
+int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h, gr_err *err);
 
 /* Tables, figures and checks from the parts (cmp_report.c): returns
  * GR_ERUN when a --quick check fails (after writing everything). */

@@ -103,10 +103,20 @@ static double area(const gr_scene *sc)
     return sc->width * sc->height;
 }
 
+/* The grains the scene stands for: dsmc's particles may each stand for
+ * [species] weight of them. */
+static double represented(const gr_scene *sc)
+{
+    double n = 0;
+    for (int k = 0; k < sc->nspecies; k++)
+        n += (double)sc->species[k].count * sc->species[k].weight;
+    return n;
+}
+
 static double packing(const gr_scene *sc, double a)
 {
     double d = sc->species[0].diameter;
-    return (double)gr_scene_count(sc) * M_PI * d * d / 4 / a;
+    return represented(sc) * M_PI * d * d / 4 / a;
 }
 
 /* The scene's grains after an elastic edmd run of three collisions per disk,
@@ -117,8 +127,8 @@ int cmp_prepare_cooling(const gr_scene *sc, gr_particles *p, gr_err *err)
     const gr_method_type *edmd = gr_method_find("edmd");
     if (gr_init_particles(sc, p, err))
         return err->code;
-    if (!edmd)
-        return GR_OK;
+    if (!edmd || represented(sc) != (double)gr_scene_count(sc))
+        return GR_OK; /* weighted particles (dsmc) have no pair correlation to give */
     const char *names[GR_MAX_METHODS + 1];
     gr_method_names(names, GR_MAX_METHODS + 1);
     char *text = gr_scene_text_set(sc->text, "material", "restitution", "1", err);
@@ -154,7 +164,7 @@ int cmp_measure_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_me
     gr_particles *p = gr_particles_create(0, err);
     if (!p)
         return err->code;
-    double T0 = NAN, T1 = NAN, T2 = NAN, a = area(sc), n = (double)gr_scene_count(sc) / a;
+    double T0 = NAN, T1 = NAN, T2 = NAN, a = area(sc), n = represented(sc) / a;
     int rc = temperature(s, p, &T0, err);
     double tau = rc ? 0 : exp_haff_tau(sc->mat.restitution, n, packing(sc, a), T0, 1);
     if (!rc && tau > sc->run.until)
@@ -176,68 +186,6 @@ double cmp_ref_cooling(const gr_scene *sc, double *aux_ref)
     (void)sc;
     *aux_ref = 1 / 2.25;
     return 0.25;
-}
-
-/* ------------------------------------------- windows of wall pressure */
-
-/* The wall pressure in NBLOCKS windows from t0 to the scene's until, the
- * temperature at each window's end, and the highest grain at the end. */
-static int wall_blocks(gr_sim *s, const gr_scene *sc, double t0, double *P, double *T, double *top, gr_err *err)
-{
-    gr_particles *p = gr_particles_create(0, err);
-    if (!p)
-        return err->code;
-    int rc = gr_sim_advance(s, t0, 0, err);
-    for (int b = 0; b < NBLOCKS && !rc; b++) {
-        gr_obs o;
-        gr_sim_reset_window(s);
-        rc = gr_sim_advance(s, t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS, 0, err) ||
-             gr_sim_observe(s, &o, err);
-        P[b] = o.wall_pressure;
-        T[b] = o.temperature;
-    }
-    if (!rc && !(rc = gr_sim_snapshot(s, p, err))) {
-        *top = -INFINITY;
-        for (size_t i = 0; i < p->n; i++)
-            if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
-                *top = fmax(*top, p->y[i]);
-    }
-    gr_particles_free(p);
-    return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
-}
-
-/* ------------------------------------------------------------------- column */
-
-static double weight(const gr_scene *sc)
-{
-    double w = 0;
-    for (int k = 0; k < sc->nspecies; k++) {
-        const gr_species *sp = &sc->species[k];
-        w += (double)sp->count * sp->density * M_PI * sp->diameter * sp->diameter / 4;
-    }
-    return w * sc->gravity;
-}
-
-/* The force on all four walls over the last third of the run, in units
- * of the column's weight; aux: the height of the top disk. */
-int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
-{
-    (void)c;
-    double P[NBLOCKS], T[NBLOCKS], F[NBLOCKS], mean, sem;
-    if (wall_blocks(s, sc, sc->run.until * 2 / 3, P, T, &out->aux, err))
-        return err->code;
-    for (int b = 0; b < NBLOCKS; b++)
-        F[b] = P[b] * 2 * (sc->width + sc->height) / weight(sc);
-    gr_block_average(F, NBLOCKS, 1, NULL, &mean, &sem);
-    out->value = mean;
-    out->sem = sem;
-    return steps_done(s, &out->steps, err);
-}
-
-double cmp_ref_column(const gr_scene *sc, double *aux_ref)
-{
-    *aux_ref = sc->species[0].diameter * ((double)gr_scene_count(sc) - 0.5);
-    return 1;
 }
 
 /* ---------------------------------------------------- equation of state */
@@ -319,14 +267,49 @@ static int below_floor(const gr_particles *p, const gr_scene *sc, double t, gr_e
     return GR_OK;
 }
 
+/* One snapshot's share of a window's profiles: grains and kinetic energy
+ * (1/2 m v^2) per bin of height 1 d. */
+static void bin_grains(const gr_particles *p, double *cnt, double *ke)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        int b = (int)floor(p->y[i]);
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && b >= 0 && b < CMP_NBINS)
+            cnt[b] += 1, ke[b] += 0.5 * p->mass[i] * (p->vx[i] * p->vx[i] + p->vy[i] * p->vy[i]);
+    }
+}
+
+/* Per bin, the number density and the temperature (kinetic energy per
+ * grain: the bed has no mean flow) block-averaged over the windows with
+ * their error bars; a bin no window reached has temperature NaN. */
+static void bed_profiles(const double (*cnt)[CMP_NBINS], const double (*ke)[CMP_NBINS], double area, cmp_meas *out)
+{
+    for (int b = 0; b < CMP_NBINS; b++) {
+        double nb[NBLOCKS], Tb[NBLOCKS];
+        int k = 0;
+        for (int w = 0; w < NBLOCKS; w++) {
+            nb[w] = cnt[w][b] / area;
+            if (cnt[w][b] > 0)
+                Tb[k++] = ke[w][b] / cnt[w][b];
+        }
+        double *o = out->prof + 4 * b;
+        gr_block_average(nb, NBLOCKS, 1, NULL, &o[0], &o[1]);
+        o[2] = o[3] = NAN;
+        if (k >= 2)
+            gr_block_average(Tb, k, 1, NULL, &o[2], &o[3]);
+    }
+    out->nprof = 4 * CMP_NBINS;
+}
+
 /* After the first fifth of the run, in NBLOCKS windows of BED_SAMPLES
  * snapshots: the mean height of the grains (the first moment of the
- * density profile) and their mean granular temperature (aux). A grain
- * found below the floor fails the run. */
+ * density profile), their mean granular temperature (aux), and the
+ * profiles of density and temperature. A grain found below the floor
+ * fails the run. */
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
 {
     (void)c;
     double H[NBLOCKS], T[NBLOCKS], t0 = sc->run.until / 5, sem;
+    double cnt[NBLOCKS][CMP_NBINS] = {{0}}, ke[NBLOCKS][CMP_NBINS] = {{0}};
     gr_particles *p = gr_particles_create(0, err);
     int rc = !p || gr_sim_advance(s, t0, 0, err);
     for (int b = 0; b < NBLOCKS && !rc; b++) {
@@ -339,6 +322,7 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
             gr_obs_from_particles(p, sc->gravity, &o);
             H[b] += o.epot_grav / (sc->gravity * (double)o.n_mobile) / BED_SAMPLES;
             T[b] += o.temperature / BED_SAMPLES;
+            bin_grains(p, cnt[b], ke[b]);
         }
     }
     gr_particles_free(p);
@@ -346,6 +330,7 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
         return err->code ? err->code : GR_ERUN;
     gr_block_average(H, NBLOCKS, 1, NULL, &out->value, &out->sem);
     gr_block_average(T, NBLOCKS, 1, NULL, &out->aux, &sem);
+    bed_profiles((const double (*)[CMP_NBINS])cnt, (const double (*)[CMP_NBINS])ke, sc->width * BED_SAMPLES, out);
     return steps_done(s, &out->steps, err);
 }
 

@@ -192,7 +192,8 @@ static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, F
     text_case(stdout, c, *pts, *n, &ref);
     text_case(txt, c, *pts, *n, &ref);
     *bad += cmp_check(c, *pts, *n, &ref);
-    if (h5_case(h, c, *pts, *n, &ref, err) || plot_case(pl->out, c, *pts, *n, &ref, err))
+    if (h5_case(h, c, *pts, *n, &ref, err) || cmp_profiles(pl, parts, c, txt, h, err) ||
+        plot_case(pl->out, c, *pts, *n, &ref, err))
         return err->code;
     return GR_OK;
 }

@@ -142,6 +142,12 @@ int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs 
                    dev, c->tol_edmd);
             bad++;
         }
+        int finest = i + 1 == n || pts[i + 1].row != p->row;
+        if (c->tol_all > 0 && finest && p->row->role != CMP_BIAS && !(dev <= c->tol_all)) {
+            printf("  CHECK FAILED %s %s %s: %.3g from the analytic value, beyond the tolerance %.3g\n", c->name,
+                   p->row->label, p->value, dev, c->tol_all);
+            bad++;
+        }
         if (p->row->role == CMP_SWEEP && i + 1 < n && pts[i + 1].row == p->row) {
             const cmp_point *q = &pts[i + 1];
             double slack = 2 * hypot(p->error_sem, q->error_sem) + 1e-9;

@@ -30,6 +30,24 @@ static int apply_settings(char **text, const char *settings, const char *where, 
     return GR_OK;
 }
 
+/* A knob of several keys moved together ("species.count+species.weight")
+ * takes a value per key ("256:4"). */
+static int apply_knob(char **text, const char *knob, const char *value, gr_err *err)
+{
+    char keys[128], vals[64], set[256];
+    snprintf(keys, sizeof keys, "%s", knob);
+    snprintf(vals, sizeof vals, "%s", value);
+    char *sk = NULL, *sv = NULL, *k = strtok_r(keys, "+", &sk), *v = strtok_r(vals, ":", &sv);
+    for (; k && v; k = strtok_r(NULL, "+", &sk), v = strtok_r(NULL, ":", &sv)) {
+        snprintf(set, sizeof set, "%s=%s", k, v);
+        if (apply_settings(text, set, "the row's knob", err))
+            return err->code;
+    }
+    if (k || v)
+        return gr_fail(err, GR_EINPUT, "knob %s: value '%s' has not one part per key", knob, value);
+    return GR_OK;
+}
+
 static char *read_text(const char *path, gr_err *err)
 {
     FILE *f = fopen(path, "rb");
@@ -62,10 +80,8 @@ gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
         rc = apply_settings(&text, u->c->quick_set, "the case's quick settings", err);
     if (!rc && u->row->fixed)
         rc = apply_settings(&text, u->row->fixed, "the row's settings", err);
-    if (!rc && u->row->knob && u->value[0]) {
-        snprintf(set, sizeof set, "%s=%s", u->row->knob, u->value);
-        rc = apply_settings(&text, set, "the row's knob", err);
-    }
+    if (!rc && u->row->knob && u->value[0])
+        rc = apply_knob(&text, u->row->knob, u->value, err);
     if (!rc) {
         snprintf(set, sizeof set, "scene.seed=%d", u->seed);
         rc = apply_settings(&text, set, "the seed", err);
@@ -109,7 +125,7 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
                  gr_err *err)
 {
     const cmp_plan *pl = ctx;
-    cmp_meas m = {NAN, NAN, NAN, NAN};
+    cmp_meas m = {.value = NAN, .sem = NAN, .aux = NAN, .steps = NAN};
     double wall = NAN;
     gr_err run_err = {0};
     int rc = measure(pl, &pl->units[unit], &m, &wall, &run_err);
@@ -122,7 +138,8 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
         return err->code;
     double v[6] = {rc ? 0 : 1, m.value, m.sem, m.aux, m.steps, wall};
     int w = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err) || gr_ckpt_put_f64(ck, "result", v, 6, err) ||
-            (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err));
+            (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err)) ||
+            (!rc && m.nprof && gr_ckpt_put_f64(ck, "profile", m.prof, (size_t)m.nprof, err));
     if (w) {
         gr_ckpt_discard(ck);
         return err->code;
@@ -149,6 +166,6 @@ void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n)
     for (const char *t = sc ? sc->text : ""; *t; t++)
         h = h * 33 + (unsigned char)*t;
     gr_scene_free(sc);
-    snprintf(key, n, "compare v2 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
+    snprintf(key, n, "compare v3 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
              pl->quick ? "quick" : "full", h);
 }

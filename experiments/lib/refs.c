@@ -42,3 +42,8 @@ double exp_lsd_restitution(double kn, double gamma_n, double meff, double *tc)
     *tc = M_PI / w;
     return exp(-b * *tc);
 }
+
+double exp_beverloo_2d(double C, double k, double phi, double g, double D, double d)
+{
+    return D > k * d ? C * (4 * phi / (M_PI * d * d)) * sqrt(g) * pow(D - k * d, 1.5) : 0;
+}

@@ -28,4 +28,10 @@ double exp_haff_tau(double alpha, double n, double eta, double T0, int sonine);
  * the restitution, and the contact time in *tc. NaN when overdamped. */
 double exp_lsd_restitution(double kn, double gamma_n, double meff, double *tc);
 
+/* The 2-D Beverloo law of the thesis's fig. 4.1 (eq. 4.1 with rho sqrt(g),
+ * docs/experiments.md): grains per unit time through an orifice of width
+ * D, W = C rho sqrt(g) (D - k d)^(3/2), rho = 4 phi / (pi d^2) the number
+ * density at packing fraction phi; 0 when D <= k d. */
+double exp_beverloo_2d(double C, double k, double phi, double g, double D, double d);
+
 #endif
