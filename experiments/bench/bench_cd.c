@@ -13,6 +13,7 @@
 #include <time.h>
 
 #include "cd/cd_int.h"
+#include "clock.h"
 #include "cmd.h"
 #include "init.h"
 #include "method.h"
@@ -24,13 +25,6 @@
 /* Dense W costs (2 nc)^2 doubles and fc2d_nsgs_dense O(nc^2) per sweep:
  * above this many contacts the Siconos comparison is left out. */
 #define SICONOS_MAX_CONTACTS 1500
-
-static double bench_cd_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 typedef struct {
     long ns[16];
@@ -164,11 +158,11 @@ static gr_scene *bench_cd_scene(const char *name, long n, double tol, gr_err *er
 static int time_steps(gr_cd *d, long steps, bc_result *r, gr_err *err)
 {
     uint64_t s0 = d->sweeps;
-    double t0 = bench_cd_now();
+    double t0 = exp_wall_seconds();
     for (long k = 0; k < steps; k++)
         if (gr_cd_step(d, err))
             return err->code;
-    double t = bench_cd_now() - t0;
+    double t = exp_wall_seconds() - t0;
     r->steps_per_s = (double)steps / t;
     r->iter_per_step = (double)(d->sweeps - s0) / (double)steps;
     fprintf(stderr, "cd %s n=%ld: %ld steps in %.3f s, %.2f sweeps per step, %zu contacts, largest overlap %.2e d\n",
@@ -190,10 +184,10 @@ static int cold_solve(gr_cd *d, const free_vel *fv, double *sec, long *sweeps, g
     for (size_t k = 0; k < d->cur.n; k++)
         d->cur.c[k].rn = d->cur.c[k].rt = 0;
     gr_cd_solve_info si;
-    double t0 = bench_cd_now();
+    double t0 = exp_wall_seconds();
     if (gr_cd_solve(d, &si, err))
         return err->code;
-    *sec = bench_cd_now() - t0;
+    *sec = exp_wall_seconds() - t0;
     *sweeps = si.converged ? si.sweeps : -si.sweeps;
     return GR_OK;
 }

@@ -12,27 +12,12 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "clock.h"
 #include "cmd.h"
 #include "dem/dem.h"
 #include "init.h"
 #include "opts.h"
 #include "plot.h"
-
-static double bench_dem_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-/* CPU time of the process: on a shared machine it tells what the run cost
- * when other jobs take the cores away (wall time is the headline figure). */
-static double bench_dem_cpu(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static gr_scene *bench_dem_scene(const char *text, gr_err *err)
 {
@@ -171,10 +156,10 @@ static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_e
     for (int k = 0; k < ROUNDS; k++) {
         for (int v = 0; v < 2; v++) {
             d->par.threads = v ? threads : 1;
-            double t0 = bench_dem_now();
+            double t0 = exp_wall_seconds();
             if (gr_dem_advance(d, INFINITY, (uint64_t)per, err))
                 return err->code;
-            sec[v] += bench_dem_now() - t0;
+            sec[v] += exp_wall_seconds() - t0;
         }
     }
     d->par.threads = threads;
@@ -221,9 +206,9 @@ static int bed(long n, long steps, long settle, long threads, int scaling, doubl
         goto done;
     }
     uint64_t b0 = d->builds;
-    double t0 = bench_dem_now(), c0 = bench_dem_cpu();
+    double t0 = exp_wall_seconds(), c0 = exp_cpu_seconds();
     rc = gr_dem_advance(d, INFINITY, (uint64_t)steps, err);
-    double t1 = bench_dem_now(), c1 = bench_dem_cpu();
+    double t1 = exp_wall_seconds(), c1 = exp_cpu_seconds();
     if (rc)
         goto done;
     r->n = n;
@@ -329,7 +314,7 @@ static int collision(const char *integ, double dt, double h, int nph, double *e,
              "[dem]\ndt = %.17g\ndt_fraction = 1\nintegrator = %s\nneighbour = brute\nv_impact = 1\n"
              "cvode_rtol = 1e-12\ncvode_atol = 1e-14\n", dt, integ);
     int cv = !strcmp(integ, "cvode");
-    double c0 = bench_dem_cpu();
+    double c0 = exp_cpu_seconds();
     *e = *tc = 0;
     *steps = 0;
     for (int k = 0; k < nph; k++) {
@@ -341,7 +326,7 @@ static int collision(const char *integ, double dt, double h, int nph, double *e,
         *tc += tk / nph;
         *steps += sk;
     }
-    *secs = bench_dem_cpu() - c0;
+    *secs = exp_cpu_seconds() - c0;
     return GR_OK;
 }
 
@@ -358,7 +343,7 @@ static int packing(const char *integ, double dt, double T, int n, double *xy, do
              "[init]\nkind = random\nregion = 0 0 8 16\nvelocity = gaussian\nv0 = 0.5\n"
              "[dem]\ndt = %.17g\ndt_fraction = 1\nintegrator = %s\nneighbour = brute\n"
              "cvode_rtol = 1e-11\ncvode_atol = 1e-13\n", n, dt, integ);
-    double c0 = bench_dem_cpu();
+    double c0 = exp_cpu_seconds();
     gr_dem *d = acc_create(text, NULL, err);
     if (!d)
         return err->code;
@@ -370,7 +355,7 @@ static int packing(const char *integ, double dt, double T, int n, double *xy, do
         }
         *steps = (long)d->step;
     }
-    *secs = bench_dem_cpu() - c0;
+    *secs = exp_cpu_seconds() - c0;
     gr_dem_free(d);
     return rc;
 }

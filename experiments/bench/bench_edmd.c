@@ -6,41 +6,13 @@
 #include <string.h>
 #include <time.h>
 
+#include "clock.h"
 #include "cmd.h"
 #include "edmd/edmd.h"
 #include "opts.h"
 #include "order.h"
 #include "init.h"
 #include "scene.h"
-
-static double now_wall(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static double now_cpu(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-
-static int parse_list(const char *s, double *out, int cap)
-{
-    int n = 0;
-    char *end;
-    while (*s && n < cap) {
-        out[n++] = strtod(s, &end);
-        if (end == s)
-            return -1;
-        s = *end == ',' ? end + 1 : end;
-        if (*end && *end != ',')
-            return -1;
-    }
-    return n;
-}
 
 static void usage(FILE *f)
 {
@@ -106,9 +78,9 @@ static int bench_round(gr_edmd *s, double want, double *rate, gr_err *err)
 {
     gr_edmd_counters c0, c1;
     gr_edmd_get_counters(s, &c0);
-    double u0 = now_cpu();
+    double u0 = exp_cpu_seconds();
     int rc = gr_edmd_advance(s, INFINITY, (uint64_t)want, err);
-    double u1 = now_cpu();
+    double u1 = exp_cpu_seconds();
     gr_edmd_get_counters(s, &c1);
     *rate = (double)(c1.pair - c0.pair) / (u1 - u0);
     return rc;
@@ -177,13 +149,14 @@ static int edmd_option(void *ctx, int id, const char *arg, gr_err *err)
     switch (id) {
     case 'Q': o->nn = 2; return 0;
     case 'n':
-        if ((o->nn = parse_list(arg, o->ns, 16)) < 1)
-            return gr_fail(err, GR_EINPUT, "--n: '%s' is not a list of numbers", arg);
+    case 'e': {
+        size_t n;
+        if (exp_parse_list(arg, id == 'n' ? o->ns : o->etas, id == 'n' ? 16 : 8, &n))
+            return gr_fail(err, GR_EINPUT, "%s: '%s' is not a list of positive numbers", id == 'n' ? "--n" : "--eta",
+                           arg);
+        *(id == 'n' ? &o->nn : &o->ne) = (int)n;
         return 0;
-    case 'e':
-        if ((o->ne = parse_list(arg, o->etas, 8)) < 1)
-            return gr_fail(err, GR_EINPUT, "--eta: '%s' is not a list of numbers", arg);
-        return 0;
+    }
     case 'E': return exp_opt_double("--equil", arg, 0, 1e15, &o->equil, err);
     case 'M': return exp_opt_double("--measure", arg, 1e-300, 1e15, &o->measure, err);
     case 'r':
@@ -249,9 +222,9 @@ static int bench_one(const be_opts *o, long n, double eta)
     gr_edmd_counters c0, c1;
     gr_edmd_get_counters(s, &c0);
     double want = o->measure * n > 2e6 ? o->measure * n : 2e6;
-    double w0 = now_wall(), u0 = now_cpu();
+    double w0 = exp_wall_seconds(), u0 = exp_cpu_seconds();
     int rc = gr_edmd_advance(s, INFINITY, (uint64_t)want, &err);
-    double w1 = now_wall(), u1 = now_cpu();
+    double w1 = exp_wall_seconds(), u1 = exp_cpu_seconds();
     gr_edmd_get_counters(s, &c1);
     gr_edmd_free(s);
     gr_scene_free(sc);

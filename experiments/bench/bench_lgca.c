@@ -6,37 +6,12 @@
 #include <string.h>
 #include <time.h>
 
+#include "clock.h"
 #include "cmd.h"
 #include "init.h"
 #include "lgca/lgca_int.h"
 #include "method.h"
-
-static double now_wall(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double now_cpu(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static int parse_ints(const char *s, long *out, int cap)
-{
-    int n = 0;
-    char *end;
-    while (*s && n < cap) {
-        out[n++] = strtol(s, &end, 10);
-        if (end == s || out[n - 1] <= 0 || (*end && *end != ','))
-            return -1;
-        s = *end == ',' ? end + 1 : end;
-    }
-    return n;
-}
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -97,13 +72,13 @@ static double timed(gr_sim *s, long n, double updates, double *cpu, gr_err *e)
     long steps = (long)ceil(updates / ((double)n * (double)n));
     if (gr_sim_step(s, e))
         return NAN;
-    double t0 = now_wall(), c0 = now_cpu();
+    double t0 = exp_wall_seconds(), c0 = exp_cpu_seconds();
     if (gr_sim_advance(s, gr_sim_time(s) + (double)steps * 1.0, 0, e))
         return NAN;
     double done = (double)steps * (double)n * (double)n;
     if (cpu)
-        *cpu = done / (now_cpu() - c0);
-    return done / (now_wall() - t0);
+        *cpu = done / (exp_cpu_seconds() - c0);
+    return done / (exp_wall_seconds() - t0);
 }
 
 static int run_case(long n, int threads, const char *rules, double p, double updates)
@@ -148,37 +123,70 @@ static int run_ratio(long n, int rounds, const char *rules, double p, double upd
     return 0;
 }
 
+typedef struct {
+    long sizes[16], threads[8];
+    int ns, nt, rounds;
+    double updates, p;
+    const char *rules;
+} bl_opts;
+
+/* A comma list of positive whole numbers into out (at most cap). */
+static int int_list(const char *flag, const char *arg, long *out, size_t cap, int *n, gr_err *err)
+{
+    double v[16];
+    size_t k;
+    if (exp_parse_list(arg, v, cap, &k))
+        return gr_fail(err, GR_EINPUT, "%s: '%s' is not a list of at most %zu positive numbers", flag, arg, cap);
+    for (size_t i = 0; i < k; i++) {
+        if (v[i] != floor(v[i]) || v[i] > 1e9)
+            return gr_fail(err, GR_EINPUT, "%s: '%s' is not a list of whole numbers", flag, arg);
+        out[i] = (long)v[i];
+    }
+    *n = (int)k;
+    return GR_OK;
+}
+
+static int lgca_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    bl_opts *o = ctx;
+    long v;
+    switch (id) {
+    case 'Q': o->updates = 2e8, o->ns = 2, o->sizes[0] = 256, o->sizes[1] = 1024; return 0;
+    case 's': return int_list("--size", arg, o->sizes, 16, &o->ns, err);
+    case 't': return int_list("--threads", arg, o->threads, 8, &o->nt, err);
+    case 'R':
+        if (strcmp(arg, "fhp3") && strcmp(arg, "granular"))
+            return gr_fail(err, GR_EINPUT, "--rules: '%s' is not fhp3 or granular", arg);
+        o->rules = arg;
+        return 0;
+    case 'p': return exp_opt_double("--p", arg, 0, 1, &o->p, err);
+    case 'u': return exp_opt_double("--updates", arg, 1, 1e15, &o->updates, err);
+    case 'r':
+        if (exp_opt_long("--ratio", arg, 1, 64, &v, err))
+            return err->code;
+        o->rounds = (int)v;
+        return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
 int bench_lgca(int argc, char **argv)
 {
-    long sizes[16] = {256, 1024, 4096, 8192}, threads[8] = {1, 2};
-    int ns = 4, nt = 2, rounds = 0;
-    double updates = 2e9, p = 0;
-    const char *rules = "fhp3";
-    for (int k = 1; k < argc; k++) {
-        const char *v = k + 1 < argc ? argv[k + 1] : NULL;
-        if (!strcmp(argv[k], "--help") || !strcmp(argv[k], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[k], "--quick"))
-            updates = 2e8, ns = 2, sizes[0] = 256, sizes[1] = 1024;
-        else if (v && !strcmp(argv[k], "--size") && (ns = parse_ints(v, sizes, 16)) > 0)
-            k++;
-        else if (v && !strcmp(argv[k], "--threads") && (nt = parse_ints(v, threads, 8)) > 0)
-            k++;
-        else if (v && !strcmp(argv[k], "--rules") && (!strcmp(v, "fhp3") || !strcmp(v, "granular")))
-            rules = v, k++;
-        else if (v && !strcmp(argv[k], "--p") && (p = atof(v)) >= 0 && p <= 1)
-            k++;
-        else if (v && !strcmp(argv[k], "--updates") && (updates = atof(v)) > 0)
-            k++;
-        else if (v && !strcmp(argv[k], "--ratio") && (rounds = atoi(v)) > 0)
-            k++;
-        else {
-            fprintf(stderr, "grano bench lgca: bad option '%s'%s%s\n", argv[k], v ? " " : "", v ? v : "");
-            usage(stderr);
-            return 2;
-        }
-    }
+    static const struct option opts[] = {
+        {"quick", no_argument, NULL, 'Q'},         {"size", required_argument, NULL, 's'},
+        {"threads", required_argument, NULL, 't'}, {"rules", required_argument, NULL, 'R'},
+        {"p", required_argument, NULL, 'p'},       {"updates", required_argument, NULL, 'u'},
+        {"ratio", required_argument, NULL, 'r'},   {NULL, 0, NULL, 0}};
+    bl_opts o = {.sizes = {256, 1024, 4096, 8192}, .threads = {1, 2}, .ns = 4, .nt = 2, .updates = 2e9,
+                 .rules = "fhp3"};
+    int first;
+    int rc = exp_getopt_main("bench lgca", argc, argv, opts, lgca_option, &o, usage, 0, &first);
+    if (rc >= 0)
+        return rc;
+    const long *sizes = o.sizes, *threads = o.threads;
+    int ns = o.ns, nt = o.nt, rounds = o.rounds;
+    double updates = o.updates, p = o.p;
+    const char *rules = o.rules;
     if (p > 0 && !strcmp(rules, "fhp3")) {
         fprintf(stderr, "grano bench lgca: --p needs --rules granular\n");
         return 2;

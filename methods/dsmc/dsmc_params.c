@@ -11,7 +11,7 @@ const gr_param gr_dsmc_param_table[] = {
      "collision cell side in diameters; 0: half the mean free path, at least one diameter"},
     {"ppc_min", GR_PARAM_REAL, 2, 0, INFINITY, 0, NULL, "1", "fewest mean particles per cell accepted as valid"},
     {"enskog", GR_PARAM_CHOICE, 0, 0, 0, 0, no_yes, "",
-     "multiply the collision rate by Henderson's chi(eta) of the cell (no collisional transfer)"},
+     "Enskog mode: the rate times Henderson's chi(eta) and the partners displaced (collisional transfer)"},
     {"strict", GR_PARAM_CHOICE, 0, 0, 0, 0, no_yes, "",
      "a validity limit broken at create is an input error instead of a counted warning"},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL},

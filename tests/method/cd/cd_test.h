@@ -3,7 +3,7 @@
 #ifndef GR_CD_TEST_H
 #define GR_CD_TEST_H
 
-#include "test.h"
+#include "sim_test.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -17,31 +17,11 @@ extern const gr_method_type gr_cd_method;
 static inline gr_scene *ct_scene(const char *text)
 {
     static const char *const ext[] = {"cd", NULL};
-    gr_err e = {0};
-    gr_scene *sc = gr_scene_parse(text, "cd-test.ini", ext, &e);
-    if (!sc)
-        print_error("scene: %s\n", e.msg);
-    assert_non_null(sc);
-    return sc;
+    return st_scene(text, "cd-test.ini", ext);
 }
 
 /* An instance from the grains p (NULL: the scene's own). */
-static inline gr_sim *ct_sim(const gr_scene *sc, const gr_particles *p)
-{
-    gr_err e = {0};
-    gr_particles *q = (gr_particles *)p;
-    if (!q) {
-        q = gr_particles_create(0, &e);
-        assert_int_equal(gr_init_particles(sc, q, &e), GR_OK);
-    }
-    gr_sim *s = NULL;
-    if (gr_sim_create(&gr_cd_method, sc, q, &s, &e))
-        print_error("create: %s\n", e.msg);
-    assert_non_null(s);
-    if (!p)
-        gr_particles_free(q);
-    return s;
-}
+static inline gr_sim *ct_sim(const gr_scene *sc, const gr_particles *p) { return st_sim(&gr_cd_method, sc, p); }
 
 static inline gr_cd *ct_state(gr_sim *s) { return gr_sim_state(s); }
 

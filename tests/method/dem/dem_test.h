@@ -3,7 +3,7 @@
 #ifndef GR_DEM_TEST_H
 #define GR_DEM_TEST_H
 
-#include "test.h"
+#include "sim_test.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -15,12 +15,7 @@
 static inline gr_scene *dt_scene(const char *text)
 {
     static const char *const ext[] = {"dem", NULL};
-    gr_err e = {0};
-    gr_scene *sc = gr_scene_parse(text, "dem-test.ini", ext, &e);
-    if (!sc)
-        print_error("scene: %s\n", e.msg);
-    assert_non_null(sc);
-    return sc;
+    return st_scene(text, "dem-test.ini", ext);
 }
 
 /* A state from the scene's [dem] section (checked like the method table),

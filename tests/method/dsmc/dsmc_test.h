@@ -4,7 +4,7 @@
 #ifndef GR_DSMC_TEST_H
 #define GR_DSMC_TEST_H
 
-#include "test.h"
+#include "sim_test.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -21,20 +21,8 @@
 static inline gr_sim *ds_make_method(const char *m, const char *text, gr_scene **scp)
 {
     static const char *const ext[] = {"dsmc", "edmd", NULL};
-    gr_err e = {0};
-    gr_scene *sc = gr_scene_parse(text, "dsmc-test.ini", ext, &e);
-    if (!sc)
-        print_error("scene: %s\n", e.msg);
-    assert_non_null(sc);
-    gr_particles *q = gr_particles_create(0, &e);
-    assert_int_equal(gr_init_particles(sc, q, &e), GR_OK);
-    gr_sim *s = NULL;
-    if (gr_sim_create(gr_method_find(m), sc, q, &s, &e))
-        print_error("create: %s\n", e.msg);
-    assert_non_null(s);
-    gr_particles_free(q);
-    *scp = sc;
-    return s;
+    *scp = st_scene(text, "dsmc-test.ini", ext);
+    return st_sim(gr_method_find(m), *scp, NULL);
 }
 
 static inline gr_sim *ds_make(const char *text, gr_scene **scp) { return ds_make_method("dsmc", text, scp); }

@@ -2,7 +2,7 @@
 #ifndef GR_LGCA_TEST_H
 #define GR_LGCA_TEST_H
 
-#include "test.h"
+#include "sim_test.h"
 
 #include "init.h"
 #include "lgca/lgca_int.h"
@@ -13,20 +13,8 @@ extern const gr_method_type gr_lgca_method;
 static inline gr_sim *lgca_make(const char *text, gr_scene **scp)
 {
     static const char *const ext[] = {"lgca", NULL};
-    gr_err e = {0};
-    gr_scene *sc = gr_scene_parse(text, "lgca-test.ini", ext, &e);
-    if (!sc)
-        print_error("scene: %s\n", e.msg);
-    assert_non_null(sc);
-    gr_particles *q = gr_particles_create(0, &e);
-    assert_int_equal(gr_init_particles(sc, q, &e), GR_OK);
-    gr_sim *s = NULL;
-    if (gr_sim_create(&gr_lgca_method, sc, q, &s, &e))
-        print_error("create: %s\n", e.msg);
-    assert_non_null(s);
-    gr_particles_free(q);
-    *scp = sc;
-    return s;
+    *scp = st_scene(text, "lgca-test.ini", ext);
+    return st_sim(&gr_lgca_method, *scp, NULL);
 }
 
 static inline void lgca_drop(gr_sim *s, gr_scene *sc)
