@@ -88,6 +88,15 @@ typedef struct gr_method_type {
     /* The contact network at time(): every contact that carries a force
      * (common/contacts.h) [none: `[run] contacts = yes` is refused]. */
     int (*contacts)(void *state, gr_contacts *out, gr_err *err);
+    /* The stress averaged over the window since the previous call, which
+     * starts a new one (reset on read): kinetic plus collisional, for a
+     * method whose collisions are instantaneous and leave no contact
+     * network (common/stress.h, gr_stress_acc). global[4] (xx, xy, yx, yy,
+     * m tau-2, compression positive) is the mean of nx x ny cells tiling
+     * the domain, given in cells[(iy * nx + ix) * 4 + c] when cells is not
+     * NULL. The first call, or one on another grid, starts the window and
+     * gives NaN. [none: `[run] stress = yes` needs contact networks] */
+    int (*stress)(void *state, int nx, int ny, double global[4], double *cells, gr_err *err);
 } gr_method_type;
 
 /* Optional operations, for gr_sim_require and `grano methods`. */
@@ -97,9 +106,10 @@ enum {
     GR_OP_COUNTERS = 1u << 2,
     GR_OP_RESET_WINDOW = 1u << 3,
     GR_OP_STEP = 1u << 4,
-    GR_OP_CONTACTS = 1u << 5
+    GR_OP_CONTACTS = 1u << 5,
+    GR_OP_STRESS = 1u << 6
 };
-#define GR_OP_COUNT 6
+#define GR_OP_COUNT 7
 /* Operations the backend implements itself (not by a default). */
 unsigned gr_method_ops(const gr_method_type *m);
 const char *gr_op_name(unsigned op_bit);
@@ -140,6 +150,9 @@ size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap);
 /* The counter of that name: 1 and its value, or 0 when the method has none. */
 int gr_sim_counter(const gr_sim *s, const char *name, uint64_t *value);
 int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err);
+/* The backend's window-averaged stress (see the table), or GR_EINPUT
+ * naming the method if it has none. */
+int gr_sim_stress(gr_sim *s, int nx, int ny, double global[4], double *cells, gr_err *err);
 /* GR_EINPUT if the backend lacks any of ops (GR_OP_*): "<who> needs <op>,
  * which method '<name>' does not give". */
 int gr_sim_require(const gr_method_type *m, unsigned ops, const char *who, gr_err *err);

@@ -22,7 +22,7 @@ struct gr_sim {
 
 static const char *const op_names[GR_OP_COUNT] = {"snapshots", "fields", "counters",
                                                  "measurement windows", "single steps",
-                                                 "contact networks"};
+                                                 "contact networks", "window-averaged stress"};
 
 const char *gr_op_name(unsigned op)
 {
@@ -36,7 +36,7 @@ unsigned gr_method_ops(const gr_method_type *m)
 {
     return (m->snapshot ? GR_OP_SNAPSHOT : 0) | (m->fields ? GR_OP_FIELDS : 0) |
            (m->counters ? GR_OP_COUNTERS : 0) | (m->reset_window ? GR_OP_RESET_WINDOW : 0) |
-           (m->step ? GR_OP_STEP : 0) | (m->contacts ? GR_OP_CONTACTS : 0);
+           (m->step ? GR_OP_STEP : 0) | (m->contacts ? GR_OP_CONTACTS : 0) | (m->stress ? GR_OP_STRESS : 0);
 }
 
 /* Operations a backend gives, itself or through a default. */
@@ -186,6 +186,15 @@ int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err)
         return gr_sim_require(s->type, GR_OP_CONTACTS, "a contact network", err);
     out->n = 0;
     return s->type->contacts(s->state, out, err);
+}
+
+int gr_sim_stress(gr_sim *s, int nx, int ny, double global[4], double *cells, gr_err *err)
+{
+    if (!s->type->stress)
+        return gr_sim_require(s->type, GR_OP_STRESS, "a window-averaged stress", err);
+    if (nx < 1 || ny < 1)
+        return gr_fail(err, GR_ERUN, "stress: a grid of %d x %d cells", nx, ny);
+    return s->type->stress(s->state, nx, ny, global, cells, err);
 }
 
 size_t gr_counters_put(gr_counter *out, size_t cap, const gr_counter *all, size_t n)

@@ -164,14 +164,18 @@ typedef struct {
     double *sbuf;      /* [run] stress = yes: nx * ny * 4 on the field grid */
 } run_io;
 
-/* [run] stress = yes: the contact stress of the frame's network over the
- * domain (fields/stress_global, one cell) and on the field grid. */
-static int write_stress(run_io *io, const gr_scene *sc, uint64_t step, double t, gr_err *err)
+/* [run] stress = yes: over the domain (fields/stress_global, one cell) and
+ * on the field grid, with each frame: the contact stress of the frame's
+ * network for a method that has one, else the method's window-averaged
+ * stress (kinetic plus collisional) since the previous frame. */
+static int write_stress(run_io *io, const gr_scene *sc, gr_sim *st, uint64_t step, double t, gr_err *err)
 {
     double g[4];
     int nx = sc->run.field_nx, ny = sc->run.field_ny;
-    if (gr_stress_contacts(sc, io->snap, io->net, t, nx, ny, g, io->sbuf, err))
-        return err->code;
+    int rc = io->net ? gr_stress_contacts(sc, io->snap, io->net, t, nx, ny, g, io->sbuf, err)
+                     : gr_sim_stress(st, io->sbuf ? nx : 1, io->sbuf ? ny : 1, g, io->sbuf, err);
+    if (rc)
+        return rc;
     gr_field_desc d = {"stress_global", "m tau-2", 1, 1, 4, 0, 0, sc->width, sc->height};
     if (gr_h5md_write_field(io->h, &d, step, t, g, err))
         return err->code;
@@ -268,10 +272,10 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
-            if (io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
-                            (sc->run.contacts &&
-                             (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))) ||
-                            (sc->run.stress && (status = write_stress(io, sc, obs.steps, t, err)))))
+            if ((io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
+                             (sc->run.contacts &&
+                              (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))))) ||
+                (sc->run.stress && (status = write_stress(io, sc, st, obs.steps, t, err))))
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
@@ -316,22 +320,31 @@ static void resume_counters(const gr_scene *sc, const gr_runctl *was, double t, 
     }
 }
 
-/* `[run] contacts = yes` (or stress = yes) asks the method for its contact
- * network with each frame: refused up front, naming the line, if the method
- * has none. The stress also needs the grains' positions: snapshots. */
+/* `[run] contacts = yes` asks the method for its contact network with each
+ * frame, and so does `[run] stress = yes` of a method that has one (the
+ * stress then also needs the grains' positions: snapshots); a method
+ * without contacts gives its window-averaged stress instead. Refused up
+ * front, naming the line, if the method has neither. */
 static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io, gr_err *err)
 {
     char where[1200], who[1300];
     gr_scene_where(sc, "run", sc->run.contacts ? "contacts" : "stress", where, sizeof where);
     snprintf(who, sizeof who, "%s = yes", where);
-    if (gr_sim_require(m, GR_OP_CONTACTS, who, err) ||
-        (sc->run.stress && gr_sim_require(m, GR_OP_SNAPSHOT, who, err)))
+    if (sc->run.contacts && gr_sim_require(m, GR_OP_CONTACTS, who, err))
         return err->code;
-    io->net = gr_contacts_create(0, err);
-    if (io->net && sc->run.stress && sc->run.field_nx > 0 &&
+    if (sc->run.stress && !m->contacts && !m->stress) {
+        gr_scene_where(sc, "run", "stress", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s = yes needs contact networks or a window-averaged stress, which "
+                                       "method '%s' does not give", where, m->name);
+    }
+    if (m->contacts && sc->run.stress && gr_sim_require(m, GR_OP_SNAPSHOT, who, err))
+        return err->code;
+    if ((sc->run.contacts || (sc->run.stress && m->contacts)) && !(io->net = gr_contacts_create(0, err)))
+        return err->code;
+    if (sc->run.stress && sc->run.field_nx > 0 &&
         !(io->sbuf = malloc((size_t)sc->run.field_nx * (size_t)sc->run.field_ny * 4 * sizeof *io->sbuf)))
         return gr_fail(err, GR_ERUN, "out of memory");
-    return io->net ? GR_OK : err->code;
+    return GR_OK;
 }
 
 /* A method without snapshots (a lattice): the picture of the final state is

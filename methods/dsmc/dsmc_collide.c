@@ -155,6 +155,7 @@ static void collide_pair(gr_dsmc *d, cell_rng *r, size_t i, size_t j, double gx,
     d->vx[i] -= k * nx, d->vy[i] -= k * ny;
     d->vx[j] += k * nx, d->vy[j] += k * ny;
     d->virial += d->sigma * d->mass * k;
+    gr_dsmc_stress_pair(d, i, j, nx, ny, k);
     if (d->par.enskog)
         displace(d, i, j, nx, ny);
 }

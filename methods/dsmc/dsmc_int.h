@@ -13,6 +13,7 @@
 #include "particles.h"
 #include "rng.h"
 #include "scene.h"
+#include "stress.h"
 
 /* The [dsmc] section (docs/methods/dsmc.md). */
 typedef struct {
@@ -55,6 +56,7 @@ typedef struct gr_dsmc {
     double t;
     double wall_mom, wall_time, wall_len;
     double virial;         /* sum of sigma J over collisions (collisional transfer) */
+    gr_stress_acc *stress; /* the stress window (dsmc_stress.c), NULL until asked */
 } gr_dsmc;
 
 /* dsmc_params.c */
@@ -92,6 +94,49 @@ double gr_dsmc_bytes_per_particle(const gr_dsmc *d);
 /* dsmc_ckpt.c */
 int gr_dsmc_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err);
 int gr_dsmc_load(gr_dsmc *d, gr_ckpt *ck, gr_err *err);
+
+/* dsmc_stress.c: the window-averaged stress (the method table's stress):
+ * the kinetic sample of a step of length h, and the window's read */
+void gr_dsmc_stress_sample(gr_dsmc *d, double h);
+int gr_dsmc_stress(gr_dsmc *d, int nx, int ny, double global[4], double *cells, gr_err *err);
+/* The open window, if any, in a checkpoint; a load without one closes it. */
+int gr_dsmc_stress_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err);
+int gr_dsmc_stress_load(gr_dsmc *d, gr_ckpt *ck, gr_err *err);
+
+/* The stress window's share of a collision (dsmc_collide.c), after the
+ * velocities changed and before any displacement: the momentum the
+ * collision moves across the pair, W times, half to each partner's cell.
+ * With the Enskog displacement it is what the jumps carry, the partners'
+ * new momenta over +-delta n: delta n (x) (p_j' - p_i'), whose normal part
+ * is sigma J. Without it nothing carries it (point particles), and the
+ * stress counts the hard disks' sigma n (x) J that the collision stands
+ * for, the term the virial (`virial`) sums. k: the change of normal
+ * velocity, J = m k. Inline, so that dsmc_collide.c calls no other file. */
+static inline void gr_dsmc_stress_pair(gr_dsmc *d, size_t i, size_t j, double nx, double ny, double k)
+{
+    if (!d->stress)
+        return;
+    double lx, ly, Jx, Jy;
+    if (d->par.enskog) {
+        double delta = d->sigma * (1.0 + d->alpha) / (2.0 * d->alpha);
+        lx = delta * nx, ly = delta * ny;
+        Jx = d->W * d->mass * (d->vx[j] - d->vx[i]), Jy = d->W * d->mass * (d->vy[j] - d->vy[i]);
+    } else {
+        lx = d->sigma * nx, ly = d->sigma * ny;
+        Jx = d->W * d->mass * k * nx, Jy = d->W * d->mass * k * ny;
+    }
+    gr_stress_acc_collision(d->stress, d->x[i], d->y[i], d->x[j], d->y[j], 0.5, lx, ly, Jx, Jy);
+}
+
+/* A wall's impulse J along its inward normal n on particle i
+ * (dsmc_stream.c): r n (x) J n, W times, in the particle's cell. */
+static inline void gr_dsmc_stress_wall(gr_dsmc *d, size_t i, double nx, double ny, double J)
+{
+    if (!d->stress)
+        return;
+    double r = 0.5 * d->sigma, WJ = d->W * J;
+    gr_stress_acc_collision(d->stress, d->x[i], d->y[i], 0, 0, 1.0, r * nx, r * ny, WJ * nx, WJ * ny);
+}
 
 /* Henderson's pair correlation at contact for hard disks. */
 static inline double gr_dsmc_chi(double eta) { return (1.0 - 7.0 * eta / 16.0) / ((1.0 - eta) * (1.0 - eta)); }

@@ -53,11 +53,33 @@ static size_t m_counters(const void *s, gr_counter *out, size_t cap)
     return gr_counters_put(out, cap, c, sizeof c / sizeof c[0]);
 }
 
-static int m_save(const void *s, gr_ckpt *ck, gr_err *err) { return gr_dsmc_save(s, ck, err); }
+static int m_stress(void *s, int nx, int ny, double global[4], double *cells, gr_err *err)
+{
+    return gr_dsmc_stress(s, nx, ny, global, cells, err);
+}
 
-static int m_load(void *s, gr_ckpt *ck, gr_err *err) { return gr_dsmc_load(s, ck, err); }
+/* The stress window, if one is open, is saved beside the state. */
+static int m_save(const void *s, gr_ckpt *ck, gr_err *err)
+{
+    if (gr_dsmc_save(s, ck, err) || gr_dsmc_stress_save(s, ck, err))
+        return err->code;
+    return GR_OK;
+}
 
-static void m_free(void *s) { gr_dsmc_free(s); }
+static int m_load(void *s, gr_ckpt *ck, gr_err *err)
+{
+    if (gr_dsmc_load(s, ck, err) || gr_dsmc_stress_load(s, ck, err))
+        return err->code;
+    return GR_OK;
+}
+
+static void m_free(void *s)
+{
+    gr_dsmc *d = s;
+    if (d)
+        gr_stress_acc_free(d->stress);
+    gr_dsmc_free(d);
+}
 
 const gr_method_type gr_dsmc_method = {
     .name = "dsmc",
@@ -77,4 +99,5 @@ const gr_method_type gr_dsmc_method = {
     .counters = m_counters,
     .reset_window = m_reset_window,
     .step = m_step,
+    .stress = m_stress,
 };

@@ -10,6 +10,7 @@ int gr_dsmc_step(gr_dsmc *d, gr_err *err)
     gr_dsmc_stream_all(d, d->t, h);
     if (gr_dsmc_collide(d, err))
         return err->code;
+    gr_dsmc_stress_sample(d, h);
     d->step++;
     d->t = d->par.dt * (double)d->step;
     d->wall_time += h;

@@ -122,6 +122,7 @@ static void bounce(gr_dsmc *d, size_t i, int w, double t)
     d->vy[i] += J * ny / d->mass;
     d->wall_mom += J * d->W;
     d->walls++;
+    gr_dsmc_stress_wall(d, i, nx, ny, J);
 }
 
 /* Periodic wrap and exit through an open side (the centre leaves). */

@@ -83,6 +83,8 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         return err->code;
     if (s->cacc && gr_ckpt_put_f64(ck, "edmd.fields", (const double *)s->cacc, nc * EDMD_CELLACC_N, err))
         return err->code;
+    if (s->stress && gr_stress_acc_save(s->stress, ck, "edmd.stress", err))
+        return err->code;
     return GR_OK;
 }
 
@@ -141,6 +143,9 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_bytes(ck, "edmd.gone", s->gone, n, err))
         return err->code;
     if (s->cacc && gr_ckpt_get_f64(ck, "edmd.fields", (double *)s->cacc, nc * EDMD_CELLACC_N, err))
+        return err->code;
+    /* the stress window, if the run had opened one (tacc above holds its grains' times) */
+    if (gr_stress_acc_load(&s->stress, ck, "edmd.stress", s->W, s->H, s->periodic_x, s->periodic_y, err))
         return err->code;
     unpack(s, sc);
     /* The queue is a function of the slabs (ties go to the lower index in

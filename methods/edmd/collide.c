@@ -103,7 +103,7 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     edmd_p *a = &s->p[i], *b = &s->p[j];
     double g = s->g;
     edmd_measure_advance(s, t);
-    if (s->cacc) {
+    if (edmd_measuring_cells(s)) {
         edmd_field_flush(s, i, t);
         edmd_field_flush(s, j, t);
     }
@@ -135,7 +135,7 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     s->e_diss -= dE;
     s->a_diss -= dE;
     s->a_virial += dist * Jn;
-    if (s->cacc)
+    if (edmd_measuring_cells(s))
         edmd_measure_pair(s, i, j, -(Jn * nx + Jt * -ny), -(Jn * ny + Jt * nx), e1 - e0, f1 - f0, -dx, -dy);
     pair_count(s, i, j, t);
 }
@@ -186,8 +186,10 @@ static inline int wall_normal(gr_edmd *s, const edmd_p *a, int wall, double t, d
 }
 
 /* The wall's impulse on grain i, the wall having infinite mass; returns the
- * normal part, the tangential one only for rough disks off the guard. */
-static inline double wall_impulse(gr_edmd *s, int32_t i, double m, double nx, double ny, double gn, double t)
+ * normal part, *Jt_out the tangential one (only rough disks off the guard
+ * have one). */
+static inline double wall_impulse(gr_edmd *s, int32_t i, double m, double nx, double ny, double gn, double t,
+                                  double *Jt_out)
 {
     edmd_p *a = &s->p[i];
     int guard = guarded(s, s->alpha_w < 1.0 || (s->rough && s->beta < 1.0), gn, i, -1, t);
@@ -201,13 +203,16 @@ static inline double wall_impulse(gr_edmd *s, int32_t i, double m, double nx, do
     }
     a->vx += (Jn * nx + Jt * tx) / m;
     a->vy += (Jn * ny + Jt * ty) / m;
+    *Jt_out = Jt;
     return Jn;
 }
 
 /* Where the energy dE went: the driven floor injects it, every other wall
- * dissipates it; the side's momentum feeds the pressure on the walls and
- * the cell's share of the collisional stress feeds the fields. */
-static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double nx, double ny, double Jn, double dE)
+ * dissipates it; the side's momentum feeds the pressure on the walls, and
+ * the collisional stress r n (x) J (branch from the contact point to the
+ * centre) the fields and the stress window, in the grain's cell. */
+static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double nx, double ny, double Jn,
+                              double Jt, double dE)
 {
     if (wall == W_FLOOR) {
         s->e_inj += dE;
@@ -221,12 +226,14 @@ static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double 
         s->a_mom[side] += Jn;
         s->obs_mom += Jn;
     }
+    double r = s->p[i].r, lx = r * nx, ly = r * ny, Jx = Jn * nx - Jt * ny, Jy = Jn * ny + Jt * nx;
+    if (s->stress)
+        gr_stress_acc_collision(s->stress, s->p[i].x, s->p[i].y, 0, 0, 1.0, lx, ly, Jx, Jy);
     if (s->cacc) {
         edmd_cellacc *c = &s->cacc[s->p[i].cell];
-        double r = s->p[i].r;
-        c->cxx += r * nx * Jn * nx;
-        c->cxy += r * nx * Jn * ny;
-        c->cyy += r * ny * Jn * ny;
+        c->cxx += lx * Jx;
+        c->cxy += 0.5 * (lx * Jy + ly * Jx);
+        c->cyy += ly * Jy;
         if (wall != W_FLOOR)
             c->diss -= dE;
     }
@@ -236,7 +243,7 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
 {
     edmd_p *a = &s->p[i];
     edmd_measure_advance(s, t);
-    if (s->cacc)
+    if (edmd_measuring_cells(s))
         edmd_field_flush(s, i, t);
     edmd_advance_p(a, t, s->g);
     double nx, ny, Vn;
@@ -246,15 +253,15 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     double e0 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double vy0 = a->vy;
-    double Jn = 0.0;
+    double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0)
-        Jn = wall_impulse(s, i, m, nx, ny, gn, t);
+        Jn = wall_impulse(s, i, m, nx, ny, gn, t, &Jt);
     double e1 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double dE = e1 - e0;
     s->m_K += dE;
     s->m_Krot += 0.5 * s->inertia[i] * s->w[i] * s->w[i] - kr0;
     s->m_Smvy += m * (a->vy - vy0);
-    wall_tally(s, i, wall, side, nx, ny, Jn, dE);
+    wall_tally(s, i, wall, side, nx, ny, Jn, Jt, dE);
     a->ncol++;
     s->tlast[i] = t;
     s->cnt.wall++;
@@ -269,7 +276,7 @@ int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err)
     edmd_p *a = &s->p[i];
     double m = s->m[i], g = s->g;
     edmd_measure_advance(s, t);
-    if (s->cacc)
+    if (edmd_measuring_cells(s))
         edmd_field_flush(s, i, t);
     edmd_advance_p(a, t, g);
     double krot = 0.5 * s->inertia[i] * s->w[i] * s->w[i];

@@ -91,6 +91,15 @@ typedef struct {
 int gr_edmd_get_fields(gr_edmd *s, gr_edmd_fields *f, gr_err *err);
 void gr_edmd_fields_free(gr_edmd_fields *f);
 
+/* The stress tensor averaged over the window since the previous call, on
+ * nx x ny cells tiling the scene's domain (the method table's stress,
+ * methods/method.h): kinetic (each grain's moments integrated between its
+ * events, in the cell of the flight's midpoint) plus collisional (l (x) J of
+ * every pair collision, shared between the cells of the two centres in
+ * proportion to their radii, and r n (x) J of every wall collision, in the
+ * grain's cell). The first call starts the window and gives NaN. */
+int gr_edmd_stress(gr_edmd *s, int nx, int ny, double global[4], double *cells, gr_err *err);
+
 /* Bookkeeping totals since creation: energy injected by the floor and
  * walls, lost in pair and wall collisions (exact sums over events). */
 void gr_edmd_energy_budget(const gr_edmd *s, double *injected, double *dissipated);

@@ -7,6 +7,7 @@
 
 #include "edmd.h"
 #include "rng.h"
+#include "stress.h"
 
 #define EDMD_INF INFINITY
 /* Trees with at least this many leaves (and their grains) outgrow the
@@ -204,6 +205,7 @@ struct gr_edmd {
     double e_inj, e_diss;    /* since creation */
     double obs_t0, obs_mom;  /* wall momentum since the last window reset */
     edmd_cellacc *cacc;
+    gr_stress_acc *stress;   /* the stress window (gr_edmd_stress), NULL until asked */
 
     gr_edmd_event_fn hook;
     void *hook_user;
@@ -337,6 +339,11 @@ void edmd_field_flush(gr_edmd *s, int32_t i, double t);
 void edmd_measure_pair(gr_edmd *s, int32_t i, int32_t j, double dvx_i, double dvy_i,
                        double dE_i, double dE_j, double dx, double dy);
 double edmd_kinetic(const gr_edmd *s, int32_t i, double t);
+/* Something is accumulated per grain and cell (fields or the stress
+ * window): the events then flush the grains they touch. */
+static inline int edmd_measuring_cells(const gr_edmd *s) { return s->cacc || s->stress; }
+/* Every grain's moments up to time t. */
+void edmd_field_flush_all(gr_edmd *s, double t);
 
 /* snapshot.c: gr_edmd_snapshot */
 

@@ -74,6 +74,11 @@ static size_t m_counters(const void *st, gr_counter *out, size_t cap)
     return gr_counters_put(out, cap, all, sizeof all / sizeof all[0]);
 }
 
+static int m_stress(void *st, int nx, int ny, double global[4], double *cells, gr_err *err)
+{
+    return gr_edmd_stress(st, nx, ny, global, cells, err);
+}
+
 static int m_save(const void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_save(st, ck, err); }
 static int m_load(void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_load(st, ck, err); }
 static void m_free(void *st) { gr_edmd_free(st); }
@@ -96,4 +101,5 @@ const gr_method_type gr_edmd_method = {
     .snapshot = m_snapshot,
     .counters = m_counters,
     .reset_window = m_reset_window,
+    .stress = m_stress,
 };

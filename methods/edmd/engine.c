@@ -22,7 +22,7 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
 static void do_cross(gr_edmd *s, int32_t i, int dir)
 {
     edmd_p *p = &s->p[i];
-    if (s->cacc)
+    if (edmd_measuring_cells(s))
         edmd_field_flush(s, i, s->t);
     int ix = p->cell % s->nx, iy = p->cell / s->nx;
     edmd_cell_remove(s, i);

@@ -68,17 +68,28 @@ void edmd_measure_advance(gr_edmd *s, double t)
     s->m_t = t;
 }
 
+/* Grain i's moments since tacc[i], into its event cell (fields) and into
+ * the stress window's cell of the flight's midpoint: between two flushes
+ * a grain stays in one event cell, which may straddle two stress cells. */
 void edmd_field_flush(gr_edmd *s, int32_t i, double t)
 {
     double d = t - s->tacc[i];
     const edmd_p *p = &s->p[i];
-    if (!(d > 0.0) || p->cell < 0)
+    if (!(d > 0.0) || s->gone[i])
         return;
     double g = s->g, m = s->m[i], vx = p->vx;
     double vy = edmd_vy_at(p, s->tacc[i], g);
     double d2 = d * d, d3 = d2 * d;
     double Ivy = vy * d - 0.5 * g * d2;
     double Ivy2 = vy * vy * d - g * vy * d2 + g * g * d3 / 3.0;
+    if (s->stress) {
+        double tm = s->tacc[i] + 0.5 * d;
+        const double mom[6] = {m * d, m * vx * d, m * Ivy, m * vx * vx * d, m * vx * Ivy, m * Ivy2};
+        gr_stress_acc_kinetic(s->stress, edmd_x_at(p, tm), edmd_y_at(p, tm, g), mom);
+    }
+    s->tacc[i] = t;
+    if (!s->cacc || p->cell < 0)
+        return;
     double Ivy3 = vy * vy * vy * d - 1.5 * vy * vy * g * d2 + vy * g * g * d3 - 0.25 * g * g * g * d3 * d;
     edmd_cellacc *c = &s->cacc[p->cell];
     c->n += d;
@@ -90,18 +101,30 @@ void edmd_field_flush(gr_edmd *s, int32_t i, double t)
     c->mvyy += m * Ivy2;
     c->mv2vx += m * vx * (vx * vx * d + Ivy2);
     c->mv2vy += m * (vx * vx * Ivy + Ivy3);
-    s->tacc[i] = t;
 }
 
-/* Collisional transfers of a pair collision, half to each grain's cell:
- * stress (r_i - r_j) (x) J_i, energy flux (dE_i - dE_j)/2 (r_i - r_j),
- * and the energy lost. */
+void edmd_field_flush_all(gr_edmd *s, double t)
+{
+    for (size_t i = 0; i < s->n; i++)
+        edmd_field_flush(s, (int32_t)i, t);
+}
+
+/* Collisional transfers of a pair collision: stress (r_i - r_j) (x) J_i,
+ * energy flux (dE_i - dE_j)/2 (r_i - r_j) and the energy lost, half to
+ * each grain's event cell (fields); the stress also to the stress window,
+ * shared in proportion to the radii as the contact stress is
+ * (common/stress.h), which for equal grains is half each. */
 void edmd_measure_pair(gr_edmd *s, int32_t i, int32_t j, double Jx, double Jy,
                        double dE_i, double dE_j, double rx, double ry)
 {
+    const edmd_p *a = &s->p[i], *b = &s->p[j];
+    if (s->stress)
+        gr_stress_acc_collision(s->stress, a->x, a->y, b->x, b->y, a->r / (a->r + b->r), rx, ry, Jx, Jy);
+    if (!s->cacc)
+        return;
     double h = 0.5 * (dE_i - dE_j);
     double loss = -(dE_i + dE_j);
-    int cells[2] = {s->p[i].cell, s->p[j].cell};
+    int cells[2] = {a->cell, b->cell};
     for (int k = 0; k < 2; k++) {
         edmd_cellacc *c = &s->cacc[cells[k]];
         c->cxx += 0.5 * rx * Jx;
@@ -124,6 +147,8 @@ void gr_edmd_reset_averages(gr_edmd *s)
     s->a_pair0 = s->cnt.pair;
     s->a_wall0 = s->cnt.wall;
     if (s->cacc) {
+        if (s->stress) /* the stress window goes on: give it the moments so far */
+            edmd_field_flush_all(s, s->t);
         memset(s->cacc, 0, (size_t)s->nx * (size_t)s->ny * sizeof *s->cacc);
         for (size_t i = 0; i < s->n; i++)
             s->tacc[i] = s->t;
@@ -187,8 +212,7 @@ int gr_edmd_get_fields(gr_edmd *s, gr_edmd_fields *f, gr_err *err)
     double *buf = calloc(12 * nc, sizeof *buf);
     if (!buf)
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the fields");
-    for (size_t i = 0; i < s->n; i++)
-        edmd_field_flush(s, (int32_t)i, s->t);
+    edmd_field_flush_all(s, s->t);
     f->nx = s->nx;
     f->ny = s->ny;
     f->x0 = 0.0;
@@ -239,6 +263,29 @@ int gr_edmd_get_fields(gr_edmd *s, gr_edmd_fields *f, gr_err *err)
         f->qx[c] += 0.5 * qx / At;
         f->qy[c] += 0.5 * qy / At;
     }
+    return GR_OK;
+}
+
+int gr_edmd_stress(gr_edmd *s, int nx, int ny, double global[4], double *cells, gr_err *err)
+{
+    gr_stress_acc *a = s->stress;
+    if (a && a->nx == nx && a->ny == ny) {
+        edmd_field_flush_all(s, s->t);
+        gr_stress_acc_read(a, s->t, global, cells);
+        return GR_OK;
+    }
+    /* A new window: the moments so far go to the fields (if any), and
+     * every grain's integral starts now. */
+    gr_stress_acc_free(a);
+    s->stress = NULL;
+    if (s->cacc)
+        edmd_field_flush_all(s, s->t);
+    for (size_t i = 0; i < s->n; i++)
+        s->tacc[i] = s->t;
+    double H = s->H; /* the scene's domain [0, W] x [0, H]; a floor that dips counts in the bottom row */
+    if (!(s->stress = gr_stress_acc_create(s->W, H, s->periodic_x, s->periodic_y, nx, ny, s->t, err)))
+        return err->code;
+    gr_stress_acc_read(s->stress, s->t, global, cells);
     return GR_OK;
 }
 

@@ -32,6 +32,7 @@ void gr_edmd_free(gr_edmd *s)
     if (s->q)
         s->q->free(s);
     free(s->cacc);
+    gr_stress_acc_free(s->stress);
     free(s->species);
     free(s->seg);
     free(s->seg_len);

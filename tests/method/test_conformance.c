@@ -6,7 +6,8 @@
  *   checkpoint taken after an arbitrary number of steps, pure observation
  *   (observing twice gives the same numbers and does not change the run),
  *   snapshots in id order, monotone time, finite observables and fields
- *   (the packing field holds every grain's area);
+ *   (the packing field holds every grain's area); a window-averaged stress
+ *   that restarts bit for bit, averages its cells and changes nothing;
  * on the scenes it does not declare: refusal naming the feature and file;
  * and its parameter table: consistent, enforced on scene files (range,
  * unknown key with a suggestion), compared by checkpoints, and documented
@@ -298,6 +299,52 @@ static void threads_change_nothing(const gr_method_type *m, const conf_scene *cs
     gr_scene_free(sc);
 }
 
+/* The window-averaged stress (a backend that gives one): opened at the
+ * start, read at t_end: finite, its global value the mean of its cells,
+ * the same bits after a restart from a checkpoint taken inside the window,
+ * and the run itself the same as one that measured nothing (plain). */
+static void stress_window(const gr_method_type *m, const conf_scene *cs, const gr_scene *sc, const char *path,
+                          const outcome *plain)
+{
+    enum { NX = 7, NY = 5 };
+    gr_err e = {0};
+    double g[2][4], c[2][NX * NY * 4];
+    gr_sim *a = create(m, sc);
+    assert_int_equal(gr_sim_stress(a, NX, NY, g[0], c[0], &e), GR_OK);
+    assert_true(isnan(g[0][0]) && isnan(c[0][0])); /* an empty window */
+    advance(a, 0.6 * cs->t_end);
+    assert_int_equal(gr_sim_advance(a, cs->t_end, cs->save_after, &e), GR_OK);
+    unlink(path);
+    gr_ckpt *ck = gr_ckpt_create(path, &e);
+    assert_int_equal(gr_sim_save(a, ck, &e), GR_OK);
+    assert_int_equal(gr_ckpt_close(ck, &e), GR_OK);
+    advance(a, cs->t_end);
+    assert_int_equal(gr_sim_stress(a, NX, NY, g[0], c[0], &e), GR_OK);
+    outcome o = look(a);
+    same_outcome(&o, plain);
+    outcome_free(&o);
+    gr_sim_free(a);
+    gr_sim *b = create(m, sc);
+    ck = gr_ckpt_open(path, &e);
+    assert_int_equal(gr_sim_load(b, ck, &e), GR_OK);
+    gr_ckpt_close(ck, &e);
+    advance(b, cs->t_end);
+    assert_int_equal(gr_sim_stress(b, NX, NY, g[1], c[1], &e), GR_OK);
+    gr_sim_free(b);
+    assert_memory_equal(g[0], g[1], sizeof g[0]);
+    assert_memory_equal(c[0], c[1], sizeof c[0]);
+    for (int q = 0; q < 4; q++) {
+        double mean = 0, scale = 0;
+        for (int k = 0; k < NX * NY; k++) {
+            assert_true(isfinite(c[0][k * 4 + q]));
+            mean += c[0][k * 4 + q] / (NX * NY), scale += fabs(c[0][k * 4 + q]) / (NX * NY);
+        }
+        assert_true(isfinite(g[0][q]) && fabs(mean - g[0][q]) <= 1e-12 * scale);
+    }
+    printf("# %s on %s: stress over the window %.6g %.6g %.6g %.6g\n", m->name, cs->name, g[0][0], g[0][1],
+           g[0][2], g[0][3]);
+}
+
 static void contract_on_scenes(void **unused)
 {
     (void)unused;
@@ -327,6 +374,8 @@ static void contract_on_scenes(void **unused)
             same_outcome(&u, &a);
             same_outcome(&r, &a);
             threads_change_nothing(m, cs, &a);
+            if (m->stress)
+                stress_window(m, cs, sc, path, &a);
             if (m->snapshot || m->fields) {
                 gr_sim *s = create(m, sc);
                 advance(s, 0.5 * cs->t_end);
