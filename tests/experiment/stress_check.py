@@ -9,7 +9,14 @@ equilibrium, sigma_yy A = sum m g y (the virial identity, the floor
 at y = 0). Contact dynamics is rigid: to 1e-9. Soft DEM (k_n = 1e5)
 compresses each contact by about 1e-4 d, which shortens the levers: cells
 to 1e-3, the identity (which holds with the actual levers) to 1e-5.
-A method without contact networks is refused by name.
+Methods with instantaneous collisions (edmd, dsmc) write the window-
+averaged stress instead (kinetic plus collisional): on a periodic gas of
+elastic disks at packing fraction 0.3, the first frame (an empty window)
+holds NaN, the later ones Z = (sigma_xx + sigma_yy) / (2 n T) within 3 %
+of the hard-disk equation of state (Luding's for edmd, Henderson's for
+dsmc's Enskog mode, whose own tests hold 1 % and 2% on longer runs),
+sigma_xy under 5 % of P, and the domain's value the mean of the cells to
+1e-12. A method with neither (lgca) is refused by name.
 
 usage: stress_check.py GRANO WORKDIR
 """
@@ -48,6 +55,47 @@ output_every = 1
 stress = yes
 """
 
+GAS = """[scene]
+name = gas
+seed = 3
+[domain]
+width = {L!r}
+height = {L!r}
+left = periodic
+right = periodic
+bottom = periodic
+top = periodic
+[material]
+restitution = 1
+[species]
+diameter = 1
+count = {n}
+[init]
+kind = random
+velocity = gaussian
+v0 = 1
+[dsmc]
+dt = 0.05
+cell = 10
+enskog = yes
+[measure]
+field_cells = 4 4
+[run]
+until = 60
+output_every = 10
+stress = yes
+"""
+
+
+def z_luding(eta):
+    u = 1 - eta
+    return 1 + 2 * eta * ((1 - 7 * eta / 16) / u ** 2 - eta ** 3 / (128 * u ** 4))
+
+
+def z_henderson(eta):
+    return (1 + eta * eta / 8) / (1 - eta) ** 2
+
+
 TAP = Tap()
 check = TAP.check
 
@@ -84,11 +132,40 @@ def main():
         vir = g[3] * 10 * 20 / np.sum(m * y) - 1
         check(abs(vir) < tol_vir, "%s: sigma_yy A = sum m g y (relative %.2g, tol %g)" % (method, vir, tol_vir))
         check(unit in (b"m tau-2", "m tau-2"), "%s: unit m tau-2" % method, unit)
-    for method in ("edmd", "dsmc"):
-        r = subprocess.run([grano, "run", scene, "--method", method, "--out", os.path.join(work, "x.h5"),
-                            "--force", "-q"], capture_output=True, text=True)
-        check(r.returncode == 2 and "[run] key 'stress' = yes needs contact networks" in r.stderr,
-              "%s refuses [run] stress by name" % method, r.stderr)
+    r = subprocess.run([grano, "run", scene, "--method", "lgca", "--out", os.path.join(work, "x.h5"),
+                        "--force", "-q"], capture_output=True, text=True)
+    check(r.returncode == 2 and "[run] key 'stress' = yes needs contact networks or a window-averaged stress"
+          in r.stderr, "lgca refuses [run] stress by name", r.stderr)
+    eta = 0.3
+    for method, n, zref, ref in (("edmd", 600, z_luding(eta), "Luding"), ("dsmc", 3000, z_henderson(eta), "Henderson")):
+        L = (n * np.pi / 4 / eta) ** 0.5
+        gas = os.path.join(work, "gas-%s.ini" % method)
+        with open(gas, "w") as f:
+            f.write(GAS.format(L=L, n=n))
+        out = os.path.join(work, "gas-%s.h5" % method)
+        r = subprocess.run([grano, "run", gas, "--method", method, "--out", out, "--force", "-q"],
+                           capture_output=True, text=True)
+        if r.returncode:
+            check(False, "%s runs the gas" % method, r.stderr)
+            continue
+        with h5py.File(out, "r") as f:
+            g = f["fields/stress_global/value"][:].reshape(-1, 4)
+            unit = f["fields/stress/value"].attrs["unit"]
+            cells = f["fields/stress/value"][:]          # [frames][ny][nx][4]
+            v = f["particles/trajectory/velocity/value"][-1]
+            m = f["particles/trajectory/mass"][:]
+        check(np.all(np.isnan(g[0])) and np.all(np.isnan(cells[0])), "%s: the first frame's window is empty (NaN)" % method)
+        nT = 0.5 * np.sum(m * (v[:, 0] ** 2 + v[:, 1] ** 2)) / (L * L)   # elastic: the energy stays
+        P = 0.5 * (g[1:, 0] + g[1:, 3])
+        z = np.mean(P) / nT
+        check(abs(z / zref - 1) < 0.03, "%s: Z from the stress %.4f, %s %.4f (%+.2f %%, tol 3 %%)"
+              % (method, z, ref, zref, 100 * (z / zref - 1)))
+        xy = np.max(np.abs(g[1:, 1:3])) / np.mean(P)
+        check(xy < 0.05, "%s: |sigma_xy| / P %.3g < 0.05" % (method, xy))
+        mean = cells[1:].mean(axis=(1, 2))
+        dev = np.max(np.abs(mean - g[1:])) / np.max(np.abs(g[1:]))
+        check(dev < 1e-12, "%s: the domain's stress is the cells' mean (%.2g)" % (method, dev))
+        check(unit in (b"m tau-2", "m tau-2"), "%s: unit m tau-2" % method, unit)
     return TAP.finish()
 
 
