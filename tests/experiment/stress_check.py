@@ -100,6 +100,12 @@ TAP = Tap()
 check = TAP.check
 
 
+def run(grano, scene, method, out):
+    """grano run quietly; the completed process."""
+    return subprocess.run([grano, "run", scene, "--method", method, "--out", out, "--force", "-q"],
+                          capture_output=True, text=True)
+
+
 def main():
     if len(sys.argv) != 3:
         sys.exit(__doc__)
@@ -110,8 +116,7 @@ def main():
         f.write(SCENE)
     for method, tol_cell, tol_vir in (("cd", 1e-9, 1e-9), ("dem", 1e-3, 1e-5)):
         out = os.path.join(work, method + ".h5")
-        r = subprocess.run([grano, "run", scene, "--method", method, "--out", out, "--force", "-q"],
-                           capture_output=True, text=True)
+        r = run(grano, scene, method, out)
         if r.returncode:
             check(False, "%s runs the stack" % method, r.stderr)
             continue
@@ -132,8 +137,7 @@ def main():
         vir = g[3] * 10 * 20 / np.sum(m * y) - 1
         check(abs(vir) < tol_vir, "%s: sigma_yy A = sum m g y (relative %.2g, tol %g)" % (method, vir, tol_vir))
         check(unit in (b"m tau-2", "m tau-2"), "%s: unit m tau-2" % method, unit)
-    r = subprocess.run([grano, "run", scene, "--method", "lgca", "--out", os.path.join(work, "x.h5"),
-                        "--force", "-q"], capture_output=True, text=True)
+    r = run(grano, scene, "lgca", os.path.join(work, "x.h5"))
     check(r.returncode == 2 and "[run] key 'stress' = yes needs contact networks or a window-averaged stress"
           in r.stderr, "lgca refuses [run] stress by name", r.stderr)
     eta = 0.3
@@ -143,8 +147,7 @@ def main():
         with open(gas, "w") as f:
             f.write(GAS.format(L=L, n=n))
         out = os.path.join(work, "gas-%s.h5" % method)
-        r = subprocess.run([grano, "run", gas, "--method", method, "--out", out, "--force", "-q"],
-                           capture_output=True, text=True)
+        r = run(grano, gas, method, out)
         if r.returncode:
             check(False, "%s runs the gas" % method, r.stderr)
             continue

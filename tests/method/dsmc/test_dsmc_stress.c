@@ -56,13 +56,20 @@ static double z_of(const char *text, int nx, double t0, double len, int blocks, 
     return zs;
 }
 
+/* 4000 particles at packing fraction eta. */
+static void box_text(char *text, size_t size, double eta, double dt, double cell, const char *enskog)
+{
+    int n = 4000;
+    double L = sqrt(n * M_PI / 4 / eta);
+    snprintf(text, size, BOX, L, L, n, dt, cell, enskog);
+}
+
 static void enskog(void **st)
 {
     (void)st;
     char text[1024];
-    int n = 4000;
-    double eta = 0.3, L = sqrt(n * M_PI / 4 / eta), ez, dv;
-    snprintf(text, sizeof text, BOX, L, L, n, 0.05, 10.0, "yes");
+    double eta = 0.3, ez, dv;
+    box_text(text, sizeof text, eta, 0.05, 10.0, "yes");
     double Z = z_of(text, 1, 10, 4, 10, &ez, &dv), Zh = exp_z_henderson(eta);
     print_message("# Enskog mode, eta %.2f: Z from the stress %.4f +- %.4f, Henderson %.4f (%+.2f %%); largest "
                   "|P / (n T + virial) - 1| %.2g\n",
@@ -75,9 +82,8 @@ static void boltzmann(void **st)
 {
     (void)st;
     char text[1024];
-    int n = 4000;
-    double eta = 0.01, L = sqrt(n * M_PI / 4 / eta), ez, dv;
-    snprintf(text, sizeof text, BOX, L, L, n, 0.5, 0.0, "no");
+    double eta = 0.01, ez, dv;
+    box_text(text, sizeof text, eta, 0.5, 0.0, "no");
     double ez4, dv4, Z4 = z_of(text, 4, 20, 40, 10, &ez4, &dv4);
     double Z = z_of(text, 1, 20, 40, 10, &ez, &dv);
     print_message("# Boltzmann mode, eta %.2f, 4 x 4 cells: Z %.5f +- %.5f (the cells' mean flows taken out)\n", eta,
