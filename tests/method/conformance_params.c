@@ -226,8 +226,8 @@ void conf_param_docs(void **unused)
 }
 
 /* The defaults of the optional operations, on a copy of each table with
- * them taken out: one step is one step, a missing snapshot is refused by
- * name, counters default to none. */
+ * them taken out: one step is one step, a missing snapshot or stress is
+ * refused by name, counters default to none. */
 void conf_optional_ops(void **unused)
 {
     (void)unused;
@@ -235,7 +235,7 @@ void conf_optional_ops(void **unused)
     for (size_t k = 0; all[k]; k++) {
         gr_method_type bare = *all[k];
         bare.step = NULL, bare.counters = NULL, bare.reset_window = NULL;
-        bare.snapshot = NULL, bare.fields = NULL;
+        bare.snapshot = NULL, bare.fields = NULL, bare.stress = NULL;
         gr_err e = {0};
         gr_sim *s;
         assert_int_equal(try_create(&bare, "", &s, &e), GR_OK);
@@ -252,6 +252,10 @@ void conf_optional_ops(void **unused)
         assert_non_null(strstr(e.msg, "snapshots"));
         assert_non_null(strstr(e.msg, bare.name));
         assert_int_equal(gr_sim_require(&bare, GR_OP_FIELDS, "the test", &e), GR_EINPUT);
+        double g[4];
+        assert_int_equal(gr_sim_stress(s, 1, 1, g, NULL, &e), GR_EINPUT);
+        assert_non_null(strstr(e.msg, "window-averaged stress"));
+        assert_non_null(strstr(e.msg, bare.name));
         unsigned own = GR_OP_FIELDS | GR_OP_STEP | (all[k]->repr == GR_REPR_PARTICLES ? GR_OP_SNAPSHOT : 0);
         assert_int_equal(gr_sim_require(all[k], own, "the test", &e), GR_OK);
         gr_particles_free(p);
