@@ -1,7 +1,8 @@
-/* grano silo-start: the start of the discharge (thesis chapter 3). Each
- * unit of work is one discharge: fill, settle, open, and follow the grains
- * until the top grain has fallen two diameters; the report averages the
- * units of each orifice. */
+/* grano silo-start: the start of the discharge (thesis chapter 3). The
+ * silo is filled and settled once per realisation (silo_fill.h); each unit
+ * of work is one discharge: branch that settled silo to the orifice, open,
+ * and follow the grains until the top grain has fallen two diameters; the
+ * report averages the units of each orifice. */
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
@@ -31,16 +32,19 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
-                     "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
+                     "silo-start 3 branchmax=%g surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
                      "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu sub=%d/%d lags=",
-                     b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
+                     SILO_BRANCH_MAX, b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
                      (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->fs, c->min_steps,
                      c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap, c->subtract, SS_SUB_N);
     for (size_t s = 0; s < c->nslots && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "%ld,", c->lag[s]);
     for (size_t s = 0; s < c->ntimes && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "t%ld,", c->times[s]);
-    silo_key_params(b, buf, n);
+    if (k > 0 && (size_t)k < n) {
+        k += snprintf(buf + k, n - (size_t)k, " ");
+        silo_fill_key(r, (void *)&c->fills, buf + k, n - (size_t)k); /* ends with the --param lines */
+    }
 }
 
 /* ------------------------------------------------------------ one unit */
@@ -197,7 +201,7 @@ static int complete(ustate *u, size_t k, origin *o, const gr_particles *p, doubl
 static int write_part(const char *part, const char *key, const ss_ctx *c, ustate *u,
                       const silo_settled *set, const gr_particles *fin, gr_field **fld,
                       const double *ts, size_t nts, double win[2], long steps, const double *cost,
-                      gr_err *err)
+                      const double *branch, gr_err *err)
 {
     gr_ckpt *ck = gr_ckpt_create(part, err);
     if (!ck)
@@ -250,8 +254,9 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     if (!rc) rc = exp_put_scalar(ck, "steps", (double)steps, err);
     if (!rc) rc = exp_put_particles(ck, "final", fin, err);
     if (!rc && set->filling) rc = exp_put_particles(ck, "filling", set->filling, err);
-    if (!rc) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
+    if (!rc && set->filling) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 4, err);
     free(buf);
     if (rc) {
         gr_ckpt_discard(ck);
@@ -356,6 +361,28 @@ static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_parti
     return rc;
 }
 
+/* Realisation r's settled silo branched to the orifice of cfg: the
+ * filling's picture stays with the branch (realisation 0's part keeps it
+ * for fig. 3.1); branch[4] as silo-flow's: the branch's settling time, the
+ * lift, the filling's CPU seconds, the kinetic energy per grain at opening. */
+static int branch_fill(const ss_ctx *c, const silo_cfg *cfg, size_t r, silo_settled *set, double branch[4],
+                       volatile double *progress, gr_err *err)
+{
+    silo_settled fill;
+    double fill_cost[5];
+    int rc = silo_fill_load(&c->fills, r, &fill, fill_cost, err);
+    if (!rc)
+        rc = silo_rebase(cfg, &fill, set, progress, err);
+    if (!rc) {
+        branch[0] = set->t_settle, branch[1] = set->lift, branch[2] = fill_cost[1], branch[3] = set->ekin;
+        set->t_settle = fill.t_settle;
+        set->filling = fill.filling, set->t_filling = fill.t_filling;
+        fill.filling = NULL;
+    }
+    silo_settled_free(&fill);
+    return rc;
+}
+
 int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
             gr_err *err)
 {
@@ -367,10 +394,11 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     cfg.reinsert = 0;
     silo_settled set;
     ustate u;
+    double branch[4] = {0};
     if (ustate_init(&u, c, cfg.seed, err))
         return err->code;
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = silo_fill(&cfg, &set, progress, err);
+    int rc = branch_fill(c, &cfg, r, &set, branch, progress, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
     if (rc) {
         ustate_free(&u);
@@ -407,7 +435,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)
-        set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
+        set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, branch, err);
     for (size_t j = 0; j < c->ntimes; j++)
         gr_field_free(fld[j]);
     gr_sim_free(st);
@@ -427,9 +455,10 @@ static void usage(FILE *f)
     fprintf(f,
         "usage: grano silo-start [options]\n\n"
         "The start of a silo discharge (thesis chapter 3) on the soft DEM backend:\n"
-        "fill through a hopper, settle, open the orifice, and follow the grains until\n"
-        "the surface (its highest layer) has fallen two diameters, for each orifice\n"
-        "and realisation.\n"
+        "fill through a hopper and settle with the orifice closed, once per\n"
+        "realisation; then for each orifice branch that settled silo to the orifice\n"
+        "(the packing settles again on the new base), open it, and follow the grains\n"
+        "until the surface (its highest layer) has fallen two diameters.\n"
         "Writes DIR/silo-start.h5, .dat tables and the figures fig3_1 ... fig3_6.\n\n"
         "options:\n"
         "  -D, --orifices LIST  orifice widths in d, comma separated (default 3.8,11)\n"
@@ -455,7 +484,8 @@ static void usage(FILE *f)
         "  -f, --force          redo every part, even finished ones\n"
         "  -q, --quiet          no progress line\n"
         "  -h, --help           this help\n\n"
-        "Each discharge writes DIR/parts/start-D<D>-r<r>.part when done; a run that is\n"
+        "Each filling writes DIR/parts/fill-r<r>.part, each discharge\n"
+        "DIR/parts/start-D<D>-r<r>.part when done; a run that is\n"
         "interrupted and started again with the same options redoes only the missing\n"
         "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
 }
@@ -510,24 +540,26 @@ typedef struct {
 
 static int ss_own_option(int ch, const char *arg, void *own);
 
-/* A discharge: the filling, then the time for the surface to fall 2 d,
- * which scales as 1 / flow rate ~ D^-3/2 (measured 1.82e5 steps at
- * D = 3.8 d, docs/experiments.md), within [min_steps, max_steps]. */
+/* A filling per realisation; a discharge: the branch (its settling at
+ * most SILO_BRANCH_MAX), then the time for the surface to fall 2 d, which
+ * scales as 1 / flow rate ~ D^-3/2 (measured 1.82e5 steps at D = 3.8 d,
+ * docs/experiments.md), within [min_steps, max_steps]. */
 static void ss_estimate(const void *ctx, double *pre, double *unit)
 {
     const ss_ctx *c = ctx;
     double s = 0;
     for (size_t o = 0; o < c->norif; o++)
         s += fmin((double)c->max_steps, fmax((double)c->min_steps, 1.82e5 * pow(3.8 / c->orifice[o], 1.5)));
-    *pre = 0;
-    *unit = silo_cpu_estimate(&c->base, SILO_FILL_STEPS + s / (double)c->norif);
+    *pre = silo_cpu_estimate(&c->base, SILO_FILL_STEPS);
+    *unit = silo_cpu_estimate(&c->base, SILO_BRANCH_MAX / c->base.dt + s / (double)c->norif);
 }
 
 static const silo_cli ss_cli = {
     .name = "silo-start", .usage = usage, .own = ss_own_opts, .own_short = "", .own_parse = ss_own_option,
     .orifices = "3.8,11", .quick_orifices = "3.8,11", .reinsert = 0,
     .prefix = "start", .progress_what = "discharges", .units_what = "discharges",
-    .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any, .estimate = ss_estimate};
+    .pre_unit = silo_fill_unit, .pre_label = silo_fill_label, .pre_key = silo_fill_key, .pre_prefix = "fill",
+    .pre_what = "fillings", .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any, .estimate = ss_estimate};
 
 /* --max-steps and --subtract into the ss_own at own */
 static int ss_own_option(int ch, const char *arg, void *own)
@@ -571,5 +603,6 @@ int cmd_silo_start(int argc, char **argv)
     make_times(&c);
     char dir[1024];
     c.dir = silo_cli_dir(&ss_cli, &o, dir, sizeof dir);
-    return silo_cli_sweep(&ss_cli, &o, &c, 0, c.norif * (size_t)c.nreal, c.dir);
+    c.fills = (silo_fills){&c.base, c.seed, c.dir};
+    return silo_cli_sweep(&ss_cli, &o, &c, &c.fills, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
 }
