@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "scene.h"
+#include "scene_get.h"
 #include "scene_impl.h"
 
 static const char *const common_sections[] = {
@@ -33,62 +34,11 @@ static const char *const keys_run[] = {"until", "output_every", "observe_every",
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
 static const char *const tang_names[] = {"none", "coulomb", "viscous", "regularised", "spring", NULL};
-static const char *const floor_names[] = {"fixed", "sine", "sawtooth", "sine-hf", "sawtooth-hf", NULL};
-static const char *const walls_names[] = {"segments", "grains", NULL};
 static const char *const init_names[] = {"lattice", "random", "file", "occupation", NULL};
 static const char *const vel_names[] = {"zero", "gaussian", "speed", NULL};
-static const char *const yesno_names[] = {"no", "yes", NULL};
 
 /* Densest packing of equal disks: no scene may ask for more. */
 #define GR_HEX_PACKING 0.9068996821171089
-
-/* Typed getters with a range check; the message names file, line and key. */
-static int get_num(const gr_scene *sc, const char *s, const char *k, double def,
-                   double lo, int lo_open, double hi, double *out, gr_err *err)
-{
-    if (gr_scene_get_double(sc, s, k, def, out, err))
-        return err->code;
-    const gr_scene_entry *e = gr_scene_find(sc, s, k);
-    if (!e)
-        return GR_OK;
-    if (fabs(*out) > GR_SCENE_MAX_MAGNITUDE)
-        return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': %s is beyond +-%g (energies and products would overflow)",
-                       sc->path, e->line, s, k, e->value, GR_SCENE_MAX_MAGNITUDE);
-    int bad_lo = lo_open ? !(*out > lo) : !(*out >= lo);
-    if (bad_lo || *out > hi) {
-        if (isinf(hi))
-            return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': must be %s %g, got %s",
-                           sc->path, e->line, s, k, lo_open ? ">" : ">=", lo, e->value);
-        return gr_fail(err, GR_EINPUT, "%s:%d: [%s] key '%s': must be in %s%g, %g], got %s",
-                       sc->path, e->line, s, k, lo_open ? "(" : "[", lo, hi, e->value);
-    }
-    return GR_OK;
-}
-#define POSITIVE(s, k, def, out) get_num(sc, s, k, def, 0.0, 1, INFINITY, out, err)
-#define NONNEG(s, k, def, out) get_num(sc, s, k, def, 0.0, 0, INFINITY, out, err)
-#define ANYNUM(s, k, def, out) get_num(sc, s, k, def, -INFINITY, 0, INFINITY, out, err)
-
-static int get_yesno(const gr_scene *sc, const char *s, const char *k, int def, int *out, gr_err *err)
-{
-    return gr_scene_get_choice(sc, s, k, yesno_names, def, out, err);
-}
-
-static int entry_fail(const gr_scene *sc, const char *s, const char *k, gr_err *err, const char *what)
-{
-    char where[1200];
-    gr_scene_where(sc, s, k, where, sizeof where);
-    return gr_fail(err, GR_EINPUT, "%s: %s", where, what);
-}
-
-/* Which section does a name belong to: "species.big" -> "species". */
-static const char *section_kind(const char *name)
-{
-    if (!strncmp(name, "species.", 8))
-        return "species";
-    if (!strncmp(name, "wall.", 5))
-        return "wall";
-    return name;
-}
 
 static int in_list(const char *const *list, const char *s)
 {
@@ -111,7 +61,7 @@ static int check_sections(gr_scene *sc, const char *const *extra, gr_err *err)
     all[n] = NULL;
     for (size_t i = 0; i < sc->nentries; i++) {
         const gr_scene_entry *e = &sc->entries[i];
-        const char *kind = section_kind(e->section);
+        const char *kind = gr_scene_section_kind(e->section);
         int known = !strcmp(kind, "wall") || !strcmp(kind, "species");
         for (size_t j = 0; all[j] && !known; j++)
             known = !strcmp(all[j], e->section);
@@ -159,10 +109,10 @@ static int read_domain(gr_scene *sc, gr_err *err)
     if (gr_scene_get_long(sc, "scene", "seed", 1, &seed, err))
         return err->code;
     if (seed < 0)
-        return entry_fail(sc, "scene", "seed", err, "must be >= 0");
+        return gr_scene_entry_fail(sc, "scene", "seed", err, "must be >= 0");
     sc->seed = (uint64_t)seed;
     if (!gr_scene_find(sc, "domain", "width") || !gr_scene_find(sc, "domain", "height"))
-        return entry_fail(sc, "domain", gr_scene_find(sc, "domain", "width") ? "height" : "width", err,
+        return gr_scene_entry_fail(sc, "domain", gr_scene_find(sc, "domain", "width") ? "height" : "width", err,
                           "[domain] needs 'width' and 'height'");
     if (POSITIVE("domain", "width", 0, &sc->width) || POSITIVE("domain", "height", 0, &sc->height))
         return err->code;
@@ -173,15 +123,15 @@ static int read_domain(gr_scene *sc, gr_err *err)
         sc->side[s] = (gr_bc)v;
     }
     if ((sc->side[GR_LEFT] == GR_BC_PERIODIC) != (sc->side[GR_RIGHT] == GR_BC_PERIODIC))
-        return entry_fail(sc, "domain", sc->side[GR_LEFT] == GR_BC_PERIODIC ? "right" : "left", err,
+        return gr_scene_entry_fail(sc, "domain", sc->side[GR_LEFT] == GR_BC_PERIODIC ? "right" : "left", err,
                           "a periodic side needs its opposite side periodic too");
     if ((sc->side[GR_BOTTOM] == GR_BC_PERIODIC) != (sc->side[GR_TOP] == GR_BC_PERIODIC))
-        return entry_fail(sc, "domain", sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? "top" : "bottom", err,
+        return gr_scene_entry_fail(sc, "domain", sc->side[GR_BOTTOM] == GR_BC_PERIODIC ? "top" : "bottom", err,
                           "a periodic side needs its opposite side periodic too");
     if (NONNEG("domain", "gravity", 0.0, &sc->gravity))
         return err->code;
     if (sc->gravity > 0 && sc->side[GR_BOTTOM] == GR_BC_PERIODIC)
-        return entry_fail(sc, "domain", "bottom", err, "gravity along a periodic direction is not supported");
+        return gr_scene_entry_fail(sc, "domain", "bottom", err, "gravity along a periodic direction is not supported");
     return GR_OK;
 }
 
@@ -198,16 +148,16 @@ static int read_material(gr_scene *sc, gr_err *err)
     if (POSITIVE("material", "kn", 1e5, &m->kn) || NONNEG("material", "gamma_n", 0.0, &m->gamma_n) ||
         POSITIVE("material", "kt", 2.0 / 7.0 * 1e5, &m->kt) || NONNEG("material", "gamma_t", 0.0, &m->gamma_t) ||
         NONNEG("material", "mu", 0.5, &m->mu) ||
-        get_num(sc, "material", "restitution", NAN, 0.0, 0, 1.0, &m->restitution, err) ||
-        get_num(sc, "material", "tangential_restitution", NAN, -1.0, 0, 1.0, &m->tangential_restitution, err) ||
-        get_num(sc, "material", "wall_restitution", NAN, 0.0, 0, 1.0, &m->wall_restitution, err) ||
-        get_yesno(sc, "material", "clip_attraction", 1, &m->clip_attraction, err))
+        gr_scene_get_num(sc, "material", "restitution", NAN, 0.0, 0, 1.0, &m->restitution, err) ||
+        gr_scene_get_num(sc, "material", "tangential_restitution", NAN, -1.0, 0, 1.0, &m->tangential_restitution, err) ||
+        gr_scene_get_num(sc, "material", "wall_restitution", NAN, 0.0, 0, 1.0, &m->wall_restitution, err) ||
+        gr_scene_get_yesno(sc, "material", "clip_attraction", 1, &m->clip_attraction, err))
         return err->code;
     if (gr_scene_find(sc, "material", "kt") == NULL && gr_scene_find(sc, "material", "kn"))
         m->kt = 2.0 / 7.0 * m->kn; /* the usual choice: equal normal and tangential periods */
     if ((m->tangential == GR_TANG_VISCOUS || m->tangential == GR_TANG_REGULARISED) &&
         !gr_scene_find(sc, "material", "gamma_t"))
-        return entry_fail(sc, "material", "gamma_t", err, "the viscous and regularised tangential laws need gamma_t");
+        return gr_scene_entry_fail(sc, "material", "gamma_t", err, "the viscous and regularised tangential laws need gamma_t");
     return GR_OK;
 }
 
@@ -217,7 +167,7 @@ static int read_species(gr_scene *sc, gr_err *err)
     sc->nspecies = 0;
     for (size_t i = 0; i < sc->nentries; i++) {
         const char *sec = sc->entries[i].section;
-        if (strcmp(section_kind(sec), "species"))
+        if (strcmp(gr_scene_section_kind(sec), "species"))
             continue;
         int seen = 0;
         for (int k = 0; k < sc->nspecies; k++) {
@@ -234,20 +184,20 @@ static int read_species(gr_scene *sc, gr_err *err)
         gr_species *sp = &sc->species[sc->nspecies++];
         snprintf(sp->name, sizeof sp->name, "%s", strchr(sec, '.') ? strchr(sec, '.') + 1 : "");
         if (POSITIVE(sec, "diameter", 1.0, &sp->diameter) ||
-            get_num(sc, sec, "polydispersity", 0.0, 0.0, 0, 0.9, &sp->polydispersity, err) ||
+            gr_scene_get_num(sc, sec, "polydispersity", 0.0, 0.0, 0, 0.9, &sp->polydispersity, err) ||
             POSITIVE(sec, "density", 4.0 / M_PI, &sp->density) ||
             POSITIVE(sec, "weight", 1.0, &sp->weight))
             return err->code;
         if (gr_scene_get_long(sc, sec, "count", 0, &sp->count, err))
             return err->code;
         if (sp->count < 0 || !gr_scene_find(sc, sec, "count"))
-            return entry_fail(sc, sec, "count", err, "a species needs a count >= 0");
+            return gr_scene_entry_fail(sc, sec, "count", err, "a species needs a count >= 0");
         /* Checked one species at a time, so the sum cannot overflow. */
         if (sp->count > GR_SCENE_MAX_GRAINS || gr_scene_count(sc) > GR_SCENE_MAX_GRAINS) {
             char msg[200];
             snprintf(msg, sizeof msg, "more than %ld grains in all, the largest count grano is tested and sized for (docs/reliability.md)",
                      (long)GR_SCENE_MAX_GRAINS);
-            return entry_fail(sc, sec, "count", err, msg);
+            return gr_scene_entry_fail(sc, sec, "count", err, msg);
         }
     }
     if (sc->nspecies == 0) {
@@ -259,171 +209,6 @@ static int read_species(gr_scene *sc, gr_err *err)
         sp->count = 0;
     }
     return GR_OK;
-}
-
-static int read_floor(gr_scene *sc, gr_err *err)
-{
-    int v;
-    if (gr_scene_get_choice(sc, "floor", "motion", floor_names, GR_FLOOR_FIXED, &v, err))
-        return err->code;
-    sc->floor.motion = (gr_floor_motion)v;
-    if (NONNEG("floor", "amplitude", 0.0, &sc->floor.amplitude) ||
-        NONNEG("floor", "omega", 0.0, &sc->floor.omega))
-        return err->code;
-    if (sc->floor.motion != GR_FLOOR_FIXED) {
-        if (sc->side[GR_BOTTOM] != GR_BC_WALL)
-            return entry_fail(sc, "floor", "motion", err, "a vibrating floor needs [domain] bottom = wall");
-        if (!(sc->floor.amplitude > 0) || !(sc->floor.omega > 0))
-            return entry_fail(sc, "floor", "motion", err, "a vibrating floor needs amplitude > 0 and omega > 0");
-    }
-    return GR_OK;
-}
-
-static int add_segment(gr_scene *sc, gr_segment s, gr_err *err)
-{
-    gr_segment *q = realloc(sc->segments, (size_t)(sc->nsegments + 1) * sizeof *q);
-    if (!q)
-        return gr_fail(err, GR_ERUN, "out of memory");
-    sc->segments = q;
-    sc->segments[sc->nsegments++] = s;
-    return GR_OK;
-}
-
-static int read_walls(gr_scene *sc, gr_err *err)
-{
-    for (size_t i = 0; i < sc->nentries; i++) {
-        const char *sec = sc->entries[i].section;
-        if (strcmp(section_kind(sec), "wall"))
-            continue;
-        /* Once per wall: at its header, the section's first entry. */
-        if (sc->entries[i].key[0])
-            continue;
-        double a[2], b[2];
-        int fa, fb, vib;
-        if (gr_scene_get_vec(sc, sec, "from", 2, a, &fa, err) || gr_scene_get_vec(sc, sec, "to", 2, b, &fb, err))
-            return err->code;
-        if (!fa || !fb)
-            return entry_fail(sc, sec, fa ? "to" : "from", err, "a wall needs 'from = x y' and 'to = x y'");
-        if (a[0] == b[0] && a[1] == b[1])
-            return entry_fail(sc, sec, "to", err, "a wall needs two distinct end points");
-        if (sc->nsegments >= GR_SCENE_MAX_WALLS)
-            return entry_fail(sc, sec, "from", err, "more than " GR_STR(GR_SCENE_MAX_WALLS)
-                              " walls, the most grano is tested with (docs/reliability.md)");
-        gr_segment s = {a[0], a[1], b[0], b[1], INFINITY, 0, sc->entries[i].line};
-        if (NONNEG(sec, "open_time", INFINITY, &s.open_time) || get_yesno(sc, sec, "vibrating", 0, &vib, err))
-            return err->code;
-        s.vibrating = vib;
-        if (add_segment(sc, s, err))
-            return err->code;
-    }
-    return GR_OK;
-}
-
-/* The silo's box and orifice; margin is the thickness of its walls. */
-static int read_silo_box(gr_scene *sc, double margin, gr_err *err)
-{
-    gr_silo *s = &sc->silo;
-    if (POSITIVE("silo", "width", sc->width - 2 * margin, &s->width) ||
-        POSITIVE("silo", "height", 0.0, &s->height) ||
-        ANYNUM("silo", "left", 0.5 * (sc->width - s->width), &s->x0) ||
-        ANYNUM("silo", "base", 0.0, &s->base) ||
-        POSITIVE("silo", "orifice", 0.0, &s->orifice) ||
-        ANYNUM("silo", "orifice_center", s->x0 + 0.5 * s->width, &s->orifice_center) ||
-        NONNEG("silo", "open_time", INFINITY, &s->open_time))
-        return err->code;
-    if (!gr_scene_find(sc, "silo", "height") || !gr_scene_find(sc, "silo", "orifice") ||
-        !gr_scene_find(sc, "silo", "base"))
-        return entry_fail(sc, "silo", !gr_scene_find(sc, "silo", "height") ? "height"
-                                      : !gr_scene_find(sc, "silo", "base") ? "base" : "orifice",
-                          err, "[silo] needs 'height', 'base' and 'orifice'");
-    if (s->orifice > s->width)
-        return entry_fail(sc, "silo", "orifice", err, "the orifice is wider than the silo base");
-    if (s->orifice_center - 0.5 * s->orifice < s->x0 || s->orifice_center + 0.5 * s->orifice > s->x0 + s->width)
-        return entry_fail(sc, "silo", "orifice_center", err, "the orifice reaches past the silo walls");
-    if (s->x0 - margin < 0 || s->x0 + s->width + margin > sc->width || s->base - margin < 0 ||
-        s->base + s->height > sc->height)
-        return entry_fail(sc, "silo", "width", err, "the silo (with its walls) does not fit in the domain");
-    return GR_OK;
-}
-
-/* The hopper above the silo, the reinsertion band and the exit line;
- * d is the largest grain diameter. */
-static int read_silo_flow(gr_scene *sc, double d, gr_err *err)
-{
-    gr_silo *s = &sc->silo;
-    if (get_yesno(sc, "silo", "hopper", 0, &s->hopper, err) ||
-        POSITIVE("silo", "hopper_outlet", 0.3 * s->width, &s->hopper_outlet) ||
-        ANYNUM("silo", "hopper_bottom", s->base + s->height + 2 * d, &s->hopper_bottom) ||
-        ANYNUM("silo", "hopper_top", s->hopper_bottom + 0.25 * s->width, &s->hopper_top) ||
-        get_yesno(sc, "silo", "reinsert", 0, &s->reinsert, err) ||
-        ANYNUM("silo", "reinsert_top", s->base + s->height - d, &s->reinsert_top) ||
-        ANYNUM("silo", "reinsert_bottom", s->reinsert_top - 4 * d, &s->reinsert_bottom) ||
-        ANYNUM("silo", "exit_below", s->base - 2 * d, &s->exit_below))
-        return err->code;
-    if (s->hopper) {
-        if (s->hopper_outlet > s->width)
-            return entry_fail(sc, "silo", "hopper_outlet", err, "the hopper outlet is wider than the silo");
-        if (!(s->hopper_top > s->hopper_bottom) || s->hopper_top > sc->height)
-            return entry_fail(sc, "silo", "hopper_top", err,
-                              "the hopper rim must lie above its outlet and inside the domain");
-    }
-    if (s->reinsert && !(s->reinsert_top - s->reinsert_bottom >= d))
-        return entry_fail(sc, "silo", "reinsert_bottom", err, "the reinsertion band must be at least one diameter tall");
-    if (s->exit_below > s->base)
-        return entry_fail(sc, "silo", "exit_below", err, "grains must leave below the silo base");
-    return GR_OK;
-}
-
-/* The silo's side walls, base (the orifice piece opens at open_time)
- * and hopper as wall segments. */
-static int add_silo_segments(gr_scene *sc, gr_err *err)
-{
-    const gr_silo *s = &sc->silo;
-    double x0 = s->x0, x1 = s->x0 + s->width, y0 = s->base, y1 = s->base + s->height;
-    double ol = s->orifice_center - 0.5 * s->orifice, orr = s->orifice_center + 0.5 * s->orifice;
-    gr_segment segs[6] = {
-        {x0, y0, x0, y1, INFINITY, 0, 0}, {x1, y0, x1, y1, INFINITY, 0, 0},
-        {x0, y0, ol, y0, INFINITY, 0, 0}, {orr, y0, x1, y0, INFINITY, 0, 0},
-        {ol, y0, orr, y0, s->open_time, 0, 0},
-        {0, 0, 0, 0, 0, 0, 0}};
-    int nseg = 5;
-    for (int k = 0; k < nseg; k++) {
-        /* Zero-length base pieces when the orifice touches a wall. */
-        if (segs[k].x0 == segs[k].x1 && segs[k].y0 == segs[k].y1)
-            continue;
-        if (add_segment(sc, segs[k], err))
-            return err->code;
-    }
-    if (s->hopper) {
-        double c = s->orifice_center, h = 0.5 * s->hopper_outlet;
-        gr_segment hl = {x0, s->hopper_top, c - h, s->hopper_bottom, INFINITY, 0, 0};
-        gr_segment hr = {c + h, s->hopper_bottom, x1, s->hopper_top, INFINITY, 0, 0};
-        if (add_segment(sc, hl, err) || add_segment(sc, hr, err))
-            return err->code;
-    }
-    return GR_OK;
-}
-
-static int read_silo(gr_scene *sc, gr_err *err)
-{
-    gr_silo *s = &sc->silo;
-    s->present = 0;
-    for (size_t i = 0; i < sc->nentries; i++)
-        s->present |= !strcmp(sc->entries[i].section, "silo");
-    if (!s->present)
-        return GR_OK;
-    double d = gr_scene_max_diameter(sc);
-    int v;
-    if (gr_scene_get_choice(sc, "silo", "walls", walls_names, GR_WALLS_SEGMENTS, &v, err))
-        return err->code;
-    s->walls = (gr_wall_kind)v;
-    double margin = s->walls == GR_WALLS_GRAINS ? d : 0.0;
-    int rc = read_silo_box(sc, margin, err);
-    if (!rc)
-        rc = read_silo_flow(sc, d, err);
-    if (rc || s->walls != GR_WALLS_SEGMENTS)
-        return rc;
-    return add_silo_segments(sc, err);
 }
 
 /* Default region: above the hopper, else inside the silo, else the domain. */
@@ -442,7 +227,7 @@ static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
 {
     gr_init *in = &sc->init;
     if (!fe)
-        return entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
+        return gr_scene_entry_fail(sc, "init", "kind", err, "kind = file needs a 'file' key");
     /* Relative paths are relative to the scene file. */
     const char *slash = strrchr(sc->path, '/');
     int len;
@@ -451,12 +236,12 @@ static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
     else
         len = snprintf(in->file, sizeof in->file, "%.*s/%s", (int)(slash - sc->path), sc->path, fe->value);
     if (len < 0 || (size_t)len >= sizeof in->file)
-        return entry_fail(sc, "init", "file", err, "the path is longer than 1023 characters");
+        return gr_scene_entry_fail(sc, "init", "file", err, "the path is longer than 1023 characters");
     FILE *f = fopen(in->file, "r");
     if (!f) {
         char msg[1200];
         snprintf(msg, sizeof msg, "cannot read '%s': %s", in->file, strerror(errno));
-        return entry_fail(sc, "init", "file", err, msg);
+        return gr_scene_entry_fail(sc, "init", "file", err, msg);
     }
     fclose(f);
     return GR_OK;
@@ -466,7 +251,7 @@ static int read_init_file(gr_scene *sc, const gr_scene_entry *fe, gr_err *err)
  * one, else the species counts. */
 static int crowded_fail(const gr_scene *sc, gr_err *err, const char *msg)
 {
-    return entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
+    return gr_scene_entry_fail(sc, gr_scene_find(sc, "init", "region") ? "init" : "species",
                       gr_scene_find(sc, "init", "region") ? "region" : "count", err, msg);
 }
 
@@ -512,7 +297,7 @@ static int check_init_fits(const gr_scene *sc, double d, gr_err *err)
         }
     } else if (phi > 0.5) {
         snprintf(msg, sizeof msg, "random placement without overlap cannot reach packing fraction %.3g (> 0.5); use kind = lattice", phi);
-        return entry_fail(sc, "init", "kind", err, msg);
+        return gr_scene_entry_fail(sc, "init", "kind", err, msg);
     }
     return GR_OK;
 }
@@ -523,12 +308,12 @@ static int read_init_occupation(gr_scene *sc, gr_err *err)
 {
     gr_init *in = &sc->init;
     if (!gr_scene_find(sc, "init", "occupation"))
-        return entry_fail(sc, "init", "kind", err, "kind = occupation needs an 'occupation' key (mean occupation of a moving channel, in [0, 1])");
-    if (get_num(sc, "init", "occupation", 0.0, 0.0, 0, 1.0, &in->occupation, err) ||
-        get_num(sc, "init", "rest_occupation", in->occupation, 0.0, 0, 1.0, &in->rest_occupation, err))
+        return gr_scene_entry_fail(sc, "init", "kind", err, "kind = occupation needs an 'occupation' key (mean occupation of a moving channel, in [0, 1])");
+    if (gr_scene_get_num(sc, "init", "occupation", 0.0, 0.0, 0, 1.0, &in->occupation, err) ||
+        gr_scene_get_num(sc, "init", "rest_occupation", in->occupation, 0.0, 0, 1.0, &in->rest_occupation, err))
         return err->code;
     if (gr_scene_count(sc) > 0)
-        return entry_fail(sc, "init", "kind", err, "kind = occupation places no grains; give no species count (or count = 0)");
+        return gr_scene_entry_fail(sc, "init", "kind", err, "kind = occupation places no grains; give no species count (or count = 0)");
     return GR_OK;
 }
 
@@ -545,11 +330,11 @@ static int read_init(gr_scene *sc, gr_err *err)
     if (gr_scene_get_vec(sc, "init", "region", 4, r, &found, err))
         return err->code;
     if (!(r[2] > r[0]) || !(r[3] > r[1]))
-        return entry_fail(sc, "init", "region", err, "the region must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+        return gr_scene_entry_fail(sc, "init", "region", err, "the region must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
     if (found && (r[0] < 0 || r[1] < 0 || r[2] > sc->width || r[3] > sc->height))
-        return entry_fail(sc, "init", "region", err, "the region reaches outside the domain [0, width] x [0, height]");
+        return gr_scene_entry_fail(sc, "init", "region", err, "the region reaches outside the domain [0, width] x [0, height]");
     in->x0 = r[0], in->y0 = r[1], in->x1 = r[2], in->y1 = r[3];
-    if (get_num(sc, "init", "spacing", 1.05, 1.0, 0, 10.0, &in->spacing, err))
+    if (gr_scene_get_num(sc, "init", "spacing", 1.05, 1.0, 0, 10.0, &in->spacing, err))
         return err->code;
     if (gr_scene_get_choice(sc, "init", "velocity", vel_names, GR_VEL_ZERO, &v, err))
         return err->code;
@@ -573,9 +358,9 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
     sc->window.present = found;
     if (found) {
         if (!(w[2] > w[0]) || !(w[3] > w[1]))
-            return entry_fail(sc, "measure", "window", err, "the window must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
+            return gr_scene_entry_fail(sc, "measure", "window", err, "the window must be 'x0 y0 x1 y1' with x1 > x0 and y1 > y0");
         if (w[0] < 0 || w[1] < 0 || w[2] > sc->width || w[3] > sc->height)
-            return entry_fail(sc, "measure", "window", err, "the window reaches outside the domain [0, width] x [0, height]");
+            return gr_scene_entry_fail(sc, "measure", "window", err, "the window reaches outside the domain [0, width] x [0, height]");
         sc->window.x0 = w[0], sc->window.y0 = w[1], sc->window.x1 = w[2], sc->window.y1 = w[3];
     }
     double c[2];
@@ -583,7 +368,7 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         return err->code;
     if (found) {
         if (c[0] < 1 || c[1] < 1 || c[0] != floor(c[0]) || c[1] != floor(c[1]) || c[0] * c[1] > 1e7)
-            return entry_fail(sc, "measure", "field_cells", err, "expected two positive integers 'nx ny'");
+            return gr_scene_entry_fail(sc, "measure", "field_cells", err, "expected two positive integers 'nx ny'");
         sc->run.field_nx = (int)c[0], sc->run.field_ny = (int)c[1];
     }
     if (POSITIVE("run", "until", 10.0, &sc->run.until) ||
@@ -591,8 +376,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "observe_every", sc->run.output_every / 10.0, &sc->run.observe_every) ||
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
         NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
-        get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
-        get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
+        gr_scene_get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
+        gr_scene_get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
         return err->code;
     return GR_OK;
 }
@@ -613,7 +398,7 @@ gr_scene *gr_scene_parse(const char *text, const char *path, const char *const *
     }
     if (gr_scene_read_entries(sc, text, err) || check_sections(sc, extra, err) ||
         read_domain(sc, err) || read_material(sc, err) || read_species(sc, err) ||
-        read_floor(sc, err) || read_walls(sc, err) || read_silo(sc, err) ||
+        gr_scene_read_geometry(sc, err) ||
         read_init(sc, err) || read_measure_run(sc, err)) {
         gr_scene_free(sc);
         return NULL;
@@ -693,23 +478,4 @@ void gr_scene_free(gr_scene *sc)
     free(sc->index);
     free(sc->segments);
     free(sc);
-}
-
-long gr_scene_count(const gr_scene *sc)
-{
-    long n = 0;
-    for (int k = 0; k < sc->nspecies; k++)
-        n += sc->species[k].count;
-    return n;
-}
-
-double gr_scene_max_diameter(const gr_scene *sc)
-{
-    double d = 0;
-    for (int k = 0; k < sc->nspecies; k++) {
-        double dk = sc->species[k].diameter * (1.0 + sc->species[k].polydispersity);
-        if (dk > d)
-            d = dk;
-    }
-    return d > 0 ? d : 1.0;
 }

@@ -1,4 +1,5 @@
-/* Internal to the scene reader (scene_parse.c, scene.c). */
+/* Internal to the scene reader: scene_parse.c's entries and typed lookups,
+ * for scene_get.c, scene_geom.c and scene.c (scene_get.h). */
 #ifndef GR_SCENE_IMPL_H
 #define GR_SCENE_IMPL_H
 

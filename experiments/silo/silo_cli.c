@@ -207,7 +207,7 @@ static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t n
             cli->name, wall / 60, w, w > 1 ? "s" : "", first, cli->units_what, nunits, unit);
 }
 
-int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre_ctx, size_t npre, size_t nunits,
                    const char *dir)
 {
     exp_dist d;
@@ -224,7 +224,7 @@ int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t np
     int rc = GR_OK;
     if (npre && cli->pre_unit) {
         exp_sweep pre = {npre, jobs, pdir, cli->pre_prefix, !o->quiet, cli->pre_what, o->force};
-        rc = exp_dist_sweep(&d, &pre, cli->pre_unit, cli->pre_label, cli->pre_key, ctx, &e);
+        rc = exp_dist_sweep(&d, &pre, cli->pre_unit, cli->pre_label, cli->pre_key, pre_ctx, &e);
     }
     exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force};
     if (!rc && d.size > 1) {

@@ -44,7 +44,7 @@ typedef struct {
     exp_label_fn label, key;
     exp_report_fn report;
     /* units run first (NULL: none), whose parts <pre_prefix>-<label>.part
-       the units read: silo-flow's fillings, one per realisation */
+       the units read: the fillings, one per realisation */
     exp_unit_fn pre_unit;
     exp_label_fn pre_label, pre_key;
     const char *pre_prefix, *pre_what;
@@ -75,10 +75,10 @@ int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, doubl
 /* The output directory: --out, else results/<name>[-quick]; returns dir. */
 const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, size_t n);
 
-/* Run (or reuse) the npre first units (cli->pre_unit), then the nunits
- * units of ctx into dir/parts, then the report; the closing line unless
- * --quiet. Returns the exit code. */
-int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, size_t npre, size_t nunits,
+/* Run (or reuse) the npre first units (cli->pre_unit, context pre_ctx),
+ * then the nunits units of ctx into dir/parts, then the report; the
+ * closing line unless --quiet. Returns the exit code. */
+int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre_ctx, size_t npre, size_t nunits,
                    const char *dir);
 
 #endif

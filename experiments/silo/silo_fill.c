@@ -1,47 +1,42 @@
-/* silo-flow's fillings (settle once, branch many): one unit per
- * realisation fills and settles the silo with the orifice SF_FILL_D closed
- * and keeps the settled grains in its part, which every orifice's unit
- * (silo_flow.c) and --peer lammps (silo_peer.c) branch from. */
+/* The fillings of silo-flow and silo-start (silo_fill.h): fill and settle
+ * with the orifice SILO_FILL_D closed, once per realisation. */
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
 
 #include "parts.h"
 #include "progress.h"
-#include "silo_flow.h"
+#include "silo_fill.h"
 
-/* The filling's parameters: the part of the settled silo of realisation
- * r is reused by every orifice and by a later run with the same key. */
-static int fill_key(const sf_ctx *c, size_t r, char *buf, size_t n)
+/* The filling's parameters: a part with this key is reused by every
+ * orifice, by both commands and by a later run. */
+static int fill_key(const silo_fills *f, size_t r, char *buf, size_t n)
 {
-    const silo_cfg *b = &c->base;
+    const silo_cfg *b = f->base;
     int k = snprintf(buf, n, "silo-fill 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
-                     b->n, b->width, b->height, b->base, b->hopper, SF_FILL_D, (unsigned long long)(c->seed + r),
+                     b->n, b->width, b->height, b->base, b->hopper, SILO_FILL_D, (unsigned long long)(f->seed + r),
                      b->method->name, b->dt, b->ke_tol);
     silo_key_params(b, buf, n);
     return k;
 }
 
-void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n)
+void silo_fill_label(size_t unit, void *ctx, char *buf, size_t n)
 {
     (void)ctx;
     snprintf(buf, n, "r%02zu", unit);
 }
 
-void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n)
+void silo_fill_key(size_t unit, void *ctx, char *buf, size_t n)
 {
     fill_key(ctx, unit, buf, n);
 }
 
-/* Realisation r's filling: fill and settle with the orifice SF_FILL_D
- * closed; the part holds the settled grains, which every orifice's unit
- * branches from (silo_rebase). */
-int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress, gr_err *err)
+int silo_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress, gr_err *err)
 {
-    const sf_ctx *c = ctx;
-    silo_cfg cfg = c->base;
-    cfg.orifice = SF_FILL_D;
-    cfg.seed = c->seed + unit;
+    const silo_fills *f = ctx;
+    silo_cfg cfg = *f->base;
+    cfg.orifice = SILO_FILL_D;
+    cfg.seed = f->seed + unit;
     silo_settled set;
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
     int rc = silo_fill(&cfg, &set, progress, err);
@@ -53,6 +48,8 @@ int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vola
     if (!rc) rc = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err);
     if (!rc) rc = exp_put_particles(ck, "settled", set.p, err);
     if (!rc) rc = exp_put_scalar(ck, "t_settle", set.t_settle, err);
+    if (!rc && unit == 0 && set.filling) rc = exp_put_particles(ck, "filling", set.filling, err);
+    if (!rc && unit == 0 && set.filling) rc = exp_put_scalar(ck, "t_filling", set.t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
     if (rc && ck)
         gr_ckpt_discard(ck);
@@ -62,19 +59,19 @@ int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vola
     return rc;
 }
 
-int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n)
+int silo_fill_path(const silo_fills *f, size_t r, char *path, size_t n)
 {
     char label[32], key[1024];
-    sf_fill_label(r, NULL, label, sizeof label);
-    snprintf(path, n, "%s/parts/fill-%s.part", c->dir, label);
-    fill_key(c, r, key, sizeof key);
+    silo_fill_label(r, NULL, label, sizeof label);
+    snprintf(path, n, "%s/parts/fill-%s.part", f->dir, label);
+    fill_key(f, r, key, sizeof key);
     return exp_part_key_matches(path, key);
 }
 
-int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
+int silo_fill_load(const silo_fills *f, size_t r, silo_settled *set, double *fill_cost, gr_err *err)
 {
     char path[1200];
-    sf_fill_path(c, r, path, sizeof path);
+    silo_fill_path(f, r, path, sizeof path);
     *set = (silo_settled){0};
     gr_ckpt *ck = gr_ckpt_open(path, err);
     if (!ck)
@@ -83,6 +80,13 @@ int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost
     int rc = set->p ? exp_get_particles(ck, "settled", set->p, err) : err->code;
     set->t_settle = exp_get_scalar(ck, "t_settle");
     exp_get_cost(ck, fill_cost);
+    size_t nf = 0;
+    gr_err ig = {0};
+    if (!rc && !gr_ckpt_len(ck, "filling", &nf, &ig) && nf > 0) {
+        set->filling = gr_particles_create(0, err);
+        rc = set->filling ? exp_get_particles(ck, "filling", set->filling, err) : err->code;
+        set->t_filling = exp_get_scalar(ck, "t_filling");
+    }
     gr_ckpt_close(ck, NULL);
     if (!rc)
         set->top = silo_top(set->p);
@@ -90,4 +94,3 @@ int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost
         silo_settled_free(set);
     return rc;
 }
-

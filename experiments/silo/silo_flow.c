@@ -32,7 +32,7 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
     int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 branchmax=%g D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
                      SILO_BRANCH_MAX, c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
     if (k > 0 && (size_t)k < n)
-        sf_fill_key(r, (void *)c, buf + k, n - (size_t)k);
+        silo_fill_key(r, (void *)&c->fills, buf + k, n - (size_t)k);
 }
 
 /* The measured blocks after the discarded transient: the grains that
@@ -113,7 +113,7 @@ int sf_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     volatile double fillp = 0;
     double fill_cost[5];
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = sf_load_fill(c, r, &fill, fill_cost, err);
+    int rc = silo_fill_load(&c->fills, r, &fill, fill_cost, err);
     if (!rc)
         rc = silo_rebase(&cfg, &fill, &set, &fillp, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
@@ -237,7 +237,7 @@ static const silo_cli sf_cli = {
     .quick_orifices = "3.56,4.2,6.24,8,10,12,14", .quick_n = 900, .quick_width = 24, .reinsert = 1,
     .prefix = "flow", .progress_what = "orifices", .units_what = "units",
     .unit = sf_unit, .label = sf_label, .key = sf_key, .report = sf_report_any,
-    .pre_unit = sf_fill_unit, .pre_label = sf_fill_label, .pre_key = sf_fill_key, .pre_prefix = "fill",
+    .pre_unit = silo_fill_unit, .pre_label = silo_fill_label, .pre_key = silo_fill_key, .pre_prefix = "fill",
     .pre_what = "fillings", .estimate = sf_estimate};
 
 static int sf_own_option(int ch, const char *arg, void *own)
@@ -283,6 +283,7 @@ int cmd_silo_flow(int argc, char **argv)
     c.split = 9;
     char dir[1024];
     c.dir = silo_cli_dir(&sf_cli, &o, dir, sizeof dir);
+    c.fills = (silo_fills){&c.base, c.seed, c.dir};
     if (w.peer) {
         char summary[1024] = "";
         gr_err e = {0};
@@ -293,5 +294,5 @@ int cmd_silo_flow(int argc, char **argv)
         fprintf(stderr, "grano silo-flow --peer lammps: wrote %s/peer.dat, %s/peer/\n%s", c.dir, c.dir, summary);
         return 0;
     }
-    return silo_cli_sweep(&sf_cli, &o, &c, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
+    return silo_cli_sweep(&sf_cli, &o, &c, &c.fills, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
 }

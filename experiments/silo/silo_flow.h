@@ -8,12 +8,9 @@
 #include <stdint.h>
 
 #include "silo_common.h"
+#include "silo_fill.h"
 
 #define SF_MAX_ORIF 48
-
-/* The orifice closed during the filling; every orifice branches from that
- * settled state (silo_rebase). */
-#define SF_FILL_D 6.0
 
 typedef struct {
     silo_cfg base;
@@ -29,20 +26,8 @@ typedef struct {
     double lift;        /* base of the D x D packing square above the silo base */
     double split;       /* small / large orifices for figs. 4.2-4.3 */
     const char *dir;
+    silo_fills fills;   /* one per realisation, before the orifices' units */
 } sf_ctx;
-
-/* The fillings: one unit per realisation, before the orifices' units. */
-void sf_fill_label(size_t unit, void *ctx, char *buf, size_t n);
-void sf_fill_key(size_t unit, void *ctx, char *buf, size_t n);
-int sf_fill_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
-                 gr_err *err);
-
-/* The path of realisation r's filling part; whether it exists with the
- * key of c's filling. */
-int sf_fill_path(const sf_ctx *c, size_t r, char *path, size_t n);
-/* The settled silo of realisation r from its filling part, and the
- * filling's cost record. */
-int sf_load_fill(const sf_ctx *c, size_t r, silo_settled *set, double *fill_cost, gr_err *err);
 
 void sf_label(size_t unit, void *ctx, char *buf, size_t n);
 void sf_key(size_t unit, void *ctx, char *buf, size_t n);

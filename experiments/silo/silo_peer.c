@@ -157,11 +157,11 @@ int sf_peer_lammps(const sf_ctx *c, char *summary, size_t n, gr_err *err)
     if (exp_mkdirs(dir, err))
         return err->code;
     silo_cfg fc = c->base, cfg = c->base;
-    fc.orifice = SF_FILL_D, fc.seed = cfg.seed = c->seed;
+    fc.orifice = SILO_FILL_D, fc.seed = cfg.seed = c->seed;
     cfg.orifice = c->orifice[0], cfg.reinsert = 0;
     silo_settled fill, set;
     double fill_cost[5];
-    int rc = sf_fill_path(c, 0, path, sizeof path) ? sf_load_fill(c, 0, &fill, fill_cost, err)
+    int rc = silo_fill_path(&c->fills, 0, path, sizeof path) ? silo_fill_load(&c->fills, 0, &fill, fill_cost, err)
                                                    : silo_fill(&fc, &fill, NULL, err);
     if (!rc)
         rc = silo_rebase(&cfg, &fill, &set, NULL, err), silo_settled_free(&fill);

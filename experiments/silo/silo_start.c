@@ -1,17 +1,15 @@
-/* grano silo-start: the start of the discharge (thesis chapter 3). Each
- * unit of work is one discharge: fill, settle, open, and follow the grains
- * until the top grain has fallen two diameters; the report averages the
- * units of each orifice. */
-#include <getopt.h>
+/* grano silo-start: the start of the discharge (thesis chapter 3). The
+ * silo is filled and settled once per realisation (silo_fill.h); each unit
+ * of work is one discharge: branch that settled silo to the orifice, open,
+ * and follow the grains until the top grain has fallen two diameters; the
+ * report averages the units of each orifice. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "cmd.h"
 #include "fields.h"
-#include "opts.h"
 #include "parts.h"
 #include "progress.h"
 #include "rng.h"
@@ -31,16 +29,19 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
-                     "silo-start 2 surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
+                     "silo-start 3 branchmax=%g surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
                      "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu sub=%d/%d lags=",
-                     b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
+                     SILO_BRANCH_MAX, b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
                      (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->fs, c->min_steps,
                      c->max_steps, c->fall_stop, c->window, c->cell, c->sample_cap, c->subtract, SS_SUB_N);
     for (size_t s = 0; s < c->nslots && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "%ld,", c->lag[s]);
     for (size_t s = 0; s < c->ntimes && k > 0 && (size_t)k < n; s++)
         k += snprintf(buf + k, n - (size_t)k, "t%ld,", c->times[s]);
-    silo_key_params(b, buf, n);
+    if (k > 0 && (size_t)k < n) {
+        k += snprintf(buf + k, n - (size_t)k, " ");
+        silo_fill_key(r, (void *)&c->fills, buf + k, n - (size_t)k); /* ends with the --param lines */
+    }
 }
 
 /* ------------------------------------------------------------ one unit */
@@ -197,7 +198,7 @@ static int complete(ustate *u, size_t k, origin *o, const gr_particles *p, doubl
 static int write_part(const char *part, const char *key, const ss_ctx *c, ustate *u,
                       const silo_settled *set, const gr_particles *fin, gr_field **fld,
                       const double *ts, size_t nts, double win[2], long steps, const double *cost,
-                      gr_err *err)
+                      const double *branch, gr_err *err)
 {
     gr_ckpt *ck = gr_ckpt_create(part, err);
     if (!ck)
@@ -250,8 +251,9 @@ static int write_part(const char *part, const char *key, const ss_ctx *c, ustate
     if (!rc) rc = exp_put_scalar(ck, "steps", (double)steps, err);
     if (!rc) rc = exp_put_particles(ck, "final", fin, err);
     if (!rc && set->filling) rc = exp_put_particles(ck, "filling", set->filling, err);
-    if (!rc) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
+    if (!rc && set->filling) rc = exp_put_scalar(ck, "t_filling", set->t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (!rc) rc = gr_ckpt_put_f64(ck, "branch", branch, 4, err);
     free(buf);
     if (rc) {
         gr_ckpt_discard(ck);
@@ -356,6 +358,28 @@ static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_parti
     return rc;
 }
 
+/* Realisation r's settled silo branched to the orifice of cfg: the
+ * filling's picture stays with the branch (realisation 0's part keeps it
+ * for fig. 3.1); branch[4] as silo-flow's: the branch's settling time, the
+ * lift, the filling's CPU seconds, the kinetic energy per grain at opening. */
+static int branch_fill(const ss_ctx *c, const silo_cfg *cfg, size_t r, silo_settled *set, double branch[4],
+                       volatile double *progress, gr_err *err)
+{
+    silo_settled fill;
+    double fill_cost[5];
+    int rc = silo_fill_load(&c->fills, r, &fill, fill_cost, err);
+    if (!rc)
+        rc = silo_rebase(cfg, &fill, set, progress, err);
+    if (!rc) {
+        branch[0] = set->t_settle, branch[1] = set->lift, branch[2] = fill_cost[1], branch[3] = set->ekin;
+        set->t_settle = fill.t_settle;
+        set->filling = fill.filling, set->t_filling = fill.t_filling;
+        fill.filling = NULL;
+    }
+    silo_settled_free(&fill);
+    return rc;
+}
+
 int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
             gr_err *err)
 {
@@ -367,10 +391,11 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     cfg.reinsert = 0;
     silo_settled set;
     ustate u;
+    double branch[4] = {0};
     if (ustate_init(&u, c, cfg.seed, err))
         return err->code;
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;
-    int rc = silo_fill(&cfg, &set, progress, err);
+    int rc = branch_fill(c, &cfg, r, &set, branch, progress, err);
     double w1 = gr_wall_seconds(), c1 = (double)clock() / CLOCKS_PER_SEC;
     if (rc) {
         ustate_free(&u);
@@ -407,7 +432,7 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)
-        set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, err);
+        set.top = top0, rc = write_part(part, key, c, &u, &set, snap, fld, ts, nts, win, step, cost, branch, err);
     for (size_t j = 0; j < c->ntimes; j++)
         gr_field_free(fld[j]);
     gr_sim_free(st);
@@ -418,158 +443,4 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     silo_settled_free(&set);
     ustate_free(&u);
     return rc;
-}
-
-/* ------------------------------------------------------------------ CLI */
-
-static void usage(FILE *f)
-{
-    fprintf(f,
-        "usage: grano silo-start [options]\n\n"
-        "The start of a silo discharge (thesis chapter 3) on the soft DEM backend:\n"
-        "fill through a hopper, settle, open the orifice, and follow the grains until\n"
-        "the surface (its highest layer) has fallen two diameters, for each orifice\n"
-        "and realisation.\n"
-        "Writes DIR/silo-start.h5, .dat tables and the figures fig3_1 ... fig3_6.\n\n"
-        "options:\n"
-        "  -D, --orifices LIST  orifice widths in d, comma separated (default 3.8,11)\n"
-        "  -n, --realisations N independent discharges per orifice (default 20)\n"
-        "  -s, --seed S         seed of realisation 0; realisation r uses S + r (default 1)\n"
-        "  -j, --jobs N         discharges run at once, one process each (default 1)\n"
-        "  -o, --out DIR        output directory (default results/silo-start)\n"
-        "      --grains N       mobile grains (default 5000)\n"
-        "      --width W        container width in d (default 50; height 2 W)\n"
-        "      --max-steps N    stop a discharge after N steps at most\n"
-        "      --subtract MODE  the mean flow subtracted from the window's displacements:\n"
-        "                       columns (default: the mean of the grains that started\n"
-        "                       in the same tenth of the window across x, the velocity\n"
-        "                       profile), cells (a 5 x 5 grid over the window) or\n"
-        "                       window (the whole window's mean)\n"
-        "      --method M       the method (default dem); one without the silo's features\n"
-        "                       (walls made of fixed grains, an orifice, ...) is refused.\n"
-        "                       Steps stay dem's (1.25e-4 tau); cd runs its own dt\n"
-        "                       (2.5e-3 tau, 20 steps) on rigid disks, mu 0.5, e = 0\n"
-        "      --param K=V      a key of the method's section (repeatable), e.g. tol=1e-4\n"
-        "  -Q, --quick          800 grains in a 20 d x 48 d silo filled without hopper,\n"
-        "                       2 realisations, shorter runs: a smoke test in seconds\n"
-        "  -f, --force          redo every part, even finished ones\n"
-        "  -q, --quiet          no progress line\n"
-        "  -h, --help           this help\n\n"
-        "Each discharge writes DIR/parts/start-D<D>-r<r>.part when done; a run that is\n"
-        "interrupted and started again with the same options redoes only the missing\n"
-        "parts. Exit codes: 0 done, 1 a run failed, 2 bad input.\n");
-}
-
-/* Lags 1, 2, 3, 4, 6, 8, 11, ... frames (ratio about sqrt 2). */
-static void make_lags(ss_ctx *c)
-{
-    c->nslots = 0;
-    double l = 1;
-    long last = 0;
-    while (c->nslots < SS_MAX_SLOTS) {
-        long v = lround(l);
-        l *= M_SQRT2;
-        if (v == last)
-            continue;
-        if (v * c->fs > c->max_steps)
-            break;
-        c->lag[c->nslots++] = last = v;
-    }
-}
-
-static void make_times(ss_ctx *c)
-{
-    static const long extra[] = {2500, 4000, 16000, 25000, 40000, 63000, 100000, 160000,
-                                 250000, 400000, 630000, 1000000};
-    c->ntimes = 0;
-    for (int i = 0; i < 6; i++)
-        c->times[c->ntimes++] = ss_fig32_steps[i];
-    for (size_t i = 0; i < sizeof extra / sizeof extra[0]; i++)
-        if (extra[i] <= c->max_steps && c->ntimes < SS_MAX_TIMES)
-            c->times[c->ntimes++] = extra[i];
-    for (size_t i = 1; i < c->ntimes; i++)
-        for (size_t j = i; j > 0 && c->times[j] < c->times[j - 1]; j--) {
-            long t = c->times[j];
-            c->times[j] = c->times[j - 1], c->times[j - 1] = t;
-        }
-}
-
-static int ss_report_any(const void *ctx, char *const *parts, char *summary, size_t nsum, gr_err *err)
-{
-    return ss_report(ctx, parts, summary, nsum, err);
-}
-
-static const struct option ss_own_opts[] = {{"max-steps", required_argument, NULL, 'M'},
-                                            {"subtract", required_argument, NULL, 'S'}, {NULL, 0, NULL, 0}};
-
-/* silo-start's own options; a number not given is -1 */
-typedef struct {
-    long maxsteps;
-    int subtract;
-} ss_own;
-
-static int ss_own_option(int ch, const char *arg, void *own);
-
-/* A discharge: the filling, then the time for the surface to fall 2 d,
- * which scales as 1 / flow rate ~ D^-3/2 (measured 1.82e5 steps at
- * D = 3.8 d, docs/experiments.md), within [min_steps, max_steps]. */
-static void ss_estimate(const void *ctx, double *pre, double *unit)
-{
-    const ss_ctx *c = ctx;
-    double s = 0;
-    for (size_t o = 0; o < c->norif; o++)
-        s += fmin((double)c->max_steps, fmax((double)c->min_steps, 1.82e5 * pow(3.8 / c->orifice[o], 1.5)));
-    *pre = 0;
-    *unit = silo_cpu_estimate(&c->base, SILO_FILL_STEPS + s / (double)c->norif);
-}
-
-static const silo_cli ss_cli = {
-    .name = "silo-start", .usage = usage, .own = ss_own_opts, .own_short = "", .own_parse = ss_own_option,
-    .orifices = "3.8,11", .quick_orifices = "3.8,11", .reinsert = 0,
-    .prefix = "start", .progress_what = "discharges", .units_what = "discharges",
-    .unit = ss_unit, .label = ss_label, .key = ss_key, .report = ss_report_any, .estimate = ss_estimate};
-
-/* --max-steps and --subtract into the ss_own at own */
-static int ss_own_option(int ch, const char *arg, void *own)
-{
-    ss_own *w = own;
-    if (ch == 'S') {
-        static const char *const names[] = {"window", "columns", "cells"};
-        for (int k = 0; k < 3; k++)
-            if (!strcmp(arg, names[k]))
-                return w->subtract = k, 0;
-        return silo_bad(&ss_cli, "--subtract", arg, "window, columns or cells");
-    }
-    if (ch != 'M')
-        return 1;
-    return silo_parse_long(arg, 100, &w->maxsteps) ? silo_bad(&ss_cli, "--max-steps", arg, "an integer >= 100") : 0;
-}
-
-int cmd_silo_start(int argc, char **argv)
-{
-    silo_opts o;
-    ss_own w = {-1, SS_SUB_COLUMNS};
-    int rc = silo_cli_parse(&ss_cli, argc, argv, &o, &w);
-    if (rc >= 0)
-        return rc;
-    ss_ctx c = {0};
-    c.quick = o.quick;
-    if ((rc = silo_cli_silo(&ss_cli, &o, &c.base, c.orifice, SS_MAX_ORIF, &c.norif)))
-        return rc;
-    int quick = o.quick;
-    c.nreal = (int)(o.nreal > 0 ? o.nreal : quick ? 2 : 20);
-    c.seed = (uint64_t)o.seed;
-    c.fs = 20;
-    c.min_steps = quick ? 4000 : 10000;
-    c.max_steps = w.maxsteps > 0 ? w.maxsteps : quick ? 12000 : 800000;
-    c.fall_stop = 2.0;
-    c.window = quick ? 8 : 15;
-    c.cell = quick ? 1 : 2;
-    c.sample_cap = quick ? 4000 : 20000;
-    c.subtract = w.subtract;
-    make_lags(&c);
-    make_times(&c);
-    char dir[1024];
-    c.dir = silo_cli_dir(&ss_cli, &o, dir, sizeof dir);
-    return silo_cli_sweep(&ss_cli, &o, &c, 0, c.norif * (size_t)c.nreal, c.dir);
 }

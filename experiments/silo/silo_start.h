@@ -8,6 +8,7 @@
 #include <stdint.h>
 
 #include "silo_common.h"
+#include "silo_fill.h"
 #include "fields.h"
 #include "stats.h"
 
@@ -41,6 +42,7 @@ typedef struct {
     size_t sample_cap;      /* displacement samples kept per slot and unit */
     int subtract;           /* the local mean flow subtracted: SS_SUB_* */
     const char *dir;
+    silo_fills fills;       /* one per realisation, branched to each orifice */
 } ss_ctx;
 
 /* The thesis's six panels of fig. 3.2, in steps after opening. */
@@ -68,7 +70,8 @@ typedef struct {
     double *vy;               /* ntimes x ncells */
     double *wsum;
     double grid[6];
-    double cost[5];           /* mean wall/CPU seconds of filling and run, steps */
+    double cost[5];           /* mean wall/CPU seconds of the branch and the run, steps */
+    double branch[4];         /* means: branch's settling time, lift, filling's CPU s, kinetic energy at opening */
 } ss_res;
 
 /* Figures and tables (silo_start_figs.c). */

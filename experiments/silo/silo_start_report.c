@@ -108,13 +108,24 @@ static int write_part(const ss_ctx *c, int k, gr_ckpt *ck, const ss_part *p, ss_
     snprintf(nm, sizeof nm, "D%g/r%02d/series", r->D, k);
     if (!rc && p->nser >= 3)
         rc = exp_put_result(h, nm, p->nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", p->ser, err);
-    double cost[5];
+    double cost[5], branch[4];
     exp_get_cost(ck, cost);
+    gr_err ig = {0};
+    if (gr_ckpt_get_f64(ck, "branch", branch, 4, &ig))
+        for (int q = 0; q < 4; q++)
+            branch[q] = NAN;
     for (int q = 0; q < 5; q++)
         r->cost[q] += cost[q] / (double)c->nreal;
+    for (int q = 0; q < 4; q++)
+        r->branch[q] += branch[q] / (double)c->nreal;
     snprintf(nm, sizeof nm, "D%g/r%02d/cost", r->D, k);
     if (!rc)
-        rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the filling, of the run, and its steps", cost, err);
+        rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the branch, of the run, and its steps", cost, err);
+    snprintf(nm, sizeof nm, "D%g/r%02d/branch", r->D, k);
+    if (!rc)
+        rc = exp_put_result(h, nm, 4, 0, NULL,
+                            "the branch from the realisation's filling: its settling time (tau), the lift (d), the filling's CPU seconds, kinetic energy per grain at opening (m g d)",
+                            branch, err);
     double meta[4] = {(double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
                       exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps")};
     snprintf(nm, sizeof nm, "D%g/r%02d/meta", r->D, k);
@@ -394,9 +405,10 @@ static void summary_row(const ss_ctx *c, const ss_res *r, double fit[2][6], doub
     if (summary && *off < nsum)
         *off += (size_t)snprintf(summary + *off, nsum - *off,
                                  "  D = %g d: MSD exponents x %.3f +- %.3f, y %.3f +- %.3f; kappa (x, y) %.2f, %.2f at a %.3g d fall, %.2f, %.2f at %.3g d\n"
-                                 "    per discharge: filling %.0f s wall (%.0f s CPU), run %.0f s wall (%.0f s CPU) for %.0f steps\n",
+                                 "    per discharge: the filling %.0f s CPU (one per realisation, shared by the orifices), branch %.1f s CPU\n"
+                                 "    (lift %.3f d, settled %.2f tau, kinetic energy %.2g m g d per grain at opening), run %.0f s wall (%.0f s CPU) for %.0f steps\n",
                                  r->D, fit[0][0], fit[0][1], fit[1][0], fit[1][1], s[10], s[11], s[3], s[13], s[14], s[12],
-                                 r->cost[0], r->cost[1], r->cost[2], r->cost[3], r->cost[4]);
+                                 r->branch[2], r->cost[1], r->branch[1], r->branch[0], r->branch[3], r->cost[2], r->cost[3], r->cost[4]);
 }
 
 static int write_summary(const ss_ctx *c, gr_h5md *h, const double *summ, gr_err *err)

@@ -45,6 +45,9 @@ for f in silo-start.h5 summary.dat msd_D3.8.dat msd_D11.dat pdf_short_D11.dat pd
 done
 [ -z "$missing" ]
 check $? "silo-start writes every table and figure${missing:+ (missing:$missing)}"
+# settle once per realisation, branch both orifices from it
+[ "$(find "$S/parts" -name 'fill-*.part' | wc -l)" = 2 ] && [ "$(find "$S/parts" -name 'start-*.part' | wc -l)" = 4 ]
+check $? "silo-start fills once per realisation (2 fillings) and branches its 4 discharges from them"
 
 $PY - "$S/silo-start.h5" >"$tmp/err" 2>&1 <<'PY'
 import sys, h5py, numpy as np
