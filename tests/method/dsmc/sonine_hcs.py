@@ -27,6 +27,7 @@ As K grows the two closures and successive orders converge where the Sonine
 expansion does (alpha >~ 0.5); their spread measures what is left.
 
     /usr/bin/python3 tests/method/dsmc/sonine_hcs.py            # the table (1-2 min)
+    /usr/bin/python3 tests/method/dsmc/sonine_hcs.py --alpha 0.9999 --kmax 6
     /usr/bin/python3 tests/method/dsmc/sonine_hcs.py --check    # self-tests
 """
 import math
@@ -189,15 +190,17 @@ def table(kmax=8, alphas=ALPHAS):
     uncertainty."""
     print(f"# a2 (and a3, a4 of K = {kmax} full) of the HCS of hard disks, Boltzmann equation; "
           "K = Sonine order (K = 2 linear is van Noije-Ernst)")
-    print("alpha K2lin=vNE K2full K3lin K3full K4lin K4full best +- a3 a4")
+    print("alpha K2lin=vNE K2full K3lin K3full K4lin K4full best +- a3 a4 vNE/(1-alpha) best/(1-alpha) a3/(1-alpha)")
     for al in alphas:
         tab = moment_tables(al, kmax)
-        row = [f"{al:.2f}"]
+        row = [f"{al:.4g}"]
         for K in (2, 3, 4):
             row += [f"{solve(al, K, lin, tab)[0]:.5f}" for lin in (True, False)]
         hi = [solve(al, K, lin, tab)[0] for K in range(5, kmax + 1) for lin in (True, False)]
         full = solve(al, kmax, False, tab)
-        row += [f"{(max(hi) + min(hi)) / 2:.5f}", f"{(max(hi) - min(hi)) / 2:.5f}", f"{full[1]:.5f}", f"{full[2]:.5f}"]
+        best, e = (max(hi) + min(hi)) / 2, 1 - al
+        row += [f"{best:.5f}", f"{(max(hi) - min(hi)) / 2:.5f}", f"{full[1]:.5f}", f"{full[2]:.5f}"]
+        row += [f"{van_noije_ernst(al) / e:.4f}", f"{best / e:.4f}", f"{full[1] / e:.4f}"]
         print(" ".join(row), flush=True)
 
 
@@ -205,4 +208,5 @@ if __name__ == "__main__":
     if "--check" in sys.argv:
         sys.exit(0 if check() else 1)
     k = int(sys.argv[sys.argv.index("--kmax") + 1]) if "--kmax" in sys.argv else 8
-    table(k)
+    al = [float(a) for a in sys.argv[sys.argv.index("--alpha") + 1].split(",")] if "--alpha" in sys.argv else ALPHAS
+    table(k, al)
