@@ -152,6 +152,17 @@ def check():
     e = np.max(np.abs(M[1]))
     print(f"# elastic mu_2 coefficients, largest |M_1ij| = {e:.2e}")
     ok &= e < 1e-12
+    # 1b. elastic: the Maxwellian is stationary (mu_p = 0 for every p), and the
+    #     linearised operator is self-adjoint: in the Sonine basis
+    #     L_kl = -int phi S_k L[S_l] is symmetric (tests the a3, a4 terms)
+    M = 0.5 * (M + M.transpose(0, 2, 1))
+    e0 = np.max(np.abs(M[:, 0, 0]))
+    coef = [laguerre.lag2poly([0] * k + [1]) for k in range(5)]
+    L = np.array([[sum(coef[k][p] * 2 * M[p][0][l] for p in range(len(coef[k]))) for l in range(2, 5)]
+                  for k in range(2, 5)])
+    e1 = np.max(np.abs(L - L.T)) / np.max(np.abs(L))
+    print(f"# elastic: largest |mu_p(Maxwellian)| = {e0:.2e}; asymmetry of L_kl (k, l = 2..4) {e1:.2e}")
+    ok &= e0 < 1e-12 and e1 < 1e-12
     # 2. Maxwellian mu_2 against the exact value: with this normalisation
     #    mu_2 = sqrt(2 pi) (1 - alpha^2) / 4 ... derived from zeta of Haff: checked
     #    by the ratio to (1 - alpha^2) at two alphas (first Sonine: (1 + 3 a2/16))
