@@ -132,8 +132,40 @@ static void test_barometric(void **st)
     gr_scene_free(sc);
 }
 
-int main(void)
+/* `freq ENSKOG ETA N DTF CELLF T`: the equilibrium (elastic) collision
+ * frequency of N disks at packing ETA in a periodic square, dt = DTF mean
+ * free times, cells of CELLF mean free paths, over T mean free times,
+ * against 2 sqrt(pi) n sigma sqrt(T/m) (times chi): the rate of the Enskog
+ * mode's thinning of pairs against dt (docs/methods/dsmc.md). */
+static int freq_scan(char **argv)
 {
+    const char *ens = argv[2];
+    double eta = atof(argv[3]), dtf = atof(argv[5]), cf = atof(argv[6]), tf = atof(argv[7]);
+    int n = atoi(argv[4]);
+    double L = sqrt(n * M_PI / 4 / eta), nd = n / (L * L), tau = 1 / (2 * sqrt(M_PI) * nd), lam = 1 / (2 * sqrt(2) * nd);
+    char text[1024];
+    snprintf(text, sizeof text,
+             "[scene]\nseed = 3\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"
+             "bottom = periodic\ntop = periodic\n[species]\ncount = %d\n[init]\nkind = random\nvelocity = gaussian\n"
+             "v0 = 1\n[dsmc]\ndt = %.17g\ncell = %.17g\nenskog = %s\n",
+             L, L, n, dtf * tau, cf * lam, ens);
+    gr_scene *sc;
+    gr_sim *s = ds_make(text, &sc);
+    double T = ds_temp(s);
+    ds_run_to(s, tf * tau / sqrt(T));
+    double c = (double)ds_counter(s, "pair_collisions"), t = gr_sim_time(s);
+    double want = 2 * sqrt(M_PI) * nd * sqrt(T) * (strcmp(ens, "yes") ? 1.0 : gr_dsmc_chi(eta));
+    printf("freq enskog %s eta %g n %d dt %g tau cell %g lambda: nu/theory %.5f +- %.5f (%.0f collisions)\n", ens, eta,
+           n, dtf, cf, 2 * c / (n * t) / want, 1 / sqrt(c), c);
+    gr_sim_free(s);
+    gr_scene_free(sc);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 8 && !strcmp(argv[1], "freq"))
+        return freq_scan(argv);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_frequency), cmocka_unit_test(test_frequency_enskog),
         cmocka_unit_test(test_maxwell),   cmocka_unit_test(test_haff),
