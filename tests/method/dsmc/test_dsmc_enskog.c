@@ -39,7 +39,7 @@ static void test_eos_virial(void **st)
         ds_run_to(s, 10 + k);
         Tsum += ds_temp(s);
     }
-    double A = d->Lx * d->Ly, n = d->n / A, T = Tsum / 40;
+    double A = d->Lx * d->Ly, n = d->n * d->W / A, T = Tsum / 40; /* grains per area */
     double Z = 1 + d->W * d->virial / (2 * A * d->wall_time * n * T);
     print_message("# EOS from the collisional transfer, eta %.2f: Z %.4f, Henderson %.4f, ratio %.4f\n", eta, Z,
                   exp_z_henderson(eta), Z / exp_z_henderson(eta));
