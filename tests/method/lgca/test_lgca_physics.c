@@ -50,8 +50,8 @@ static void conservation_exact(void **unused)
 {
     (void)unused;
     const char *variants[] = {"rules = fhp3\n", "rules = granular\n", "rules = fhp3\nthreads = 2\n",
-                              "rules = granular\nthreads = 2\n"};
-    for (size_t v = 0; v < 4; v++) {
+                              "rules = granular\nthreads = 2\n", "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n"};
+    for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
         gr_scene *sc;
         lgca *L;
         gr_sim *s = uniform_lattice(96, 70, variants[v], 0.35, 0.2, 3 + v, &sc, &L);
