@@ -9,7 +9,9 @@
  *  - shear viscosity from the decay of a shear wave against Frisch et al.'s
  *    FHP-III Boltzmann formula, within 3 % at d = 1/2; the slow suite
  *    (test_lgca_viscosity) covers other densities, wavelengths and the
- *    Poiseuille flow. */
+ *    Poiseuille flow;
+ *  - the pipe's density waves appear with dissipation (short run). */
+#include "lgca_pipe.h"
 #include "lgca_visc.h"
 
 #include <stdlib.h>
@@ -190,12 +192,26 @@ static void shear_viscosity(void **unused)
     assert_rel(nu, lgca_frisch_nu(d), 0.03);
 }
 
+/* The pipe's density waves, short (test_lgca_pipe has the long runs):
+ * with the rest collision the long-wave contrast of the density is large,
+ * without dissipation it stays near 1. */
+static void pipe_waves(void **unused)
+{
+    (void)unused;
+    lgca_pipe q = {0.2, 0.005, 0.3, 1, 0.3, 16, 1024, 1500, 4096};
+    double on = lgca_pipe_run(&q, NULL);
+    q.p = q.stop = 0;
+    double off = lgca_pipe_run(&q, NULL);
+    printf("# pipe: long-wave contrast %.1f with p = stop = 0.3, %.2f without\n", on, off);
+    assert_true(on > 30 && off < 3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(conservation_exact), cmocka_unit_test(granular_decay),
         cmocka_unit_test(fermi_dirac_equilibrium), cmocka_unit_test(sound_speed),
-        cmocka_unit_test(shear_viscosity),
+        cmocka_unit_test(shear_viscosity), cmocka_unit_test(pipe_waves),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
