@@ -86,8 +86,9 @@ void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned p
 void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
                             uint32_t thr, uint64_t *out);
 /* The baseline build is x86-64 (SSE2); hot loops get an AVX2 clone chosen
- * at load time (GCC's target_clones) on CPUs that have it. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+ * at load time (GCC's target_clones) on CPUs that have it. -DLGCA_NO_CLONES
+ * builds the baseline alone, so that its tests run on an AVX2 machine. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(LGCA_NO_CLONES)
 #define LGCA_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define LGCA_CLONES
