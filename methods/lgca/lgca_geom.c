@@ -152,6 +152,8 @@ static int alloc_lattice(lgca *L, gr_err *err)
     L->valid = calloc(nw, sizeof *L->valid);
     L->scratch = calloc(T * 6 * nw, sizeof *L->scratch);
     L->edge = calloc(T * 4 * nw, sizeof *L->edge);
+    if (L->thr_stop && !(L->stop_mask = calloc(nj * nw, sizeof *L->stop_mask)))
+        return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
     if (!L->s || !L->solid || !L->valid || !L->scratch || !L->edge)
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
     for (int i = 0; i < L->ni; i++)
@@ -185,6 +187,7 @@ int lgca_create(const gr_scene *sc, const lgca_params *par, const uint32_t key[2
     L->thr_p = (uint32_t)lround(par->p * 65536.0);
     L->thr_g = (uint32_t)lround(par->g * 65536.0);
     L->thr_b = (uint64_t)llround(par->b * 4294967296.0);
+    L->thr_stop = (uint64_t)llround(par->stop * 4294967296.0);
     int rc = check_size(L, err);
     if (!rc)
         rc = alloc_lattice(L, err);
@@ -207,5 +210,6 @@ void lgca_free(lgca *L)
     if (!L)
         return;
     free(L->s), free(L->solid), free(L->valid), free(L->walls), free(L->scratch), free(L->edge);
+    free(L->stop_mask);
     free(L);
 }

@@ -32,6 +32,7 @@ typedef struct {
     double p;    /* dissipation probability (granular rules) */
     double g;    /* gravity probability per node and step; NaN: from the scene */
     double b;    /* wall roughness: bounce-back probability */
+    double stop; /* a head-on pair meeting a rest particle stops (granular) */
     int rules;   /* LGCA_RULES_* */
     int threads;
 } lgca_params;
@@ -70,7 +71,8 @@ void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, 
 
 /* ---- random bits (lgca_rand.c): Philox4x32-10 keyed by the run's key,
  * counted by word, purpose and step ---- */
-enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34, LGCA_RND_REINSERT = 35 };
+enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34, LGCA_RND_REINSERT = 35,
+       LGCA_RND_STOP = 36 /* and 37 */ };
 uint64_t lgca_rand_word(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step);
 /* 64 bits each set with probability thr / 2^16 (thr <= 65536). */
 uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step,
@@ -84,8 +86,9 @@ void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned p
 void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
                             uint32_t thr, uint64_t *out);
 /* The baseline build is x86-64 (SSE2); hot loops get an AVX2 clone chosen
- * at load time (GCC's target_clones) on CPUs that have it. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+ * at load time (GCC's target_clones) on CPUs that have it. -DLGCA_NO_CLONES
+ * builds the baseline alone, so that its tests run on an AVX2 machine. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(LGCA_NO_CLONES)
 #define LGCA_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define LGCA_CLONES
@@ -113,6 +116,8 @@ typedef struct lgca {
     int has_gates;
     uint32_t thr_p, thr_g;  /* probabilities in units of 2^-16 */
     uint64_t thr_b;         /* in units of 2^-32 */
+    uint64_t thr_stop;      /* in units of 2^-32 */
+    uint64_t *stop_mask;    /* [j * nw + w] nodes where a rest collision may happen */
     uint32_t key[2];
     uint64_t step;
     int exits;              /* a silo: nodes below exit_below empty out */
@@ -161,6 +166,16 @@ int lgca_init_state(lgca *L, const gr_particles *init, gr_rng *rng, gr_err *err)
  * with reinsertion each goes back, in its channel, to the highest free node
  * of the band in a lane drawn at random (or the next lane with room). */
 void lgca_exits(lgca *L);
+
+/* lgca_stop.c: Peng and Herrmann's rest collision, on bit planes or bytes
+ * through an accessor of node states. */
+typedef struct {
+    unsigned (*get)(const void *ctx, int i, int j);
+    void (*set)(void *ctx, int i, int j, unsigned s);
+    void *ctx;
+} lgca_access;
+void lgca_stop_node(const lgca *L, int i, int j, uint64_t step, const lgca_access *a);
+void lgca_stop_pass(lgca *L, uint64_t *mask);
 
 /* lgca_step.c: n steps (collision, gravity, walls, propagation, exits). */
 int lgca_steps(lgca *L, uint64_t n, gr_err *err);

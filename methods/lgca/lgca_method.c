@@ -15,6 +15,10 @@ static int check(const gr_scene *sc, lgca_params *p, gr_err *err)
         gr_scene_where(sc, "lgca", "p", where, sizeof where);
         return gr_fail(err, GR_EINPUT, "%s: p = %g needs rules = granular (fhp3 conserves energy)", where, p->p);
     }
+    if (p->rules == LGCA_RULES_FHP3 && p->stop > 0) {
+        gr_scene_where(sc, "lgca", "stop", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: stop = %g needs rules = granular (fhp3 conserves energy)", where, p->stop);
+    }
     if (isnan(p->g))
         p->g = sc->gravity * p->dt * p->dt / gr_scene_max_diameter(sc);
     else if (p->g > 0 && !(sc->gravity > 0)) {

@@ -16,6 +16,9 @@ const gr_param lgca_param_table[] = {
      "gravity: probability per node and step of one unit of downward momentum; default gravity dt^2 / d"},
     {"b", GR_PARAM_REAL, 0, 0, 1, 0, NULL, "1",
      "wall roughness: probability that a wall bounces a particle back instead of reflecting it"},
+    {"stop", GR_PARAM_REAL, 0, 0, 1, 0, NULL, "1",
+     "rest collision: probability that a head-on pair meeting a rest particle comes to rest, two rest particles "
+     "hopping to neighbours (granular rules)"},
     {"threads", GR_PARAM_INT, 1, 1, 256, 0, NULL, "1", "threads (results do not depend on it)"},
     {NULL, 0, 0, 0, 0, 0, NULL, NULL, NULL},
 };
@@ -27,5 +30,6 @@ void lgca_params_from(const gr_param_values *pv, lgca_params *p)
     p->p = gr_param_get(pv, "p");
     p->g = gr_param_get(pv, "g");
     p->b = gr_param_get(pv, "b");
+    p->stop = gr_param_get(pv, "stop");
     p->threads = (int)gr_param_get(pv, "threads");
 }

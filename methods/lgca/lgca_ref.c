@@ -67,6 +67,44 @@ static void reflect(const lgca *L, uint8_t *b, uint64_t step)
     }
 }
 
+typedef struct {
+    const lgca *L;
+    uint8_t *b;
+} bytes_ctx;
+
+static unsigned byte_get(const void *ctx, int i, int j)
+{
+    const bytes_ctx *c = ctx;
+    return c->b[(size_t)j * (size_t)c->L->ni + (size_t)i];
+}
+
+static void byte_set(void *ctx, int i, int j, unsigned s)
+{
+    bytes_ctx *c = ctx;
+    c->b[(size_t)j * (size_t)c->L->ni + (size_t)i] = (uint8_t)s;
+}
+
+/* The rest collision: the nodes that qualify before the pass, in order. */
+static int stop_pass(const lgca *L, uint8_t *b, uint64_t step)
+{
+    size_t n = (size_t)L->ni * (size_t)L->nj;
+    uint8_t *q = malloc(n);
+    if (!q)
+        return GR_ERUN;
+    for (size_t k = 0; k < n; k++) {
+        unsigned s = b[k];
+        q[k] = (s >> LGCA_REST & 1u) && (s & s >> 3 & 7u);
+    }
+    bytes_ctx c = {L, b};
+    lgca_access a = {byte_get, byte_set, &c};
+    for (int j = 0; j < L->nj; j++)
+        for (int i = 0; i < L->ni; i++)
+            if (q[(size_t)j * (size_t)L->ni + (size_t)i] && !lgca_is_solid(L, i, j))
+                lgca_stop_node(L, i, j, step, &a);
+    free(q);
+    return GR_OK;
+}
+
 int lgca_ref_step(const lgca *L, uint8_t *b, uint64_t step, gr_err *err)
 {
     if (L->exits)
@@ -78,6 +116,10 @@ int lgca_ref_step(const lgca *L, uint8_t *b, uint64_t step, gr_err *err)
     if (!nb)
         return gr_fail(err, GR_ERUN, "out of memory");
     collide(L, b, step, tab);
+    if (L->thr_stop && stop_pass(L, b, step)) {
+        free(nb);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
     reflect(L, b, step);
     for (int j = 0; j < L->nj; j++)
         for (int i = 0; i < L->ni; i++) {

@@ -1,5 +1,6 @@
 /* One step of the automaton on bit planes: collision (and dissipation) and
- * gravity at fluid nodes, reflection at wall nodes, propagation, then the
+ * gravity at fluid nodes, Peng and Herrmann's rest collision (lgca_stop.c),
+ * reflection at wall nodes, propagation, then the
  * silo's exit and reinsertion. Lanes are split into one block per thread;
  * every random bit is a function of (key, word, purpose, step), so the
  * result does not depend on the split. */
@@ -196,7 +197,11 @@ static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
         collide_block(L, j0, j1, scr);
 #pragma omp barrier
 #pragma omp single
-        reflect(L);
+        {
+            if (L->thr_stop)
+                lgca_stop_pass(L, L->stop_mask);
+            reflect(L);
+        }
         for (int q = 0; q < 4; q++)
             out += save_edge(L, q, across[q], t, j0, j1);
         for (int j = j0; j < j1; j++) {

@@ -38,7 +38,6 @@ static inline void lgca_totals(const lgca *L, int64_t *mass, int64_t *qx, int64_
         }
 }
 
-#endif
 
 /* A periodic scene of nx lanes and ny rows (lattice spacing 1). */
 static inline void lgca_periodic_text(char *buf, size_t n, int nx, int ny, const char *extra)
@@ -69,3 +68,5 @@ static inline void lgca_fill(lgca *L, double (*f)(int k, double x, double y, voi
 static const double LGCA_SX[6] = {0, 0.86602540378443865, 0.86602540378443865, 0, -0.86602540378443865,
                                   -0.86602540378443865};
 static const double LGCA_SY[6] = {1, 0.5, -0.5, -1, -0.5, 0.5};
+
+#endif

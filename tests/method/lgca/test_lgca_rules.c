@@ -139,7 +139,8 @@ static void table_viscosity_is_frisch(void **unused)
 }
 
 /* Steps of the backend against the reference, every byte, on a scene with
- * every rule in play: walls (segments, rough), gravity, dissipation. Lanes
+ * every rule in play: walls (segments, rough), gravity, dissipation, the
+ * rest collision (stop). Lanes
  * of 300 nodes (5 words) take both the kernel's four-word vector path and
  * its one-word tail. */
 static void fast_equals_reference(void **unused)
@@ -150,7 +151,9 @@ static void fast_equals_reference(void **unused)
         "right = periodic\n[wall.a]\nfrom = 10 40\nto = 45 70\n[wall.b]\nfrom = 20 100\nto = 50 100\n"
         "[init]\nkind = occupation\noccupation = 0.3\nrest_occupation = 0.2\n[lgca]\nb = 0.3\n";
     const char *variants[] = {"rules = fhp3\nthreads = 1\n", "rules = granular\np = 0.3\nthreads = 1\n",
-                              "rules = granular\np = 0.3\nthreads = 3\n", "rules = fhp3\nthreads = 2\ng = 0\n"};
+                              "rules = granular\np = 0.3\nthreads = 3\n", "rules = fhp3\nthreads = 2\ng = 0\n",
+                              "rules = granular\np = 0.3\nstop = 0.5\nthreads = 1\n",
+                              "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n"};
     for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
         char text[2048];
         snprintf(text, sizeof text, "%s%s", base, variants[v]);
