@@ -5,10 +5,10 @@
  * asserts that the error does not grow along them (beyond the error bars).
  * A row whose quick list is empty runs only in the full comparison.
  *
- * dsmc's rows fix a cell of 8 diameters: in its Enskog mode the rate is
- * multiplied by chi of each cell's own packing fraction, which for cells
- * of a few particles fluctuates and, chi being convex, biases the rate up
- * (the dsmc-cell rows show it). The dsmc-weight row moves [species]
+ * dsmc's rows fix a cell of 8 diameters: in cells of a few particles its
+ * Enskog mode's rate is biased (chi of each cell's own packing fraction,
+ * the collisional displacement's thinning of pairs; the dsmc-cell rows
+ * show it, docs/comparison.md). The dsmc-weight row moves [species]
  * count and weight together ("count:weight", a knob of two keys) so the
  * represented grains stay the same: fewer particles per cell as the
  * weight grows.
