@@ -68,7 +68,7 @@ assert np.isfinite(e[:, 2:]).all(), "non-finite profile error"
 dem = e[e[:, 0] == 1]
 assert len(dem) and (dem[:, 2] < 0.1).all(), ("dem's density profile", dem[:, 2])
 PYEOF
-    check $? "compare.h5: a finite table per case, two methods or more each; vibrated profiles"
+    check $? "compare.h5: a finite table per case, two methods or more each; vibrated profiles; silo-widths: Q(D) grows, lgca settles near linear, dem steeper"
 else
     ok "compare.h5 check # SKIP no h5py"
 fi
