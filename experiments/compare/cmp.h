@@ -28,12 +28,17 @@ typedef struct {
     const char *full;    /* comma-separated values of the full comparison */
     const char *quick;   /* those of --quick */
     const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
-    int role;            /* CMP_SWEEP, CMP_REFERENCE or CMP_BIAS */
+    int role;            /* CMP_SWEEP, CMP_REFERENCE, CMP_BIAS or CMP_MODEL */
+    const char *scene;   /* the row's own variant of the case's scene (same geometry, the
+                            method's own model of what it cannot represent), or NULL */
 } cmp_row;
 enum {
     CMP_SWEEP = 0,     /* its error must not grow as the knob is tightened (--quick checks) */
     CMP_REFERENCE = 1, /* its result is the case's reference (a long or exact run) */
-    CMP_BIAS = 2       /* shows a bias that grows along the knob: reported, not checked */
+    CMP_BIAS = 2,      /* shows a bias that grows along the knob: reported, not checked */
+    CMP_MODEL = 3      /* converges to its own model's answer, not the reference's: its
+                          value must settle as the knob is tightened (checked), its error
+                          against the reference is reported */
 };
 
 /* What a measurement gives: the quantity, its statistical error from
@@ -90,6 +95,8 @@ int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
 double cmp_ref_eos(const gr_scene *sc, double *aux_ref);
 double cmp_ref_silo(const gr_scene *sc, double *aux_ref);
 int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+int cmp_measure_silo_widths(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+double cmp_ref_silo_widths(const gr_scene *sc, double *aux_ref);
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 
 /* The runs of a comparison: one per (case, row, knob value, seed). */
@@ -113,9 +120,11 @@ typedef struct {
  * all), with notes on the methods left out (cmp_plan.c). */
 int cmp_plan_build(cmp_plan *pl, const char *cases, const char *methods, gr_err *err);
 
-/* The scene of a unit: file, quick settings, the row's fixed settings,
- * knob value and seed, parsed (cmp_unit.c). */
+/* The scene of a unit: file (the row's own or the case's), quick settings,
+ * the row's fixed settings, knob value and seed, parsed (cmp_unit.c). */
 gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err);
+/* Scene sc again with "section.key=value;..." applied to its text. */
+gr_scene *cmp_scene_with(const gr_scene *sc, const char *settings, gr_err *err);
 /* The sweep runner's unit function: runs unit `unit` of the plan (ctx)
  * and writes its part. */
 int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,

@@ -48,6 +48,7 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
                 meas, er, p->aux,
                 p->nok < p->n ? "FAILED"
                 : p->row->role == CMP_REFERENCE ? "(reference)"
+                : p->row->role == CMP_MODEL && p->error > 2 * p->error_sem ? "(its own model's answer)"
                 : p->error > 2 * p->error_sem ? "" : "(within the error bar)");
         if (p->msg[0])
             fprintf(f, "          %s\n", p->msg);
@@ -145,7 +146,8 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
             for (size_t i = 0; i < nall[k]; i++) {
                 const cmp_point *p = &all[k][i];
                 int last = i + 1 == nall[k] || all[k][i + 1].row != p->row;
-                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]) && p->row->role == CMP_SWEEP &&
+                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]) &&
+                    (p->row->role == CMP_SWEEP || p->row->role == CMP_MODEL) &&
                     !strchr(p->row->label, '-')) {
                     fprintf(gp, "%d %.6g %.6g\n", k, fmax(p->error, floor_err), p->wall);
                     count[m]++;

@@ -1,6 +1,7 @@
 /* The plan of a comparison: for each chosen case, every chosen method that
- * models its scene, over its row's knob values and the case's seeds; the
- * methods that do not model a scene, or have no row yet, are noted. */
+ * models its scene (or a row's own variant of it), over its row's knob
+ * values and the case's seeds; the methods that do not model a scene, or
+ * have no row yet, are noted. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,11 +25,11 @@ static void note(cmp_plan *pl, const char *fmt, const char *a, const char *b, co
     snprintf(pl->notes + k, sizeof pl->notes - k, fmt, a, b, c);
 }
 
-/* Whether method m models the case's scene; notes why not. */
-static int models(cmp_plan *pl, const cmp_case *c, const gr_method_type *m, const gr_scene *sc)
+/* Whether method m models scene sc (file `file`); notes why not. */
+static int models(cmp_plan *pl, const cmp_case *c, const gr_method_type *m, const gr_scene *sc, const char *file)
 {
     gr_err e = {0};
-    if (!gr_method_require_features(m, gr_scene_features(sc), c->scene, &e))
+    if (!gr_method_require_features(m, gr_scene_features(sc), file, &e))
         return 1;
     note(pl, "# %s: %s: not modelled: %s\n", c->name, m->name, e.msg);
     return 0;
@@ -65,6 +66,39 @@ static int row_units(cmp_plan *pl, size_t *cap, const cmp_case *c, const cmp_row
     return GR_OK;
 }
 
+/* The rows of method m in case c: those on the case's scene if m models
+ * it, and those on their own variant scene if m models that. */
+static int method_rows(cmp_plan *pl, size_t *cap, const cmp_case *c, const gr_method_type *m, const gr_scene *sc,
+                       gr_err *err)
+{
+    int rows = 0, own = 0, rc = GR_OK;
+    for (const cmp_row *r = c->rows; r->method; r++)
+        if (!strcmp(r->method, m->name))
+            rows++, own += r->scene != NULL;
+    int on_case = rows > own && models(pl, c, m, sc, c->scene);
+    if (!rows && models(pl, c, m, sc, c->scene))
+        note(pl, "# %s: %s: models the scene; no row in the case table yet%s\n", c->name, m->name, "");
+    for (const cmp_row *r = c->rows; r->method && !rc; r++) {
+        if (strcmp(r->method, m->name))
+            continue;
+        if (!r->scene) {
+            rc = on_case ? row_units(pl, cap, c, r, err) : GR_OK;
+            continue;
+        }
+        cmp_unit probe = {.c = c, .row = r, .seed = 1};
+        gr_scene *own_sc = cmp_unit_scene(pl, &probe, err);
+        if (!own_sc)
+            return err->code;
+        if (models(pl, c, m, own_sc, r->scene)) {
+            note(pl, "# %s: %s: runs its own scene %s (same geometry, the method's own model; "
+                     "docs/comparison.md)\n", c->name, r->label, r->scene);
+            rc = row_units(pl, cap, c, r, err);
+        }
+        gr_scene_free(own_sc);
+    }
+    return rc;
+}
+
 static int plan_case(cmp_plan *pl, size_t *cap, const cmp_case *c, const char *methods, gr_err *err)
 {
     cmp_unit probe = {.c = c, .row = &c->rows[0], .seed = 1};
@@ -72,20 +106,9 @@ static int plan_case(cmp_plan *pl, size_t *cap, const cmp_case *c, const char *m
     if (!sc)
         return err->code;
     int rc = GR_OK;
-    for (const gr_method_type *const *m = gr_method_all(); *m && !rc; m++) {
-        if (!listed(methods, (*m)->name))
-            continue;
-        int rows = 0;
-        for (const cmp_row *r = c->rows; r->method; r++)
-            rows += !strcmp(r->method, (*m)->name);
-        if (!models(pl, c, *m, sc))
-            continue;
-        if (!rows)
-            note(pl, "# %s: %s: models the scene; no row in the case table yet%s\n", c->name, (*m)->name, "");
-        for (const cmp_row *r = c->rows; r->method && !rc; r++)
-            if (!strcmp(r->method, (*m)->name))
-                rc = row_units(pl, cap, c, r, err);
-    }
+    for (const gr_method_type *const *m = gr_method_all(); *m && !rc; m++)
+        if (listed(methods, (*m)->name))
+            rc = method_rows(pl, cap, c, *m, sc, err);
     for (const cmp_row *r = c->rows; r->method; r++)
         if (!gr_method_find(r->method))
             note(pl, "# %s: %s: not registered in this build%s\n", c->name, r->method, "");

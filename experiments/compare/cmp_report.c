@@ -74,7 +74,11 @@ static int references(const cmp_plan *pl, const cmp_case *c, size_t first_unit, 
 {
     *ref = (cmp_refs){NAN, 0, NAN, NAN, NAN};
     if (c->reference) {
-        gr_scene *sc = cmp_unit_scene(pl, &pl->units[first_unit], err);
+        /* the case's own scene (the first row's settings), not a row's variant */
+        cmp_unit probe = pl->units[first_unit];
+        probe.row = &c->rows[0];
+        snprintf(probe.value, sizeof probe.value, "%s", "");
+        gr_scene *sc = cmp_unit_scene(pl, &probe, err);
         if (!sc)
             return err->code;
         ref->analytic = c->reference(sc, &ref->aux_analytic);
@@ -121,9 +125,24 @@ int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_p
     return GR_OK;
 }
 
+/* A model row's value settles as its knob is tightened: the change from q
+ * to r is not larger than that from p to q, beyond 10 % and the error bars
+ * (it converges to the model's own answer, whatever the reference's). */
+static int settles(const cmp_case *c, const cmp_point *p, const cmp_point *q, const cmp_point *r)
+{
+    double d1 = fabs(q->mean - p->mean), d2 = fabs(r->mean - q->mean);
+    double slack = 2 * sqrt(p->sem * p->sem + 2 * q->sem * q->sem + r->sem * r->sem) + 1e-9;
+    if (d2 <= 1.1 * d1 + slack)
+        return 0;
+    printf("  CHECK FAILED %s %s: the value moved by %.3g (%s to %s), more than the %.3g before, beyond the "
+           "error bars\n", c->name, p->row->label, d2, q->value, r->value, d1);
+    return 1;
+}
+
 /* The checks of docs/comparison.md: each swept row's error does not grow as
  * its knob is tightened (values are listed coarse to fine) beyond the error
- * bars, which is how it falls until the statistical floor; edmd within the
+ * bars, which is how it falls until the statistical floor; a model row's
+ * value settles (its error against the reference is its model's); edmd within the
  * case's tolerance of the analytic value; every run finished with finite
  * numbers. Failures are printed; returns how many. */
 int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref)
@@ -143,11 +162,14 @@ int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs 
             bad++;
         }
         int finest = i + 1 == n || pts[i + 1].row != p->row;
-        if (c->tol_all > 0 && finest && p->row->role != CMP_BIAS && !(dev <= c->tol_all)) {
+        if (c->tol_all > 0 && finest && p->row->role != CMP_BIAS && p->row->role != CMP_MODEL &&
+            !(dev <= c->tol_all)) {
             printf("  CHECK FAILED %s %s %s: %.3g from the analytic value, beyond the tolerance %.3g\n", c->name,
                    p->row->label, p->value, dev, c->tol_all);
             bad++;
         }
+        if (p->row->role == CMP_MODEL && i + 2 < n && pts[i + 2].row == p->row)
+            bad += settles(c, p, p + 1, p + 2);
         if (p->row->role == CMP_SWEEP && i + 1 < n && pts[i + 1].row == p->row) {
             const cmp_point *q = &pts[i + 1];
             double slack = 2 * hypot(p->error_sem, q->error_sem) + 1e-9;

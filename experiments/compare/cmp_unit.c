@@ -70,10 +70,29 @@ static char *read_text(const char *path, gr_err *err)
     return t;
 }
 
+static gr_scene *parse(const char *text, const char *path, gr_err *err)
+{
+    const char *names[GR_MAX_METHODS + 1];
+    gr_method_names(names, GR_MAX_METHODS + 1);
+    return gr_scene_parse(text, path, names, err);
+}
+
+gr_scene *cmp_scene_with(const gr_scene *sc, const char *settings, gr_err *err)
+{
+    char *text = strdup(sc->text);
+    if (!text) {
+        gr_fail(err, GR_ERUN, "out of memory");
+        return NULL;
+    }
+    gr_scene *out = apply_settings(&text, settings, sc->path, err) ? NULL : parse(text, sc->path, err);
+    free(text);
+    return out;
+}
+
 gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
 {
     char path[2048], set[128];
-    snprintf(path, sizeof path, "%s/%s", pl->scenes, u->c->scene);
+    snprintf(path, sizeof path, "%s/%s", pl->scenes, u->row->scene ? u->row->scene : u->c->scene);
     char *text = read_text(path, err);
     int rc = !text;
     if (!rc && pl->quick && u->c->quick_set)
@@ -86,12 +105,7 @@ gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
         snprintf(set, sizeof set, "scene.seed=%d", u->seed);
         rc = apply_settings(&text, set, "the seed", err);
     }
-    gr_scene *sc = NULL;
-    if (!rc) {
-        const char *names[GR_MAX_METHODS + 1];
-        gr_method_names(names, GR_MAX_METHODS + 1);
-        sc = gr_scene_parse(text, path, names, err);
-    }
+    gr_scene *sc = rc ? NULL : parse(text, path, err);
     free(text);
     return sc;
 }
