@@ -55,6 +55,24 @@ static void do_cross(gr_edmd *s, int32_t i, int dir)
     edmd_cell_insert(s, i, ix + s->nx * iy);
 }
 
+/* What to try after a collapse: the guard when it is off; when it is on,
+ * a collapse it let through is a grain held at zero gap (at rest on a
+ * wall under gravity, or wedged), which a larger guard only postpones. */
+static const char *collapse_hint(const gr_edmd *s, char *buf, size_t n)
+{
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_NONE)
+        return "set [edmd] collapse = tc or threshold";
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
+        snprintf(buf, n, "the guard collapse = tc (tc = %g) is on and did not prevent it: a grain at rest "
+                         "against a wall under gravity; try a larger [edmd] tc (10 times), or dem or cd, "
+                         "which model resting packings", s->prm.tc);
+    else
+        snprintf(buf, n, "the guard collapse = threshold (v_threshold = %g) is on and did not prevent it: a "
+                         "grain at rest against a wall under gravity; a resting packing is dem's or cd's to "
+                         "model", s->prm.v_threshold);
+    return buf;
+}
+
 static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *err)
 {
     if (!isfinite(t))
@@ -66,16 +84,17 @@ static int check_collapse(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *er
         s->stuck = 0;
     s->t_prev_coll = t;
     if (s->stuck > 100000 + 10 * (uint64_t)s->n) {
+        char buf[300];
+        const char *hint = collapse_hint(s, buf, sizeof buf);
         if (j >= 0)
             return gr_fail(err, GR_ERUN,
                            "edmd: inelastic collapse at t = %.17g: %llu collisions without time "
-                           "advancing (last between grains %lld and %lld); set [edmd] collapse = tc "
-                           "or threshold",
-                           t, (unsigned long long)s->stuck, (long long)s->id[i], (long long)s->id[j]);
+                           "advancing (last between grains %lld and %lld); %s",
+                           t, (unsigned long long)s->stuck, (long long)s->id[i], (long long)s->id[j], hint);
         return gr_fail(err, GR_ERUN,
                        "edmd: inelastic collapse at t = %.17g: %llu collisions without time advancing "
-                       "(last grain %lld against a wall); set [edmd] collapse = tc or threshold",
-                       t, (unsigned long long)s->stuck, (long long)s->id[i]);
+                       "(last grain %lld against a wall); %s",
+                       t, (unsigned long long)s->stuck, (long long)s->id[i], hint);
     }
     return GR_OK;
 }
