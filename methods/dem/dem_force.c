@@ -144,28 +144,40 @@ DEM_INLINE void add_i(dem_ctx *c, size_t i, double fxi, double fyi, double tqi, 
         c->tq[i] += tqi;
 }
 
-DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
+/* Grain i's list pairs and walls, one pair at a time. */
+DEM_INLINE void grain_verlet(dem_ctx *c, const int NL, const int TL, dem_acc *acc, int32_t i)
 {
     gr_dem *d = c->d;
     const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j;
     const int32_t *restrict sgs = d->sg_start, *restrict sgj = d->sg_j;
+    double fxi = 0, fyi = 0, tqi = 0;
+    double xi = c->x[i], yi = c->y[i];
+    for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
+        int32_t j = nbj[k];
+        double dx = c->x[j] - xi, dy = c->y[j] - yi;
+        if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
+        if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
+        pair(c, NL, TL, acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
+    }
+    for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
+        if (c->seg_on[sgj[k]])
+            wall(c, NL, TL, acc, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
+    add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+}
+
+#include "dem_batch.h"
+
+DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
+{
+    if (TL != GR_TANG_SPRING) {
+        strip_batched(c, NL, TL, s);
+        return;
+    }
+    gr_dem *d = c->d;
     int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
     dem_acc acc = acc_start(s);
-    for (int32_t i = i0; i < i1; i++) {
-        double fxi = 0, fyi = 0, tqi = 0;
-        double xi = c->x[i], yi = c->y[i];
-        for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
-            int32_t j = nbj[k];
-            double dx = c->x[j] - xi, dy = c->y[j] - yi;
-            if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
-            if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
-            pair(c, NL, TL, &acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
-        }
-        for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
-            if (c->seg_on[sgj[k]])
-                wall(c, NL, TL, &acc, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
-        add_i(c, (size_t)i, fxi, fyi, tqi, TL);
-    }
+    for (int32_t i = i0; i < i1; i++)
+        grain_verlet(c, NL, TL, &acc, i);
     acc_store(c, &acc);
 }
 
