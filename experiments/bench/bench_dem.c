@@ -250,8 +250,9 @@ static int bed(long n, long steps, long settle, long threads, int scaling, int s
     r->rate = (double)d->nmobile * (double)steps / (t1 - t0);
     r->cpu_rate = (double)d->nmobile * (double)steps / (c1 - c0) * (double)threads;
     r->bytes_per_grain = gr_dem_memory(d) / (double)d->n;
-    fprintf(stderr, "dem n=%ld: %.3f s for %ld steps, %llu list builds, largest overlap %.4f d\n", n,
-            r->seconds, steps, (unsigned long long)(d->builds - b0), d->max_ovl);
+    fprintf(stderr, "dem n=%ld: %.3f s for %ld steps, %llu list builds, %.2f list pairs per grain, largest overlap %.4f d\n",
+            n, r->seconds, steps, (unsigned long long)(d->builds - b0),
+            d->nb_start ? (double)d->nb_start[d->n] / (double)d->n : 0.0, d->max_ovl);
     if (peer) {
         if ((rc = gr_dem_snapshot(d, p, err)))
             goto done;
