@@ -25,8 +25,6 @@
 #include "dem_contact.h"
 #include "dem_eval.h"
 
-enum { DEM_BATCH = 256, DEM_BATCH_GRAINS = 128 };
-
 typedef struct {
     int32_t i[DEM_BATCH], j[DEM_BATCH];
     double dx[DEM_BATCH], dy[DEM_BATCH], r2[DEM_BATCH], rs[DEM_BATCH];

@@ -10,6 +10,10 @@
 #include "dem.h"
 #include "dem_contact.h"
 
+/* Contacts and grains per batch of the Verlet pair loop (dem_batch.h); a
+ * grain with more list pairs than DEM_BATCH goes one pair at a time. */
+enum { DEM_BATCH = 256, DEM_BATCH_GRAINS = 128 };
+
 typedef struct {
     gr_dem *d;
     double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
