@@ -165,6 +165,8 @@ static void list_longer_than_batch(void **state)
     for (size_t i = 0; i < p->n; i++)
         p->id[i] = (int64_t)i;
     gr_dem *d = dt_create(sc, p);
+    /* the forces of evaluation 64: every 64th runs the batches (dem_force.c) */
+    dt_step(d, 63);
     long longest = 0;
     for (size_t i = 0; i < d->n; i++)
         longest = fmax(longest, d->nb_start[i + 1] - d->nb_start[i]);
