@@ -169,23 +169,57 @@ static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_e
     return GR_OK;
 }
 
-static int bed(long n, long steps, long settle, long threads, int scaling, double skin, const char *peer,
-               const char *dir, bed_result *r, gr_err *err)
+/* The flowing silo of grano silo-flow (thesis section 3.1), simplified: n
+ * grains on a lattice (pitch 1.05) in a box of wall grains W wide and 2 W
+ * tall, the orifice D = 8 open from the start and the grains that leave
+ * reinserted at the top, so that after the settling steps the flow is
+ * steady. W from n as silo-flow's 50 for 5000. */
+static void silo_text(long n, long threads, double skin, char *text, size_t cap)
 {
-    double width, height;
-    gr_particles *p = make_bed(n, &width, &height, err);
+    double W = round(50.0 * sqrt((double)n / 5000.0)), H = 2 * W, b = 5, D = 8;
+    long per_row = (long)floor((W - 0.1) / 1.05), rows = (n + per_row - 1) / per_row + 1;
+    double r0 = b + 0.05, r1 = r0 + (double)rows * 1.05 + 0.5;
+    snprintf(text, cap,
+             "[scene]\nseed = 1\n[domain]\nwidth = %.17g\nheight = %.17g\nbottom = open\ngravity = 1\n"
+             "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
+             "gamma_t = 300\nmu = 0.5\n[species]\ndiameter = 1\ncount = %ld\n"
+             "[silo]\nwidth = %.17g\nheight = %.17g\nbase = %.17g\norifice = %.17g\nopen_time = 0\n"
+             "walls = grains\nexit_below = %.17g\nreinsert = yes\n"
+             "[init]\nkind = lattice\nregion = 1 %.17g %.17g %.17g\nspacing = 1.05\nvelocity = gaussian\nv0 = 1\n"
+             "[dem]\ndt = 1.25e-4\nthreads = %ld\nskin = %.17g\nmax_overlap = 0.25\n",
+             W + 2, fmax(b + H + 2, r1 + 1), n, W, H, b, D, b - 1.5, r0, W + 1, r1, threads, skin);
+}
+
+static int bed(long n, long steps, long settle, long threads, int scaling, int silo, double skin,
+               const char *peer, const char *dir, bed_result *r, gr_err *err)
+{
+    double width = 0, height = 0;
+    char text[2048];
+    gr_particles *p;
+    gr_scene *sc = NULL;
+    if (silo) {
+        silo_text(n, threads, skin, text, sizeof text);
+        p = gr_particles_create(0, err);
+        if (p && (!(sc = bench_dem_scene(text, err)) || gr_init_particles(sc, p, err))) {
+            gr_scene_free(sc);
+            gr_particles_free(p);
+            return err->code;
+        }
+    } else {
+        p = make_bed(n, &width, &height, err);
+        snprintf(text, sizeof text,
+                 "[domain]\nwidth = %.17g\nheight = %.17g\ngravity = 1\n"
+                 "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
+                 "gamma_t = 300\nmu = 0.5\n"
+                 /* the grains come from make_bed, not from the scene's [init] */
+                 "[species]\ncount = 1\n"
+                 "[dem]\ndt = 1.25e-4\nthreads = %ld\nskin = %.17g\n",
+                 width, height, threads, skin);
+        if (p)
+            sc = bench_dem_scene(text, err);
+    }
     if (!p)
         return err->code;
-    char text[2048];
-    snprintf(text, sizeof text,
-             "[domain]\nwidth = %.17g\nheight = %.17g\ngravity = 1\n"
-             "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
-             "gamma_t = 300\nmu = 0.5\n"
-             /* the grains come from make_bed, not from the scene's [init] */
-             "[species]\ncount = 1\n"
-             "[dem]\ndt = 1.25e-4\nthreads = %ld\nskin = %.17g\n",
-             width, height, threads, skin);
-    gr_scene *sc = bench_dem_scene(text, err);
     gr_dem *d = NULL;
     int rc = GR_OK;
     gr_dem_params par;
@@ -216,8 +250,9 @@ static int bed(long n, long steps, long settle, long threads, int scaling, doubl
     r->rate = (double)d->nmobile * (double)steps / (t1 - t0);
     r->cpu_rate = (double)d->nmobile * (double)steps / (c1 - c0) * (double)threads;
     r->bytes_per_grain = gr_dem_memory(d) / (double)d->n;
-    fprintf(stderr, "dem n=%ld: %.3f s for %ld steps, %llu list builds, largest overlap %.4f d\n", n,
-            r->seconds, steps, (unsigned long long)(d->builds - b0), d->max_ovl);
+    fprintf(stderr, "dem n=%ld: %.3f s for %ld steps, %llu list builds, %.2f list pairs per grain, largest overlap %.4f d\n",
+            n, r->seconds, steps, (unsigned long long)(d->builds - b0),
+            d->nb_start ? (double)d->nb_start[d->n] / (double)d->n : 0.0, d->max_ovl);
     if (peer) {
         if ((rc = gr_dem_snapshot(d, p, err)))
             goto done;
@@ -474,7 +509,7 @@ static void usage(FILE *f)
 {
     fprintf(f,
             "usage: grano bench dem [--n N[,N...]] [--steps S] [--settle S] [--threads T] [--skin S]\n"
-            "                       [--scaling] [--peer lammps] [--dir DIR]\n"
+            "                       [--scaling] [--silo] [--peer lammps] [--dir DIR]\n"
             "       grano bench dem --accuracy [--quick] [--dir DIR]\n\n"
             "Throughput (mobile particle-steps per second) on a dense settled bed of unit\n"
             "grains in a box of wall grains: Hertz kn = 1e5, gamma_n = 100, regularised\n"
@@ -483,6 +518,10 @@ static void usage(FILE *f)
             "--peer lammps runs the same bed in Debian's lmp and prints the ratio.\n"
             "--scaling times 1 and T threads in alternating rounds on the same bed and\n"
             "prints the speedup (T from --threads, default 2 with --scaling).\n"
+            "--silo times a flowing silo instead of the bed: N grains in a box of wall grains\n"
+            "50 (N/5000)^1/2 wide and twice as tall, orifice 8 open from the start, the\n"
+            "grains that leave reinserted at the top (settle at least 16000 steps to reach\n"
+            "the steady flow).\n"
             "--accuracy sweeps dt for each integrator against the CVODE reference and writes\n"
             "DIR/dem_accuracy.dat and DIR/dem_accuracy.png (default DIR: .).\n");
 }
@@ -494,7 +533,7 @@ typedef struct {
     long steps, settle, threads;
     double skin;
     const char *peer, *dir;
-    int accuracy, quick, scaling, threads_given;
+    int accuracy, quick, scaling, threads_given, silo;
 } bd_opts;
 
 static int dem_option(void *ctx, int id, const char *arg, gr_err *err)
@@ -503,6 +542,7 @@ static int dem_option(void *ctx, int id, const char *arg, gr_err *err)
     switch (id) {
     case 'A': o->accuracy = 1; return 0;
     case 'C': o->scaling = 1; return 0;
+    case 'F': o->silo = 1; return 0;
     case 'Q': o->quick = 1; return 0;
     case 'n':
         o->nn = 0;
@@ -535,6 +575,7 @@ static int parse_args(int argc, char **argv, bd_opts *o)
 {
     static const struct option opts[] = {
         {"accuracy", no_argument, NULL, 'A'},     {"scaling", no_argument, NULL, 'C'},
+        {"silo", no_argument, NULL, 'F'},
         {"quick", no_argument, NULL, 'Q'},        {"n", required_argument, NULL, 'n'},
         {"steps", required_argument, NULL, 's'},  {"settle", required_argument, NULL, 'S'},
         {"threads", required_argument, NULL, 't'}, {"skin", required_argument, NULL, 'k'},
@@ -558,6 +599,10 @@ static int check_args(bd_opts *o)
     }
     if (o->scaling && !o->threads_given)
         o->threads = 2;
+    if (o->silo && o->peer) {
+        fprintf(stderr, "grano bench dem: --silo has no --peer (grano silo-flow --peer lammps runs the silo in LAMMPS)\n");
+        return 2;
+    }
     if (o->scaling && (o->threads < 2 || o->peer)) {
         fprintf(stderr, "grano bench dem: --scaling compares 1 thread with --threads T >= 2, without --peer\n");
         return 2;
@@ -607,7 +652,7 @@ int bench_dem(int argc, char **argv)
     }
     for (int k = 0; k < o.nn; k++) {
         bed_result r = {0};
-        if (bed(o.ns[k], o.steps, o.settle, o.threads, o.scaling, o.skin, o.peer, o.dir, &r, &err)) {
+        if (bed(o.ns[k], o.steps, o.settle, o.threads, o.scaling, o.silo, o.skin, o.peer, o.dir, &r, &err)) {
             fprintf(stderr, "grano bench dem: n = %ld: %s\n", o.ns[k], err.msg);
             return err.code;
         }

@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdint.h>
 
 #include "ckpt.h"
@@ -146,6 +147,10 @@ typedef struct gr_dem {
     uint64_t since_sort;
     int f_zeroed;            /* the predictor already zeroed the new forces */
     double *blk;             /* per-block partial results: two per block of the capacity */
+    /* grains the Verlet drift put outside the exit box (gr_dem_exit_box)
+     * this step, when exits_known: spares the step's end a pass over all */
+    _Atomic long exits;
+    int exits_known;
     struct gr_dem_eval *ev;  /* force evaluation in progress (dem_force.c) */
 } gr_dem;
 
@@ -239,6 +244,10 @@ int gr_dem_external_arrays(gr_dem *d, gr_err *err);
  * top2 when track); second kick, returning their kinetic energy, and in
  * *v2max (if not NULL) the largest squared speed of the next drift. */
 void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
+/* The box outside which a mobile grain leaves (open sides, the silo's
+ * exit line; infinite bounds where none): box = xlo, xhi, ylo, yhi.
+ * Returns 0 when every bound is infinite. */
+int gr_dem_exit_box(const gr_dem *d, double box[4]);
 double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max);
 /* The same over block b of DEM_BLOCK grains, results in d->blk. */
 void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b);

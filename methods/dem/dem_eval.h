@@ -10,6 +10,10 @@
 #include "dem.h"
 #include "dem_contact.h"
 
+/* Contacts and grains per batch of the Verlet pair loop (dem_batch.h); a
+ * grain with more list pairs than DEM_BATCH goes one pair at a time. */
+enum { DEM_BATCH = 256, DEM_BATCH_GRAINS = 128 };
+
 typedef struct {
     gr_dem *d;
     double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
@@ -33,6 +37,8 @@ typedef struct {
     size_t sstride;     /* doubles per strip in sseg: whole cache lines */
     int ncol;           /* colours of strips */
     double *stime;      /* per strip: smoothed wall time of its last timed runs */
+    double *strial;     /* per strip: time batched, one pair at a time (dem_force.c) */
+    unsigned char *sway; /* per strip: 1 when the batches were the faster */
     double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
     int kick, kick_p;   /* fused kick on, and its old buffer */
@@ -55,6 +61,8 @@ struct gr_dem_eval {
     long *si, *sj;
     unsigned char *son;
     double *stime;   /* per strip cost, kept across evaluations */
+    double *strial;  /* per strip, likewise: the two loops' trial times */
+    unsigned char *sway;
     double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
     int *kicker;     /* per strip: the strip after whose pushes it is kicked */
     int *split;      /* ncol x (nth + 1), then nth + 1 for the one-barrier step */

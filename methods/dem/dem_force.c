@@ -92,8 +92,15 @@ DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t 
         c->tq[j] -= Ft * rj;
         *tqi -= Ft * ri;
     }
+    /* compared without a divide, as in dem_batch.h, so that either loop
+     * records the same pair */
     double dm = 2.0 * (ri < rj ? ri : rj);
-    track(a, xi / dm, (long)i, (long)j, el);
+    a->sel += el;
+    if (xi > a->smax * dm) {
+        a->smax = xi / dm;
+        a->si = (long)i;
+        a->sj = (long)j;
+    }
 }
 
 /* Contacts of grain i with segment k. */
@@ -144,29 +151,79 @@ DEM_INLINE void add_i(dem_ctx *c, size_t i, double fxi, double fyi, double tqi, 
         c->tq[i] += tqi;
 }
 
-DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
+/* Grain i's list pairs and walls, one pair at a time. */
+DEM_INLINE void grain_verlet(dem_ctx *c, const int NL, const int TL, dem_acc *acc, int32_t i)
 {
     gr_dem *d = c->d;
     const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j;
     const int32_t *restrict sgs = d->sg_start, *restrict sgj = d->sg_j;
-    int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
-    dem_acc acc = acc_start(s);
-    for (int32_t i = i0; i < i1; i++) {
-        double fxi = 0, fyi = 0, tqi = 0;
-        double xi = c->x[i], yi = c->y[i];
-        for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
-            int32_t j = nbj[k];
-            double dx = c->x[j] - xi, dy = c->y[j] - yi;
-            if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
-            if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
-            pair(c, NL, TL, &acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
-        }
-        for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
-            if (c->seg_on[sgj[k]])
-                wall(c, NL, TL, &acc, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
-        add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+    double fxi = 0, fyi = 0, tqi = 0;
+    double xi = c->x[i], yi = c->y[i];
+    for (int32_t k = nbs[i]; k < nbs[i + 1]; k++) {
+        int32_t j = nbj[k];
+        double dx = c->x[j] - xi, dy = c->y[j] - yi;
+        if (c->Lx > 0) dx = gr_min_image(dx, c->Lx);
+        if (c->Ly > 0) dy = gr_min_image(dy, c->Ly);
+        pair(c, NL, TL, acc, (size_t)i, (size_t)j, dx, dy, &fxi, &fyi, &tqi);
     }
-    acc_store(c, &acc);
+    for (int32_t k = sgs[i]; k < sgs[i + 1]; k++)
+        if (c->seg_on[sgj[k]])
+            wall(c, NL, TL, acc, (size_t)i, sgj[k], &fxi, &fyi, &tqi);
+    add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+}
+
+#include "dem_batch.h"
+
+/* The batched strip in a function of its own per law: inlined beside the
+ * one-pair loop it made that loop slower too (register pressure). */
+#define DEM_SB(NL, TL)                                                                 \
+    static __attribute__((noinline)) void sb_##NL##_##TL(dem_ctx *c, int s)            \
+    {                                                                                  \
+        strip_batched(c, NL, TL, s);                                                   \
+    }
+DEM_SB(GR_NORMAL_HERTZ, GR_TANG_NONE) DEM_SB(GR_NORMAL_HERTZ, GR_TANG_COULOMB)
+DEM_SB(GR_NORMAL_HERTZ, GR_TANG_VISCOUS) DEM_SB(GR_NORMAL_HERTZ, GR_TANG_REGULARISED)
+DEM_SB(GR_NORMAL_LINEAR, GR_TANG_NONE) DEM_SB(GR_NORMAL_LINEAR, GR_TANG_COULOMB)
+DEM_SB(GR_NORMAL_LINEAR, GR_TANG_VISCOUS) DEM_SB(GR_NORMAL_LINEAR, GR_TANG_REGULARISED)
+#undef DEM_SB
+
+DEM_INLINE void batched(dem_ctx *c, const int NL, const int TL, int s)
+{
+#define SB(TL_)                                                                        \
+    case TL_: NL == GR_NORMAL_HERTZ ? sb_GR_NORMAL_HERTZ_##TL_(c, s) : sb_GR_NORMAL_LINEAR_##TL_(c, s); break;
+    switch (TL) {
+    SB(GR_TANG_NONE) SB(GR_TANG_COULOMB) SB(GR_TANG_VISCOUS) SB(GR_TANG_REGULARISED)
+    default: break;
+    }
+#undef SB
+}
+
+/* Strip s with Verlet lists, in batches or one pair at a time. Which is
+ * faster depends on the packing: where the contact test's outcome follows
+ * a pattern (a lattice barely in touch, a gas) the branch is predicted and
+ * the batches' extra stores cost more than they save; in a flowing silo it
+ * is a coin toss. So every 64th evaluation the strip is timed one way, the
+ * next the other, and the faster is kept: either way the same bits. */
+DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
+{
+    gr_dem *d = c->d;
+    unsigned ph = (unsigned)(c->E & 63);
+    int batch = TL != GR_TANG_SPRING && (ph == 0 || (ph > 1 && c->sway[s]));
+    double t0 = ph < 2 ? omp_get_wtime() : 0.0;
+    if (batch) {
+        batched(c, NL, TL, s);
+    } else {
+        int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
+        dem_acc acc = acc_start(s);
+        for (int32_t i = i0; i < i1; i++)
+            grain_verlet(c, NL, TL, &acc, i);
+        acc_store(c, &acc);
+    }
+    if (ph < 2) {
+        c->strial[2 * s + ph] = omp_get_wtime() - t0;
+        if (ph == 1)
+            c->sway[s] = c->strial[2 * s] <= c->strial[2 * s + 1];
+    }
 }
 
 /* Forward neighbour cells of (cx, cy): east, and the three above. */
@@ -365,7 +422,7 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
         return;
     free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
     free(ev->si), free(ev->sj), free(ev->son);
-    free(ev->stime), free(ev->split), free(ev->kin), free(ev->kicker);
+    free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
     free(ev->smove), free(ev->svmax), free(ev->tdrift);
     free((void *)ev->dflag), free((void *)ev->cflag);
     free(ev);
@@ -378,6 +435,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
     if ((size_t)ns > ev->cap_ns) {
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
+        free(ev->strial), free(ev->sway);
         free(ev->kin), free(ev->kicker), free(ev->smove);
         free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag);
         ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
@@ -396,6 +454,8 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->si = malloc((size_t)ns * sizeof *ev->si);
         ev->sj = malloc((size_t)ns * sizeof *ev->sj);
         ev->stime = calloc((size_t)ns, sizeof *ev->stime);
+        ev->strial = calloc(2 * (size_t)ns, sizeof *ev->strial);
+        ev->sway = calloc((size_t)ns, 1);
         ev->cap_ns = (size_t)ns;
     } else if (ns != ev->ns) {
         memset(ev->stime, 0, (size_t)ns * sizeof *ev->stime);
@@ -419,7 +479,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->cap_sseg = nsf;
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
-        !ev->stime || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
+        !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
         !ev->tdrift || !ev->dflag || !ev->cflag) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
@@ -482,7 +542,7 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
         .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
-        .stime = ev->stime, .split = ev->split, .nth = nth,
+        .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
     };
     gr_dem_split_strips(d, ev, nth);
     return GR_OK;

@@ -25,9 +25,22 @@ static inline double wrap(double x, double L)
     return x;
 }
 
+int gr_dem_exit_box(const gr_dem *d, double box[4])
+{
+    const gr_scene *sc = &d->sc;
+    box[0] = sc->side[GR_LEFT] == GR_BC_OPEN ? 0.0 : -INFINITY;
+    box[1] = sc->side[GR_RIGHT] == GR_BC_OPEN ? sc->width : INFINITY;
+    box[2] = sc->side[GR_BOTTOM] == GR_BC_OPEN ? 0.0 : -INFINITY;
+    box[3] = sc->side[GR_TOP] == GR_BC_OPEN ? sc->height : INFINITY;
+    if (sc->silo.present)
+        box[2] = fmax(box[2], sc->silo.exit_below);
+    return isfinite(box[0]) || isfinite(box[1]) || isfinite(box[2]) || isfinite(box[3]);
+}
+
 /* Drift and first kick of grains [i0, i1); their two largest squared
  * displacements since the list build go to top2[0], top2[1] when
- * track != 0. */
+ * track != 0; the count of mobile grains it put outside the exit box is
+ * added to d->exits. */
 void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2])
 {
     double dt = d->par.dt, h = 0.5 * dt;
@@ -45,7 +58,9 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
     const double *restrict iI = d->iI;
     double Lx = d->Lx, Ly = d->Ly;
     int rot = d->rot;
-    double m1 = 0, m2 = 0;
+    double m1 = 0, m2 = 0, box[4];
+    int exits = gr_dem_exit_box(d, box);
+    long out = 0;
     for (size_t i = i0; i < i1; i++) {
         /* fixed grains (im = 0) feel no gravity */
         double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
@@ -56,6 +71,8 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
         fyn[i] = 0.0;
         xn[i] = nx;
         yn[i] = ny;
+        if (exits)
+            out += (im[i] != 0) & ((nx < box[0]) | (nx > box[1]) | (ny < box[2]) | (ny > box[3]));
         /* the new buffer holds v(t+dt) predicted to second order,
          * v(t+dt/2) + (dt/2) a(t), which the damping sees (the half-step
          * velocity would make the dissipation first order); the second
@@ -81,6 +98,8 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
     }
     top2[0] = m1;
     top2[1] = m2;
+    if (out)
+        atomic_fetch_add_explicit(&d->exits, out, memory_order_relaxed);
 }
 
 void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b)
@@ -100,6 +119,8 @@ double gr_dem_moved_blocks(const gr_dem *d)
  * when track != 0 (section 2.4.1), else 0. */
 double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track)
 {
+    atomic_store_explicit(&d->exits, 0, memory_order_relaxed);
+    d->exits_known = 1;
     size_t nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
     int nth = gr_dem_threads(d);
     if (nth > 1 && nb > 1) {

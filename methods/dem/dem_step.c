@@ -41,20 +41,47 @@ static int open_gates(gr_dem *d, gr_err *err)
     return rc;
 }
 
+static void band_add(gr_particles *b, double x, double y, double r)
+{
+    b->x[b->n] = x;
+    b->y[b->n] = y;
+    b->radius[b->n] = r;
+    b->flags[b->n++] = 0;
+}
+
+/* The grains a spot in the reinsertion band could overlap, into
+ * d->scratch: those within their radius and a diameter of margin of the
+ * band's height. gr_reinsert_spot tests a spot against every grain it is
+ * given, so this spares it (and a snapshot of the whole silo per
+ * reinserted grain) the rest of the silo; the spot found is the same. */
+static int band_grains(gr_dem *d, int p, gr_err *err)
+{
+    const gr_silo *s = &d->sc.silo;
+    gr_particles *b = d->scratch;
+    const double *x = d->f[F_X][p], *y = d->f[F_Y][p];
+    /* grains found in the band, then the grains reinserted (from below the exit) */
+    if (gr_particles_reserve(b, d->n, err))
+        return err->code;
+    b->n = 0;
+    for (size_t i = 0; i < d->n; i++)
+        if (y[i] > s->reinsert_bottom - d->rad[i] - 1.0 && y[i] < s->reinsert_top + d->rad[i] + 1.0)
+            band_add(b, x[i], y[i], d->rad[i]);
+    return GR_OK;
+}
+
 /* Grains below the exit or past an open side leave; reinserted at the top
  * when the silo says so. */
 static int handle_exits(gr_dem *d, gr_err *err)
 {
     const gr_scene *sc = &d->sc;
     int p = d->cur;
-    double xlo = sc->side[GR_LEFT] == GR_BC_OPEN ? 0.0 : -INFINITY;
-    double xhi = sc->side[GR_RIGHT] == GR_BC_OPEN ? sc->width : INFINITY;
-    double ylo = sc->side[GR_BOTTOM] == GR_BC_OPEN ? 0.0 : -INFINITY;
-    double yhi = sc->side[GR_TOP] == GR_BC_OPEN ? sc->height : INFINITY;
-    if (sc->silo.present)
-        ylo = fmax(ylo, sc->silo.exit_below);
-    if (!isfinite(xlo) && !isfinite(xhi) && !isfinite(ylo) && !isfinite(yhi))
+    double box[4];
+    /* the drift counted them: no pass over all grains when none left */
+    int known = d->exits_known;
+    d->exits_known = 0;
+    if (!gr_dem_exit_box(d, box) || (known && atomic_load_explicit(&d->exits, memory_order_relaxed) == 0))
         return GR_OK;
+    double xlo = box[0], xhi = box[1], ylo = box[2], yhi = box[3];
     const double *x = d->f[F_X][p], *y = d->f[F_Y][p];
     size_t nout = 0;
     for (size_t i = 0; i < d->n; i++)
@@ -65,18 +92,20 @@ static int handle_exits(gr_dem *d, gr_err *err)
     unsigned char *gone = calloc(d->n + 1, 1);
     if (!gone)
         return gr_fail(err, GR_ERUN, "out of memory");
-    int any_gone = 0;
+    int any_gone = 0, band = 0;
     for (size_t i = 0; i < d->n; i++) {
         if (!(d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi)))
             continue;
         d->outflow++;
         double nx, ny;
         if (reinsert) {
-            if (gr_dem_snapshot(d, d->scratch, err)) {
+            if (!band && band_grains(d, p, err)) {
                 free(gone);
                 return err->code;
             }
+            band = 1;
             if (gr_reinsert_spot(sc, d->scratch, d->rad[i], d->rng, 1000, &nx, &ny)) {
+                band_add(d->scratch, nx, ny, d->rad[i]);
                 d->f[F_X][p][i] = nx;
                 d->f[F_Y][p][i] = ny;
                 d->f[F_VX][p][i] = 0.0;
@@ -251,6 +280,7 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     int mode = d->par.neighbour;
     double moved = 0;
     const int ahead = early(d);
+    d->exits_known = 0; /* the Verlet drift counts the grains that leave */
     if (ahead) {
         if (d->need_build && rebuild_now(d, err))
             return err->code;
@@ -327,6 +357,9 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
     v->early = early(d);
     if (v->early && d->need_build && rebuild_now(d, err))
         return v->stop = 1, err->code;
+    /* every grain drifts in this step (per block or per strip), counting exits */
+    atomic_store_explicit(&d->exits, 0, memory_order_relaxed);
+    d->exits_known = 1;
     v->track = d->par.neighbour == GR_DEM_NB_VERLET && !d->need_build;
     v->nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
     if (v->track) {

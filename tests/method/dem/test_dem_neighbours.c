@@ -7,6 +7,8 @@
 
 #include <string.h>
 
+#include "dem/dem_eval.h"
+
 static const char *packing(const char *tang, double skin, const char *nb, const char *sides)
 {
     static char text[2048];
@@ -134,12 +136,57 @@ static void history_survives_rebuilds(void **state)
     gr_particles_free(p);
 }
 
+/* A grain with more list pairs than a batch of the pair loop holds goes
+ * one pair at a time (dem_batch.h): a disk of radius 50 ringed by 300 unit
+ * grains, each pressed 0.01 d into it and moving, gives the same forces
+ * with Verlet lists as by brute force, and its list is longer than a
+ * batch (else the test would miss that path). */
+static void list_longer_than_batch(void **state)
+{
+    (void)state;
+    gr_scene *sc = dt_scene("[domain]\nwidth = 130\nheight = 130\n"
+                            "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
+                            "gamma_t = 300\nmu = 0.5\n[species]\ncount = 1\n"
+                            "[dem]\ndt = 1e-4\nskin = 0.1\nneighbour = verlet\n");
+    gr_err e = {0};
+    gr_particles *p = gr_particles_create(301, &e);
+    assert_non_null(p);
+    /* the disk first in the lowest of the cells, so that every pair with it
+     * is in its own half list */
+    assert_true(gr_particles_push(p, 64, 64, 50, 1e4, 0, 0, &e) >= 0);
+    for (int k = 0; k < 300; k++) {
+        double a = 2 * M_PI * k / 300;
+        long i = gr_particles_push(p, 64 + 50.49 * cos(a), 64 + 50.49 * sin(a), 0.5, 1.0, 0, 0, &e);
+        assert_true(i >= 0);
+        p->vx[i] = 0.3 * sin(3 * a);
+        p->vy[i] = 0.3 * cos(5 * a);
+        p->omega[i] = sin(7 * a);
+    }
+    for (size_t i = 0; i < p->n; i++)
+        p->id[i] = (int64_t)i;
+    gr_dem *d = dt_create(sc, p);
+    /* the forces of evaluation 64: every 64th runs the batches (dem_force.c) */
+    dt_step(d, 63);
+    long longest = 0;
+    for (size_t i = 0; i < d->n; i++)
+        longest = fmax(longest, d->nb_start[i + 1] - d->nb_start[i]);
+    double worst = compare_modes(d);
+    printf("# ring of 300 on a disk: longest list %ld pairs (batch %d), largest force difference %.2e\n", longest,
+           DEM_BATCH, worst);
+    assert_true(longest > DEM_BATCH);
+    assert_true(worst < 1e-12);
+    gr_dem_free(d);
+    gr_scene_free(sc);
+    gr_particles_free(p);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(regularised_walls),
         cmocka_unit_test(spring_periodic),
         cmocka_unit_test(history_survives_rebuilds),
+        cmocka_unit_test(list_longer_than_batch),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,177 @@
+/* The Verlet-list pair loop in batches, for the laws without spring history.
+ * Most list pairs are not in contact (a skin of 0.2 d lists about three
+ * neighbours per grain against 1-2 contacts in a dense bed, fewer where it
+ * flows), and a branch per pair on a coin-toss test mispredicts often. So a
+ * strip is taken in chunks of grains, each in three passes:
+ *   1. over the chunk's lists, squared distance against (ri + rj)^2, every
+ *      pair written and the cursor moved by the test's 0 or 1: the
+ *      contacting pairs packed, in list order, without a branch;
+ *   2. the contact law for the packed pairs, one loop without branches
+ *      that the compiler vectorises (square roots and the divide two to
+ *      eight at a time);
+ *   3. the forces added to the grains in the order of the scalar loop
+ *      (list order, then walls, then the grain's own sum), so that every
+ *      sum keeps its bits and the result stays independent of threads.
+ * Included by dem_force.c only. */
+#ifndef GR_DEM_BATCH_H
+#define GR_DEM_BATCH_H
+
+#include <math.h>
+#include <stdint.h>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
+#include "dem_contact.h"
+#include "dem_eval.h"
+
+typedef struct {
+    int32_t i[DEM_BATCH], j[DEM_BATCH];
+    double dx[DEM_BATCH], dy[DEM_BATCH], r2[DEM_BATCH], rs[DEM_BATCH];
+    double r[DEM_BATCH], sxi[DEM_BATCH]; /* distance, square root of the overlap */
+    /* pass 2's results: force on j, torques on j and i, elastic energy, overlap */
+    double fx[DEM_BATCH], fy[DEM_BATCH], tj[DEM_BATCH], ti[DEM_BATCH], el[DEM_BATCH], xi[DEM_BATCH];
+    int32_t end[DEM_BATCH_GRAINS]; /* per grain of the chunk: one past its last contact */
+} dem_batch;
+
+/* out[k] = sqrt(in[k]) for k < m, two at a time where SSE2 is (every
+ * x86-64): libm's sqrt may set errno, which keeps the compiler from
+ * vectorising a loop that calls it; the instruction rounds the same. */
+DEM_INLINE void batch_sqrt(const double *restrict in, double *restrict out, int m)
+{
+    int k = 0;
+#ifdef __SSE2__
+    for (; k + 2 <= m; k += 2)
+        _mm_storeu_pd(out + k, _mm_sqrt_pd(_mm_loadu_pd(in + k)));
+#endif
+    for (; k < m; k++)
+        out[k] = sqrt(in[k]);
+}
+
+/* Pass 2 over the m packed contacts. Written as the scalar pair() computes
+ * (the same operations in the same order, no contraction under C11), so
+ * the vectorised loops give the same bits. */
+DEM_INLINE void batch_law(const dem_ctx *c, const int NL, const int TL, dem_batch *restrict b, int m)
+{
+    const double *restrict ux = c->ux, *restrict uy = c->uy, *restrict uw = c->uw, *restrict rad = c->rad;
+    const double kn = c->law.kn, gn = c->law.gn, gt = c->law.gt, mu = c->law.mu;
+    const int clip = c->law.clip;
+    batch_sqrt(b->r2, b->r, m);
+    for (int k = 0; k < m; k++)
+        b->xi[k] = b->rs[k] - b->r[k];
+    if (NL == GR_NORMAL_HERTZ)
+        batch_sqrt(b->xi, b->sxi, m);
+    for (int k = 0; k < m; k++) {
+        int32_t i = b->i[k], j = b->j[k];
+        double r = b->r[k], xi = b->xi[k];
+        /* r = 0 (grains on one spot; pass 1 made dx = 1, dy = 0): n = (1, 0) */
+        double inv = 1.0 / (r + (double)(r == 0.0));
+        double nx = b->dx[k] * inv, ny = b->dy[k] * inv;
+        double dvx = ux[j] - ux[i], dvy = uy[j] - uy[i];
+        double vn = dvx * nx + dvy * ny;
+        double el = NL == GR_NORMAL_HERTZ ? kn * xi * b->sxi[k] : kn * xi;
+        double fn = el - gn * vn;
+        fn = clip && fn < 0.0 ? 0.0 : fn;
+        double ft = 0.0;
+        if (TL != GR_TANG_NONE) {
+            double ri = rad[i], rj = rad[j];
+            double wsum = uw[i] * ri + uw[j] * rj;
+            double vt = -dvx * ny + dvy * nx - wsum;
+            double afn = fabs(fn);
+            if (TL == GR_TANG_COULOMB) {
+                ft = vt > 0 ? -mu * afn : vt < 0 ? mu * afn : 0.0;
+            } else if (TL == GR_TANG_VISCOUS) {
+                ft = -gt * vt;
+            } else {
+                double a = gt * fabs(vt), bb = mu * afn;
+                double mm = a < bb ? a : bb;
+                ft = vt > 0 ? -mm : vt < 0 ? mm : 0.0;
+            }
+            b->tj[k] = ft * rj;
+            b->ti[k] = ft * ri;
+        }
+        b->fx[k] = fn * nx - ft * ny;
+        b->fy[k] = fn * ny + ft * nx;
+        b->el[k] = el * xi * (NL == GR_NORMAL_HERTZ ? 0.4 : 0.5);
+    }
+}
+
+/* Pass 3 for the chunk's grains g0 .. g0 + ng - 1. */
+DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, const dem_batch *restrict b,
+                          int32_t g0, int ng)
+{
+    double *restrict fx = c->fx, *restrict fy = c->fy, *restrict tq = c->tq;
+    const double *restrict rad = c->rad;
+    const int32_t *restrict sgs = c->d->sg_start, *restrict sgj = c->d->sg_j;
+    int k = 0;
+    for (int g = 0; g < ng; g++) {
+        int32_t i = g0 + g;
+        double fxi = 0, fyi = 0, tqi = 0, ri = rad[i];
+        for (; k < b->end[g]; k++) {
+            int32_t j = b->j[k];
+            fx[j] += b->fx[k];
+            fy[j] += b->fy[k];
+            fxi -= b->fx[k];
+            fyi -= b->fy[k];
+            if (TL != GR_TANG_NONE) {
+                tq[j] -= b->tj[k];
+                tqi -= b->ti[k];
+            }
+            /* the largest overlap per diameter, compared without a divide */
+            double rj = rad[j], dm = 2.0 * (ri < rj ? ri : rj);
+            a->sel += b->el[k];
+            if (b->xi[k] > a->smax * dm) {
+                a->smax = b->xi[k] / dm;
+                a->si = i;
+                a->sj = j;
+            }
+        }
+        for (int32_t q = sgs[i]; q < sgs[i + 1]; q++)
+            if (c->seg_on[sgj[q]])
+                wall(c, NL, TL, a, (size_t)i, sgj[q], &fxi, &fyi, &tqi);
+        add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+    }
+}
+
+/* Strip s in chunks: pass 1 here, then passes 2 and 3. */
+DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
+{
+    gr_dem *d = c->d;
+    const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j;
+    const double *restrict x = c->x, *restrict y = c->y, *restrict rad = c->rad;
+    const double Lx = c->Lx, Ly = c->Ly;
+    int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
+    dem_acc acc = acc_start(s);
+    dem_batch b;
+    for (int32_t g0 = i0; g0 < i1;) {
+        int m = 0, ng = 0;
+        for (int32_t i = g0; i < i1 && ng < DEM_BATCH_GRAINS; i++, ng++) {
+            int32_t k0 = nbs[i], k1 = nbs[i + 1];
+            if (m + (k1 - k0) > DEM_BATCH)
+                break;
+            double xi = x[i], yi = y[i], ri = rad[i];
+            for (int32_t k = k0; k < k1; k++) {
+                int32_t j = nbj[k];
+                double dx = x[j] - xi, dy = y[j] - yi;
+                if (Lx > 0) dx = gr_min_image(dx, Lx);
+                if (Ly > 0) dy = gr_min_image(dy, Ly);
+                double rs = ri + rad[j], r2 = dx * dx + dy * dy;
+                b.i[m] = i, b.j[m] = j;
+                b.dx[m] = r2 > 0 ? dx : 1.0, b.dy[m] = r2 > 0 ? dy : 0.0, b.r2[m] = r2, b.rs[m] = rs;
+                m += r2 < rs * rs;
+            }
+            b.end[ng] = m;
+        }
+        if (ng == 0) {
+            /* a grain with more list pairs than a batch holds: one at a time */
+            grain_verlet(c, NL, TL, &acc, g0++);
+            continue;
+        }
+        batch_law(c, NL, TL, &b, m);
+        batch_add(c, NL, TL, &acc, &b, g0, ng);
+        g0 += ng;
+    }
+    acc_store(c, &acc);
+}
+
+#endif
