@@ -4,12 +4,22 @@
 #define GR_EXP_PARTS_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #include "ckpt.h"
 #include "err.h"
 #include "particles.h"
 
-/* Whether the part at path exists, is complete and was made for key. */
+/* A hash of the running program's file (/proc/self/exe; 0 where it cannot
+ * be read): parts made by another build of grano are not reused, since the
+ * key of a unit names its settings but not the code that ran them. */
+uint64_t exp_binary_hash(void);
+/* key followed by " bin=<hash>": what a sweep stores in a part. */
+void exp_key_seal(char *key, size_t n, uint64_t bin);
+/* Whether the part at path exists, is complete and holds exactly sealed. */
+int exp_part_key_is(const char *path, const char *sealed);
+/* Whether the part at path exists, is complete and was made for key by
+ * this build (key sealed with exp_binary_hash). */
 int exp_part_key_matches(const char *path, const char *key);
 /* x, y, vx, vy, radius and flags of every grain. */
 int exp_put_particles(gr_ckpt *ck, const char *name, const gr_particles *p, gr_err *err);

@@ -30,7 +30,8 @@ static void sleep_ms(long ms)
     nanosleep(&ts, NULL);
 }
 
-/* Each unit's part path and key; a part whose key matches is reused
+/* Each unit's part path and key (sealed with this build's hash); a part
+ * whose key matches is reused
  * (unless --force) and counted in *done_before, the others are marked in
  * todo. Returns how many are to run. A unit whose path or key could not
  * be allocated is to run, and fails there with "out of memory". */
@@ -38,6 +39,7 @@ static size_t plan_units(const exp_sweep *sw, exp_label_fn label, exp_label_fn k
                          char **keys, unit_slot *slot, unsigned char *todo, size_t *done_before)
 {
     size_t ntodo = 0;
+    uint64_t bin = exp_binary_hash();
     for (size_t u = 0; u < sw->nunits; u++) {
         char lab[256];
         label(u, ctx, lab, sizeof lab);
@@ -47,7 +49,8 @@ static size_t plan_units(const exp_sweep *sw, exp_label_fn label, exp_label_fn k
             continue;
         sprintf(paths[u], "%s/%s-%s.part", sw->dir, sw->prefix, lab);
         keyf(u, ctx, keys[u], 2048);
-        if (!sw->force && exp_part_key_matches(paths[u], keys[u])) {
+        exp_key_seal(keys[u], 2048, bin);
+        if (!sw->force && exp_part_key_is(paths[u], keys[u])) {
             slot[u].progress = 1;
             (*done_before)++;
         } else {
