@@ -25,10 +25,34 @@ static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m)
     c[5 * nw] ^= g3, c[4 * nw] |= g3;
 }
 
+/* The nodes whose collision a dissipation bit can change (no rest
+ * particle, two movers or more: a superset of the table's), and those that
+ * gravity can change (after the collision); elsewhere no bit is drawn. */
+static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        uint64_t one = 0, two = 0;
+        for (int k = 0; k < 6; k++) {
+            uint64_t a = lane[(size_t)k * nw + w];
+            two |= one & a, one |= a;
+        }
+        need[w] = fluid[w] & ~lane[LGCA_REST * nw + w] & two;
+    }
+}
+
+static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        const uint64_t *c = lane + w;
+        need[w] = fluid[w] & ((c[6 * nw] & ~c[3 * nw]) | (c[1 * nw] & ~c[2 * nw]) | (c[5 * nw] & ~c[4 * nw]));
+    }
+}
+
 static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
 {
     size_t nw = (size_t)L->nw;
-    uint64_t *fluid = scr, *ch = scr + nw, *pb = scr + 2 * nw;
+    uint64_t *fluid = scr, *ch = scr + nw, *pb = scr + 2 * nw, *need = scr + 3 * nw, *eq = scr + 4 * nw;
+    uint32_t *idx = (uint32_t *)(scr + 5 * nw);
     int granular = L->par.rules == LGCA_RULES_GRANULAR;
     for (int j = j0; j < j1; j++) {
         uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
@@ -37,14 +61,16 @@ static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
             fluid[w] = L->valid[w] & ~L->solid[base + w];
         lgca_rand_words(L->key, base, nw, LGCA_RND_CHIRAL, L->step, ch);
         if (granular) {
-            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_P, L->step, L->thr_p, pb);
+            need_dissipation(lane, nw, fluid, need);
+            lgca_rand_biased_need(L->key, base, nw, LGCA_RND_P, L->step, L->thr_p, need, pb, eq, idx);
             lgca_delta_granular_lane(lane, nw, fluid, ch, pb);
         } else
             lgca_delta_fhp3_lane(lane, nw, fluid, ch);
         if (L->thr_g) {
-            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_G, L->step, L->thr_g, pb);
+            need_gravity(lane, nw, fluid, need);
+            lgca_rand_biased_need(L->key, base, nw, LGCA_RND_G, L->step, L->thr_g, need, pb, eq, idx);
             for (size_t w = 0; w < nw; w++)
-                gravity(lane, nw, w, fluid[w] & pb[w]);
+                gravity(lane, nw, w, pb[w]);
         }
     }
 }

@@ -177,7 +177,7 @@ static void fast_equals_reference(void **unused)
 
 /* The batched random words (vectorised Philox rounds) against Random123's
  * philox4x32 word by word, over more than two batches and thresholds from
- * never to always. */
+ * never to always; the biased words drawn only where needed agree there. */
 static void batched_random_words(void **unused)
 {
     (void)unused;
@@ -196,6 +196,15 @@ static void batched_random_words(void **unused)
                 lgca_rand_biased_words(key, word0, n, LGCA_RND_P, step, thr[t], out);
                 for (size_t w = 0; w < n; w++)
                     assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
+                /* only where needed: words with none, one, some and all lanes */
+                uint64_t need[37], eq[37];
+                uint32_t idx[37];
+                for (size_t w = 0; w < n; w++)
+                    need[w] = w % 4 == 0 ? 0 : w % 4 == 1 ? (uint64_t)1 << (w % 64)
+                                                  : w % 4 == 2 ? lgca_rand_word(key, w, 99, step) : ~(uint64_t)0;
+                lgca_rand_biased_need(key, word0, n, LGCA_RND_P, step, thr[t], need, out, eq, idx);
+                for (size_t w = 0; w < n; w++)
+                    assert_true(out[w] == (lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]) & need[w]));
             }
         }
 }
