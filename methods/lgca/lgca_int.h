@@ -99,6 +99,10 @@ void lgca_rand_biased_need(const uint32_t key[2], uint64_t word0, size_t n, unsi
 #define LGCA_CLONES
 #endif
 
+/* The random words of a few lanes are drawn together, so that short lanes
+ * fill the batches of Philox calls. */
+#define LGCA_CHUNK_WORDS 256
+
 /* A wall node: where, its mirror kind, whether it is a gate. */
 typedef struct {
     uint32_t i, j;
@@ -132,7 +136,8 @@ typedef struct lgca {
     int reinsert;
     uint64_t outflow, reinserted, lost;
     int nthreads;
-    uint64_t *scratch;      /* per thread: 6 nw words (fluid, random bits, masks) */
+    int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
+    uint64_t *scratch;      /* per thread: 6 chunk nw words (fluid, random bits, masks) */
     uint64_t *edge;         /* per thread: 4 planes of a block's edge lanes */
 } lgca;
 

@@ -48,29 +48,39 @@ static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid,
     }
 }
 
+/* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
+ * drawn together (word j nw + w of lane j). */
 static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
 {
-    size_t nw = (size_t)L->nw;
-    uint64_t *fluid = scr, *ch = scr + nw, *pb = scr + 2 * nw, *need = scr + 3 * nw, *eq = scr + 4 * nw;
-    uint32_t *idx = (uint32_t *)(scr + 5 * nw);
+    size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
+    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
+    uint32_t *idx = (uint32_t *)(scr + 5 * cw);
     int granular = L->par.rules == LGCA_RULES_GRANULAR;
-    for (int j = j0; j < j1; j++) {
-        uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
-        uint64_t base = (uint64_t)j * nw;
-        for (size_t w = 0; w < nw; w++)
-            fluid[w] = L->valid[w] & ~L->solid[base + w];
-        lgca_rand_words(L->key, base, nw, LGCA_RND_CHIRAL, L->step, ch);
-        if (granular) {
-            need_dissipation(lane, nw, fluid, need);
-            lgca_rand_biased_need(L->key, base, nw, LGCA_RND_P, L->step, L->thr_p, need, pb, eq, idx);
-            lgca_delta_granular_lane(lane, nw, fluid, ch, pb);
-        } else
-            lgca_delta_fhp3_lane(lane, nw, fluid, ch);
-        if (L->thr_g) {
-            need_gravity(lane, nw, fluid, need);
-            lgca_rand_biased_need(L->key, base, nw, LGCA_RND_G, L->step, L->thr_g, need, pb, eq, idx);
+    for (int ja = j0; ja < j1; ja += L->chunk) {
+        int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
+        size_t n = (size_t)(jb - ja) * nw;
+        uint64_t base = (uint64_t)ja * nw;
+        uint64_t *lanes = L->s + (size_t)ja * LGCA_CH * nw;
+        for (size_t o = 0; o < n; o += nw)
             for (size_t w = 0; w < nw; w++)
-                gravity(lane, nw, w, pb[w]);
+                fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
+        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, L->step, ch);
+        if (granular) {
+            for (size_t o = 0; o < n; o += nw)
+                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, L->step, L->thr_p, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
+        } else
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
+        if (L->thr_g) {
+            for (size_t o = 0; o < n; o += nw)
+                need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, L->step, L->thr_g, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                for (size_t w = 0; w < nw; w++)
+                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
         }
     }
 }
@@ -216,7 +226,7 @@ static void open_gates(lgca *L)
 static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
 {
     int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
-    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->nw;
+    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->chunk * (size_t)L->nw;
     static const int across[4] = {1, 2, 4, 5};
     for (uint64_t k = 0; k < n; k++) {
         uint64_t out = 0;
