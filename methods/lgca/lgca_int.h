@@ -138,7 +138,7 @@ typedef struct lgca {
     int nthreads;
     int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
     uint64_t *scratch;      /* per thread: 6 chunk nw words (fluid, random bits, masks) */
-    uint64_t *edge;         /* per thread: 4 planes of a block's edge lanes */
+    uint64_t *edge;         /* per step parity and thread: 4 planes of a block's edge lanes */
 } lgca;
 
 /* lgca_geom.c: lattice size, walls, the initial state. */

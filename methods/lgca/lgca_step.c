@@ -50,7 +50,7 @@ static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid,
 
 /* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
  * drawn together (word j nw + w of lane j). */
-static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
+static void collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t step)
 {
     size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
     uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
@@ -64,11 +64,11 @@ static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
         for (size_t o = 0; o < n; o += nw)
             for (size_t w = 0; w < nw; w++)
                 fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
-        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, L->step, ch);
+        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
         if (granular) {
             for (size_t o = 0; o < n; o += nw)
                 need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, L->step, L->thr_p, need, pb, eq, idx);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, step, L->thr_p, need, pb, eq, idx);
             for (size_t o = 0; o < n; o += nw)
                 lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
         } else
@@ -77,7 +77,7 @@ static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
         if (L->thr_g) {
             for (size_t o = 0; o < n; o += nw)
                 need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, L->step, L->thr_g, need, pb, eq, idx);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, step, L->thr_g, need, pb, eq, idx);
             for (size_t o = 0; o < n; o += nw)
                 for (size_t w = 0; w < nw; w++)
                     gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
@@ -173,14 +173,15 @@ static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_
  * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
  * before it is overwritten; the block's first (last) lane takes the edge
  * lane saved by its neighbour. */
-static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1)
+static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
 {
     size_t nw = (size_t)L->nw;
+    const uint64_t *edge = L->edge + (size_t)par * (size_t)T * 4 * nw;
     uint64_t lost = 0;
     if (c == 1 || c == 2) {
         for (int j = j1 - 1; j > j0; j--)
             lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
+        const uint64_t *e = edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
         if (j0 > 0 || L->per_j)
             lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
         else
@@ -188,7 +189,7 @@ static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, in
     } else {
         for (int j = j0; j < j1 - 1; j++)
             lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
+        const uint64_t *e = edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
         if (j1 < L->nj || L->per_j)
             lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
         else
@@ -199,12 +200,12 @@ static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, in
 
 /* The block's edge lane that a neighbouring block reads (slot q of the
  * thread's four); particles leaving the lattice sideways are counted. */
-static uint64_t save_edge(lgca *L, int q, int c, int t, int j0, int j1)
+static uint64_t save_edge(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
 {
     size_t nw = (size_t)L->nw;
     int right = c == 1 || c == 2;
     int je = right ? j1 - 1 : j0;
-    memcpy(L->edge + ((size_t)t * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
+    memcpy(L->edge + (((size_t)par * (size_t)T + (size_t)t) * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
     int off = right ? je == L->nj - 1 : je == 0;
     return off && !L->per_j ? count(plane(L, je, c), nw) : 0;
 }
@@ -222,40 +223,56 @@ static void open_gates(lgca *L)
         }
 }
 
-/* n steps by thread t of a team of T (four synchronisations a step). */
+/* n steps by thread t of a team of T. With serial work (rest collision,
+ * walls, exits, gates) four synchronisations a step; without, one: a
+ * block's collision and shifts touch its own lanes only, and its edge
+ * lanes go to the buffer of the step's parity, which the neighbours have
+ * read (the previous step's barrier) before it is written again. */
 static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
 {
     int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
     uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->chunk * (size_t)L->nw;
     static const int across[4] = {1, 2, 4, 5};
+    int serial = L->thr_stop || L->nwalls || L->exits || L->has_gates;
+    uint64_t step0 = L->step;
     for (uint64_t k = 0; k < n; k++) {
         uint64_t out = 0;
-        collide_block(L, j0, j1, scr);
+        int par = (int)((step0 + k) & 1u);
+        collide_block(L, j0, j1, scr, step0 + k);
+        if (serial) {
 #pragma omp barrier
 #pragma omp single
-        {
-            if (L->thr_stop)
-                lgca_stop_pass(L, L->stop_mask);
-            reflect(L);
+            {
+                if (L->thr_stop)
+                    lgca_stop_pass(L, L->stop_mask);
+                reflect(L);
+            }
         }
         for (int q = 0; q < 4; q++)
-            out += save_edge(L, q, across[q], t, j0, j1);
+            out += save_edge(L, q, across[q], t, T, j0, j1, par);
         for (int j = j0; j < j1; j++) {
             out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
             out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
         }
 #pragma omp barrier
         for (int q = 0; q < 4; q++)
-            out += propagate_across(L, q, across[q], t, T, j0, j1);
+            out += propagate_across(L, q, across[q], t, T, j0, j1, par);
         lost[t] += out;
+        if (serial) {
 #pragma omp barrier
 #pragma omp single
-        {
-            if (L->exits)
-                lgca_exits(L);
-            L->step++;
-            open_gates(L);
+            {
+                if (L->exits)
+                    lgca_exits(L);
+                L->step++;
+                open_gates(L);
+            }
         }
+    }
+    if (!serial) {
+#pragma omp barrier
+#pragma omp single
+        L->step = step0 + n;
     }
 }
 

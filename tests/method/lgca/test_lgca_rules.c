@@ -175,6 +175,44 @@ static void fast_equals_reference(void **unused)
     }
 }
 
+/* Without serial work (no wall, no rest collision) a team synchronises
+ * once a step, with the edge lanes double-buffered: several steps in one
+ * call against the reference, on 1, 2 and 3 threads. */
+static void fast_equals_reference_unwalled(void **unused)
+{
+    (void)unused;
+    const char *base = "[scene]\nseed = 12\n[domain]\nwidth = 60\nheight = 300\nleft = periodic\n"
+                       "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                       "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    const char *variants[] = {"rules = fhp3\nthreads = 2\n", "rules = granular\np = 0.3\nthreads = 3\n",
+                              "rules = granular\np = 0.3\nthreads = 1\n"};
+    for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, variants[v]);
+        gr_scene *sc;
+        gr_sim *s = lgca_make(text, &sc);
+        lgca *L = gr_sim_state(s);
+        assert_true(L->nwalls == 0 && !L->thr_stop);
+        if (v)
+            L->thr_g = 3277; /* g = 0.05 set on the lattice (a periodic scene has no gravity) */
+        size_t n = (size_t)L->ni * (size_t)L->nj;
+        uint8_t *ref = malloc(n), *fast = malloc(n);
+        lgca_to_bytes(L, ref);
+        gr_err e = {0};
+        for (int k = 0; k < 5; k++) {
+            uint64_t step = L->step;
+            for (int r = 0; r < 7; r++)
+                assert_int_equal(lgca_ref_step(L, ref, step + (uint64_t)r, &e), GR_OK);
+            assert_int_equal(lgca_steps(L, 7, &e), GR_OK);
+            assert_true(L->step == step + 7);
+            lgca_to_bytes(L, fast);
+            assert_memory_equal(ref, fast, n);
+        }
+        free(ref), free(fast);
+        lgca_drop(s, sc);
+    }
+}
+
 /* The batched random words (vectorised Philox rounds) against Random123's
  * philox4x32 word by word, over more than two batches and thresholds from
  * never to always; the biased words drawn only where needed agree there. */
@@ -217,6 +255,7 @@ int main(void)
         cmocka_unit_test(kernel_matches_table),
         cmocka_unit_test(table_viscosity_is_frisch),
         cmocka_unit_test(fast_equals_reference),
+        cmocka_unit_test(fast_equals_reference_unwalled),
         cmocka_unit_test(batched_random_words),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
