@@ -25,89 +25,6 @@ static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m)
     c[5 * nw] ^= g3, c[4 * nw] |= g3;
 }
 
-/* The nodes whose collision a dissipation bit can change (no rest
- * particle, two movers or more: a superset of the table's), and those that
- * gravity can change (after the collision); elsewhere no bit is drawn. */
-static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
-{
-    for (size_t w = 0; w < nw; w++) {
-        uint64_t one = 0, two = 0;
-        for (int k = 0; k < 6; k++) {
-            uint64_t a = lane[(size_t)k * nw + w];
-            two |= one & a, one |= a;
-        }
-        need[w] = fluid[w] & ~lane[LGCA_REST * nw + w] & two;
-    }
-}
-
-static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
-{
-    for (size_t w = 0; w < nw; w++) {
-        const uint64_t *c = lane + w;
-        need[w] = fluid[w] & ((c[6 * nw] & ~c[3 * nw]) | (c[1 * nw] & ~c[2 * nw]) | (c[5 * nw] & ~c[4 * nw]));
-    }
-}
-
-/* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
- * drawn together (word j nw + w of lane j). */
-static void collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t step)
-{
-    size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
-    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
-    uint32_t *idx = (uint32_t *)(scr + 5 * cw);
-    int granular = L->par.rules == LGCA_RULES_GRANULAR;
-    for (int ja = j0; ja < j1; ja += L->chunk) {
-        int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
-        size_t n = (size_t)(jb - ja) * nw;
-        uint64_t base = (uint64_t)ja * nw;
-        uint64_t *lanes = L->s + (size_t)ja * LGCA_CH * nw;
-        for (size_t o = 0; o < n; o += nw)
-            for (size_t w = 0; w < nw; w++)
-                fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
-        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
-        if (granular) {
-            for (size_t o = 0; o < n; o += nw)
-                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, step, L->thr_p, need, pb, eq, idx);
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
-        } else
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
-        if (L->thr_g) {
-            for (size_t o = 0; o < n; o += nw)
-                need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, step, L->thr_g, need, pb, eq, idx);
-            for (size_t o = 0; o < n; o += nw)
-                for (size_t w = 0; w < nw; w++)
-                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
-        }
-    }
-}
-
-/* Wall nodes: the mirror image of every particle (bounce-back with
- * probability b). Serial: walls are a perimeter, not an area. */
-static void reflect(lgca *L)
-{
-    for (size_t k = 0; k < L->nwalls; k++) {
-        const lgca_wall *w = &L->walls[k];
-        int i = (int)w->i, j = (int)w->j;
-        if (!lgca_is_solid(L, i, j))
-            continue; /* an open gate */
-        int in[6], any = 0;
-        for (int c = 0; c < 6; c++)
-            any |= in[c] = lgca_get(L, i, j, c);
-        if (!any)
-            continue;
-        int m = (int)w->mirror;
-        uint64_t node = (uint64_t)j * (uint64_t)L->ni + (uint64_t)i;
-        if (L->thr_b && lgca_rand_u32(L->key, node, LGCA_RND_WALL, L->step) < L->thr_b)
-            m = 6;
-        for (int c = 0; c < 6; c++)
-            lgca_put(L, i, j, lgca_mirror(m, c), in[c]);
-    }
-}
-
 /* ---- propagation ---- */
 
 /* Node i moves to i + 1; returns the particles that fell off the end
@@ -139,6 +56,97 @@ static uint64_t shift_down(const lgca *L, uint64_t *dst, const uint64_t *src)
         return 0;
     }
     return out;
+}
+
+/* The nodes whose collision a dissipation bit can change (no rest
+ * particle, two movers or more: a superset of the table's), and those that
+ * gravity can change (after the collision); elsewhere no bit is drawn. */
+static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        uint64_t one = 0, two = 0;
+        for (int k = 0; k < 6; k++) {
+            uint64_t a = lane[(size_t)k * nw + w];
+            two |= one & a, one |= a;
+        }
+        need[w] = fluid[w] & ~lane[LGCA_REST * nw + w] & two;
+    }
+}
+
+static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        const uint64_t *c = lane + w;
+        need[w] = fluid[w] & ((c[6 * nw] & ~c[3 * nw]) | (c[1 * nw] & ~c[2 * nw]) | (c[5 * nw] & ~c[4 * nw]));
+    }
+}
+
+/* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
+ * drawn together (word j nw + w of lane j). */
+static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t step, int fuse)
+{
+    uint64_t out = 0;
+    size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
+    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
+    uint32_t *idx = (uint32_t *)(scr + 5 * cw);
+    int granular = L->par.rules == LGCA_RULES_GRANULAR;
+    for (int ja = j0; ja < j1; ja += L->chunk) {
+        int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
+        size_t n = (size_t)(jb - ja) * nw;
+        uint64_t base = (uint64_t)ja * nw;
+        uint64_t *lanes = L->s + (size_t)ja * LGCA_CH * nw;
+        for (size_t o = 0; o < n; o += nw)
+            for (size_t w = 0; w < nw; w++)
+                fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
+        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
+        if (granular) {
+            for (size_t o = 0; o < n; o += nw)
+                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, step, L->thr_p, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
+        } else
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
+        if (L->thr_g) {
+            for (size_t o = 0; o < n; o += nw)
+                need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, step, L->thr_g, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                for (size_t w = 0; w < nw; w++)
+                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
+        }
+        /* without serial work between, channels 0 and 3 move along the lane
+         * while the chunk is in cache */
+        for (size_t o = 0; fuse && o < n; o += nw) {
+            uint64_t *l = lanes + o * LGCA_CH;
+            out += shift_up(L, l, l) + shift_down(L, l + 3 * nw, l + 3 * nw);
+        }
+    }
+    return out;
+}
+
+/* Wall nodes: the mirror image of every particle (bounce-back with
+ * probability b). Serial: walls are a perimeter, not an area. */
+static void reflect(lgca *L)
+{
+    for (size_t k = 0; k < L->nwalls; k++) {
+        const lgca_wall *w = &L->walls[k];
+        int i = (int)w->i, j = (int)w->j;
+        if (!lgca_is_solid(L, i, j))
+            continue; /* an open gate */
+        int in[6], any = 0;
+        for (int c = 0; c < 6; c++)
+            any |= in[c] = lgca_get(L, i, j, c);
+        if (!any)
+            continue;
+        int m = (int)w->mirror;
+        uint64_t node = (uint64_t)j * (uint64_t)L->ni + (uint64_t)i;
+        if (L->thr_b && lgca_rand_u32(L->key, node, LGCA_RND_WALL, L->step) < L->thr_b)
+            m = 6;
+        for (int c = 0; c < 6; c++)
+            lgca_put(L, i, j, lgca_mirror(m, c), in[c]);
+    }
 }
 
 static uint64_t *plane(lgca *L, int j, int c)
@@ -238,7 +246,7 @@ static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
     for (uint64_t k = 0; k < n; k++) {
         uint64_t out = 0;
         int par = (int)((step0 + k) & 1u);
-        collide_block(L, j0, j1, scr, step0 + k);
+        out += collide_block(L, j0, j1, scr, step0 + k, !serial);
         if (serial) {
 #pragma omp barrier
 #pragma omp single
@@ -250,7 +258,7 @@ static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
         }
         for (int q = 0; q < 4; q++)
             out += save_edge(L, q, across[q], t, T, j0, j1, par);
-        for (int j = j0; j < j1; j++) {
+        for (int j = j0; serial && j < j1; j++) {
             out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
             out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
         }
