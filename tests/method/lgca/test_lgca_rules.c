@@ -138,6 +138,44 @@ static void table_viscosity_is_frisch(void **unused)
     }
 }
 
+/* 35 steps of each variant (base + variant), per_call steps a call
+ * (1: through gr_sim_step), against the byte reference, every byte after
+ * each call; thr_g > 0: that gravity threshold set on the lattice of the
+ * granular rules without walls or rest collision. */
+static void against_reference(const char *base, const char *const *variants, size_t nv, int per_call, uint32_t thr_g)
+{
+    for (size_t v = 0; v < nv; v++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, variants[v]);
+        gr_scene *sc;
+        gr_sim *s = lgca_make(text, &sc);
+        lgca *L = gr_sim_state(s);
+        if (thr_g) {
+            assert_true(L->nwalls == 0 && !L->thr_stop);
+            if (L->par.rules == LGCA_RULES_GRANULAR)
+                L->thr_g = thr_g;
+        }
+        size_t n = (size_t)L->ni * (size_t)L->nj;
+        uint8_t *ref = malloc(n), *fast = malloc(n);
+        lgca_to_bytes(L, ref);
+        gr_err e = {0};
+        for (int k = 0; k < 35; k += per_call) {
+            uint64_t step = L->step;
+            for (int r = 0; r < per_call; r++)
+                assert_int_equal(lgca_ref_step(L, ref, step + (uint64_t)r, &e), GR_OK);
+            if (per_call == 1)
+                assert_int_equal(gr_sim_step(s, &e), GR_OK);
+            else
+                assert_int_equal(lgca_steps(L, (uint64_t)per_call, &e), GR_OK);
+            assert_true(L->step == step + (uint64_t)per_call);
+            lgca_to_bytes(L, fast);
+            assert_memory_equal(ref, fast, n);
+        }
+        free(ref), free(fast);
+        lgca_drop(s, sc);
+    }
+}
+
 /* Steps of the backend against the reference, every byte, on a scene with
  * every rule in play: walls (segments, rough), gravity, dissipation, the
  * rest collision (stop). Lanes
@@ -154,25 +192,7 @@ static void fast_equals_reference(void **unused)
                               "rules = granular\np = 0.3\nthreads = 3\n", "rules = fhp3\nthreads = 2\ng = 0\n",
                               "rules = granular\np = 0.3\nstop = 0.5\nthreads = 1\n",
                               "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n"};
-    for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
-        char text[2048];
-        snprintf(text, sizeof text, "%s%s", base, variants[v]);
-        gr_scene *sc;
-        gr_sim *s = lgca_make(text, &sc);
-        lgca *L = gr_sim_state(s);
-        size_t n = (size_t)L->ni * (size_t)L->nj;
-        uint8_t *ref = malloc(n), *fast = malloc(n);
-        lgca_to_bytes(L, ref);
-        gr_err e = {0};
-        for (int k = 0; k < 40; k++) {
-            assert_int_equal(lgca_ref_step(L, ref, L->step, &e), GR_OK);
-            assert_int_equal(gr_sim_step(s, &e), GR_OK);
-            lgca_to_bytes(L, fast);
-            assert_memory_equal(ref, fast, n);
-        }
-        free(ref), free(fast);
-        lgca_drop(s, sc);
-    }
+    against_reference(base, variants, sizeof variants / sizeof variants[0], 1, 0);
 }
 
 /* Without serial work (no wall, no rest collision) a team synchronises
@@ -186,31 +206,8 @@ static void fast_equals_reference_unwalled(void **unused)
                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
     const char *variants[] = {"rules = fhp3\nthreads = 2\n", "rules = granular\np = 0.3\nthreads = 3\n",
                               "rules = granular\np = 0.3\nthreads = 1\n"};
-    for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
-        char text[2048];
-        snprintf(text, sizeof text, "%s%s", base, variants[v]);
-        gr_scene *sc;
-        gr_sim *s = lgca_make(text, &sc);
-        lgca *L = gr_sim_state(s);
-        assert_true(L->nwalls == 0 && !L->thr_stop);
-        if (v)
-            L->thr_g = 3277; /* g = 0.05 set on the lattice (a periodic scene has no gravity) */
-        size_t n = (size_t)L->ni * (size_t)L->nj;
-        uint8_t *ref = malloc(n), *fast = malloc(n);
-        lgca_to_bytes(L, ref);
-        gr_err e = {0};
-        for (int k = 0; k < 5; k++) {
-            uint64_t step = L->step;
-            for (int r = 0; r < 7; r++)
-                assert_int_equal(lgca_ref_step(L, ref, step + (uint64_t)r, &e), GR_OK);
-            assert_int_equal(lgca_steps(L, 7, &e), GR_OK);
-            assert_true(L->step == step + 7);
-            lgca_to_bytes(L, fast);
-            assert_memory_equal(ref, fast, n);
-        }
-        free(ref), free(fast);
-        lgca_drop(s, sc);
-    }
+    /* g = 0.05 set on the lattice for the granular rules (a periodic scene has no gravity) */
+    against_reference(base, variants, sizeof variants / sizeof variants[0], 7, 3277);
 }
 
 /* The batched random words (vectorised Philox rounds) against Random123's
