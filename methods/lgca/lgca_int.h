@@ -85,6 +85,11 @@ void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned p
                      uint64_t *out);
 void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
                             uint32_t thr, uint64_t *out);
+/* lgca_rand_biased's bits at the lanes set in need[w] (0 elsewhere),
+ * drawn only for the words and bits that decide them; eq and idx: n
+ * entries of scratch. */
+void lgca_rand_biased_need(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
+                           uint32_t thr, const uint64_t *need, uint64_t *out, uint64_t *eq, uint32_t *idx);
 /* The baseline build is x86-64 (SSE2); hot loops get an AVX2 clone chosen
  * at load time (GCC's target_clones) on CPUs that have it. -DLGCA_NO_CLONES
  * builds the baseline alone, so that its tests run on an AVX2 machine. */
@@ -93,6 +98,10 @@ void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, uns
 #else
 #define LGCA_CLONES
 #endif
+
+/* The random words of a few lanes are drawn together, so that short lanes
+ * fill the batches of Philox calls. */
+#define LGCA_CHUNK_WORDS 256
 
 /* A wall node: where, its mirror kind, whether it is a gate. */
 typedef struct {
@@ -127,8 +136,9 @@ typedef struct lgca {
     int reinsert;
     uint64_t outflow, reinserted, lost;
     int nthreads;
-    uint64_t *scratch;      /* per thread: 6 nw words (random bits, shifts) */
-    uint64_t *edge;         /* per thread: 4 planes of a block's edge lanes */
+    int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
+    uint64_t *scratch;      /* per thread: 6 chunk nw words (fluid, random bits, masks) */
+    uint64_t *edge;         /* per step parity and thread: 4 planes of a block's edge lanes */
 } lgca;
 
 /* lgca_geom.c: lattice size, walls, the initial state. */

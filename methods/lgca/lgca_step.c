@@ -25,53 +25,6 @@ static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m)
     c[5 * nw] ^= g3, c[4 * nw] |= g3;
 }
 
-static void collide_block(lgca *L, int j0, int j1, uint64_t *scr)
-{
-    size_t nw = (size_t)L->nw;
-    uint64_t *fluid = scr, *ch = scr + nw, *pb = scr + 2 * nw;
-    int granular = L->par.rules == LGCA_RULES_GRANULAR;
-    for (int j = j0; j < j1; j++) {
-        uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
-        uint64_t base = (uint64_t)j * nw;
-        for (size_t w = 0; w < nw; w++)
-            fluid[w] = L->valid[w] & ~L->solid[base + w];
-        lgca_rand_words(L->key, base, nw, LGCA_RND_CHIRAL, L->step, ch);
-        if (granular) {
-            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_P, L->step, L->thr_p, pb);
-            lgca_delta_granular_lane(lane, nw, fluid, ch, pb);
-        } else
-            lgca_delta_fhp3_lane(lane, nw, fluid, ch);
-        if (L->thr_g) {
-            lgca_rand_biased_words(L->key, base, nw, LGCA_RND_G, L->step, L->thr_g, pb);
-            for (size_t w = 0; w < nw; w++)
-                gravity(lane, nw, w, fluid[w] & pb[w]);
-        }
-    }
-}
-
-/* Wall nodes: the mirror image of every particle (bounce-back with
- * probability b). Serial: walls are a perimeter, not an area. */
-static void reflect(lgca *L)
-{
-    for (size_t k = 0; k < L->nwalls; k++) {
-        const lgca_wall *w = &L->walls[k];
-        int i = (int)w->i, j = (int)w->j;
-        if (!lgca_is_solid(L, i, j))
-            continue; /* an open gate */
-        int in[6], any = 0;
-        for (int c = 0; c < 6; c++)
-            any |= in[c] = lgca_get(L, i, j, c);
-        if (!any)
-            continue;
-        int m = (int)w->mirror;
-        uint64_t node = (uint64_t)j * (uint64_t)L->ni + (uint64_t)i;
-        if (L->thr_b && lgca_rand_u32(L->key, node, LGCA_RND_WALL, L->step) < L->thr_b)
-            m = 6;
-        for (int c = 0; c < 6; c++)
-            lgca_put(L, i, j, lgca_mirror(m, c), in[c]);
-    }
-}
-
 /* ---- propagation ---- */
 
 /* Node i moves to i + 1; returns the particles that fell off the end
@@ -103,6 +56,97 @@ static uint64_t shift_down(const lgca *L, uint64_t *dst, const uint64_t *src)
         return 0;
     }
     return out;
+}
+
+/* The nodes whose collision a dissipation bit can change (no rest
+ * particle, two movers or more: a superset of the table's), and those that
+ * gravity can change (after the collision); elsewhere no bit is drawn. */
+static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        uint64_t one = 0, two = 0;
+        for (int k = 0; k < 6; k++) {
+            uint64_t a = lane[(size_t)k * nw + w];
+            two |= one & a, one |= a;
+        }
+        need[w] = fluid[w] & ~lane[LGCA_REST * nw + w] & two;
+    }
+}
+
+static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+{
+    for (size_t w = 0; w < nw; w++) {
+        const uint64_t *c = lane + w;
+        need[w] = fluid[w] & ((c[6 * nw] & ~c[3 * nw]) | (c[1 * nw] & ~c[2 * nw]) | (c[5 * nw] & ~c[4 * nw]));
+    }
+}
+
+/* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
+ * drawn together (word j nw + w of lane j). */
+static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t step, int fuse)
+{
+    uint64_t out = 0;
+    size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
+    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
+    uint32_t *idx = (uint32_t *)(scr + 5 * cw);
+    int granular = L->par.rules == LGCA_RULES_GRANULAR;
+    for (int ja = j0; ja < j1; ja += L->chunk) {
+        int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
+        size_t n = (size_t)(jb - ja) * nw;
+        uint64_t base = (uint64_t)ja * nw;
+        uint64_t *lanes = L->s + (size_t)ja * LGCA_CH * nw;
+        for (size_t o = 0; o < n; o += nw)
+            for (size_t w = 0; w < nw; w++)
+                fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
+        lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
+        if (granular) {
+            for (size_t o = 0; o < n; o += nw)
+                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, step, L->thr_p, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
+        } else
+            for (size_t o = 0; o < n; o += nw)
+                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
+        if (L->thr_g) {
+            for (size_t o = 0; o < n; o += nw)
+                need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, step, L->thr_g, need, pb, eq, idx);
+            for (size_t o = 0; o < n; o += nw)
+                for (size_t w = 0; w < nw; w++)
+                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
+        }
+        /* without serial work between, channels 0 and 3 move along the lane
+         * while the chunk is in cache */
+        for (size_t o = 0; fuse && o < n; o += nw) {
+            uint64_t *l = lanes + o * LGCA_CH;
+            out += shift_up(L, l, l) + shift_down(L, l + 3 * nw, l + 3 * nw);
+        }
+    }
+    return out;
+}
+
+/* Wall nodes: the mirror image of every particle (bounce-back with
+ * probability b). Serial: walls are a perimeter, not an area. */
+static void reflect(lgca *L)
+{
+    for (size_t k = 0; k < L->nwalls; k++) {
+        const lgca_wall *w = &L->walls[k];
+        int i = (int)w->i, j = (int)w->j;
+        if (!lgca_is_solid(L, i, j))
+            continue; /* an open gate */
+        int in[6], any = 0;
+        for (int c = 0; c < 6; c++)
+            any |= in[c] = lgca_get(L, i, j, c);
+        if (!any)
+            continue;
+        int m = (int)w->mirror;
+        uint64_t node = (uint64_t)j * (uint64_t)L->ni + (uint64_t)i;
+        if (L->thr_b && lgca_rand_u32(L->key, node, LGCA_RND_WALL, L->step) < L->thr_b)
+            m = 6;
+        for (int c = 0; c < 6; c++)
+            lgca_put(L, i, j, lgca_mirror(m, c), in[c]);
+    }
 }
 
 static uint64_t *plane(lgca *L, int j, int c)
@@ -137,14 +181,15 @@ static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_
  * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
  * before it is overwritten; the block's first (last) lane takes the edge
  * lane saved by its neighbour. */
-static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1)
+static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
 {
     size_t nw = (size_t)L->nw;
+    const uint64_t *edge = L->edge + (size_t)par * (size_t)T * 4 * nw;
     uint64_t lost = 0;
     if (c == 1 || c == 2) {
         for (int j = j1 - 1; j > j0; j--)
             lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
+        const uint64_t *e = edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
         if (j0 > 0 || L->per_j)
             lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
         else
@@ -152,7 +197,7 @@ static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, in
     } else {
         for (int j = j0; j < j1 - 1; j++)
             lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        const uint64_t *e = L->edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
+        const uint64_t *e = edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
         if (j1 < L->nj || L->per_j)
             lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
         else
@@ -163,12 +208,12 @@ static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, in
 
 /* The block's edge lane that a neighbouring block reads (slot q of the
  * thread's four); particles leaving the lattice sideways are counted. */
-static uint64_t save_edge(lgca *L, int q, int c, int t, int j0, int j1)
+static uint64_t save_edge(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
 {
     size_t nw = (size_t)L->nw;
     int right = c == 1 || c == 2;
     int je = right ? j1 - 1 : j0;
-    memcpy(L->edge + ((size_t)t * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
+    memcpy(L->edge + (((size_t)par * (size_t)T + (size_t)t) * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
     int off = right ? je == L->nj - 1 : je == 0;
     return off && !L->per_j ? count(plane(L, je, c), nw) : 0;
 }
@@ -186,40 +231,56 @@ static void open_gates(lgca *L)
         }
 }
 
-/* n steps by thread t of a team of T (four synchronisations a step). */
+/* n steps by thread t of a team of T. With serial work (rest collision,
+ * walls, exits, gates) four synchronisations a step; without, one: a
+ * block's collision and shifts touch its own lanes only, and its edge
+ * lanes go to the buffer of the step's parity, which the neighbours have
+ * read (the previous step's barrier) before it is written again. */
 static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
 {
     int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
-    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->nw;
+    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->chunk * (size_t)L->nw;
     static const int across[4] = {1, 2, 4, 5};
+    int serial = L->thr_stop || L->nwalls || L->exits || L->has_gates;
+    uint64_t step0 = L->step;
     for (uint64_t k = 0; k < n; k++) {
         uint64_t out = 0;
-        collide_block(L, j0, j1, scr);
+        int par = (int)((step0 + k) & 1u);
+        out += collide_block(L, j0, j1, scr, step0 + k, !serial);
+        if (serial) {
 #pragma omp barrier
 #pragma omp single
-        {
-            if (L->thr_stop)
-                lgca_stop_pass(L, L->stop_mask);
-            reflect(L);
+            {
+                if (L->thr_stop)
+                    lgca_stop_pass(L, L->stop_mask);
+                reflect(L);
+            }
         }
         for (int q = 0; q < 4; q++)
-            out += save_edge(L, q, across[q], t, j0, j1);
-        for (int j = j0; j < j1; j++) {
+            out += save_edge(L, q, across[q], t, T, j0, j1, par);
+        for (int j = j0; serial && j < j1; j++) {
             out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
             out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
         }
 #pragma omp barrier
         for (int q = 0; q < 4; q++)
-            out += propagate_across(L, q, across[q], t, T, j0, j1);
+            out += propagate_across(L, q, across[q], t, T, j0, j1, par);
         lost[t] += out;
+        if (serial) {
 #pragma omp barrier
 #pragma omp single
-        {
-            if (L->exits)
-                lgca_exits(L);
-            L->step++;
-            open_gates(L);
+            {
+                if (L->exits)
+                    lgca_exits(L);
+                L->step++;
+                open_gates(L);
+            }
         }
+    }
+    if (!serial) {
+#pragma omp barrier
+#pragma omp single
+        L->step = step0 + n;
     }
 }
 

@@ -138,6 +138,44 @@ static void table_viscosity_is_frisch(void **unused)
     }
 }
 
+/* 35 steps of each variant (base + variant), per_call steps a call
+ * (1: through gr_sim_step), against the byte reference, every byte after
+ * each call; thr_g > 0: that gravity threshold set on the lattice of the
+ * granular rules without walls or rest collision. */
+static void against_reference(const char *base, const char *const *variants, size_t nv, int per_call, uint32_t thr_g)
+{
+    for (size_t v = 0; v < nv; v++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, variants[v]);
+        gr_scene *sc;
+        gr_sim *s = lgca_make(text, &sc);
+        lgca *L = gr_sim_state(s);
+        if (thr_g) {
+            assert_true(L->nwalls == 0 && !L->thr_stop);
+            if (L->par.rules == LGCA_RULES_GRANULAR)
+                L->thr_g = thr_g;
+        }
+        size_t n = (size_t)L->ni * (size_t)L->nj;
+        uint8_t *ref = malloc(n), *fast = malloc(n);
+        lgca_to_bytes(L, ref);
+        gr_err e = {0};
+        for (int k = 0; k < 35; k += per_call) {
+            uint64_t step = L->step;
+            for (int r = 0; r < per_call; r++)
+                assert_int_equal(lgca_ref_step(L, ref, step + (uint64_t)r, &e), GR_OK);
+            if (per_call == 1)
+                assert_int_equal(gr_sim_step(s, &e), GR_OK);
+            else
+                assert_int_equal(lgca_steps(L, (uint64_t)per_call, &e), GR_OK);
+            assert_true(L->step == step + (uint64_t)per_call);
+            lgca_to_bytes(L, fast);
+            assert_memory_equal(ref, fast, n);
+        }
+        free(ref), free(fast);
+        lgca_drop(s, sc);
+    }
+}
+
 /* Steps of the backend against the reference, every byte, on a scene with
  * every rule in play: walls (segments, rough), gravity, dissipation, the
  * rest collision (stop). Lanes
@@ -154,30 +192,27 @@ static void fast_equals_reference(void **unused)
                               "rules = granular\np = 0.3\nthreads = 3\n", "rules = fhp3\nthreads = 2\ng = 0\n",
                               "rules = granular\np = 0.3\nstop = 0.5\nthreads = 1\n",
                               "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n"};
-    for (size_t v = 0; v < sizeof variants / sizeof variants[0]; v++) {
-        char text[2048];
-        snprintf(text, sizeof text, "%s%s", base, variants[v]);
-        gr_scene *sc;
-        gr_sim *s = lgca_make(text, &sc);
-        lgca *L = gr_sim_state(s);
-        size_t n = (size_t)L->ni * (size_t)L->nj;
-        uint8_t *ref = malloc(n), *fast = malloc(n);
-        lgca_to_bytes(L, ref);
-        gr_err e = {0};
-        for (int k = 0; k < 40; k++) {
-            assert_int_equal(lgca_ref_step(L, ref, L->step, &e), GR_OK);
-            assert_int_equal(gr_sim_step(s, &e), GR_OK);
-            lgca_to_bytes(L, fast);
-            assert_memory_equal(ref, fast, n);
-        }
-        free(ref), free(fast);
-        lgca_drop(s, sc);
-    }
+    against_reference(base, variants, sizeof variants / sizeof variants[0], 1, 0);
+}
+
+/* Without serial work (no wall, no rest collision) a team synchronises
+ * once a step, with the edge lanes double-buffered: several steps in one
+ * call against the reference, on 1, 2 and 3 threads. */
+static void fast_equals_reference_unwalled(void **unused)
+{
+    (void)unused;
+    const char *base = "[scene]\nseed = 12\n[domain]\nwidth = 60\nheight = 300\nleft = periodic\n"
+                       "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                       "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    const char *variants[] = {"rules = fhp3\nthreads = 2\n", "rules = granular\np = 0.3\nthreads = 3\n",
+                              "rules = granular\np = 0.3\nthreads = 1\n"};
+    /* g = 0.05 set on the lattice for the granular rules (a periodic scene has no gravity) */
+    against_reference(base, variants, sizeof variants / sizeof variants[0], 7, 3277);
 }
 
 /* The batched random words (vectorised Philox rounds) against Random123's
  * philox4x32 word by word, over more than two batches and thresholds from
- * never to always. */
+ * never to always; the biased words drawn only where needed agree there. */
 static void batched_random_words(void **unused)
 {
     (void)unused;
@@ -188,7 +223,7 @@ static void batched_random_words(void **unused)
     for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++)
         for (uint64_t step = 0; step < (uint64_t)1 << 40; step += (uint64_t)1 << 39) {
             size_t n = ns[k];
-            uint64_t word0 = ((uint64_t)3 << 32) + 1000;
+            uint64_t word0 = ((uint64_t)3 << 32) + 1000 + (step >> 39); /* even and odd */
             lgca_rand_words(key, word0, n, LGCA_RND_CHIRAL, step, out);
             for (size_t w = 0; w < n; w++)
                 assert_true(out[w] == lgca_rand_word(key, word0 + w, LGCA_RND_CHIRAL, step));
@@ -196,6 +231,15 @@ static void batched_random_words(void **unused)
                 lgca_rand_biased_words(key, word0, n, LGCA_RND_P, step, thr[t], out);
                 for (size_t w = 0; w < n; w++)
                     assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
+                /* only where needed: words with none, one, some and all lanes */
+                uint64_t need[37], eq[37];
+                uint32_t idx[37];
+                for (size_t w = 0; w < n; w++)
+                    need[w] = w % 4 == 0 ? 0 : w % 4 == 1 ? (uint64_t)1 << (w % 64)
+                                                  : w % 4 == 2 ? lgca_rand_word(key, w, 99, step) : ~(uint64_t)0;
+                lgca_rand_biased_need(key, word0, n, LGCA_RND_P, step, thr[t], need, out, eq, idx);
+                for (size_t w = 0; w < n; w++)
+                    assert_true(out[w] == (lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]) & need[w]));
             }
         }
 }
@@ -208,6 +252,7 @@ int main(void)
         cmocka_unit_test(kernel_matches_table),
         cmocka_unit_test(table_viscosity_is_frisch),
         cmocka_unit_test(fast_equals_reference),
+        cmocka_unit_test(fast_equals_reference_unwalled),
         cmocka_unit_test(batched_random_words),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
