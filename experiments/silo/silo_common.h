@@ -105,7 +105,7 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n);
  * (particle-steps per CPU second, wall grains included; docs/experiments.md
  * "Measured cost"), and the steps of a thesis-size filling: the estimates
  * printed before a full run. */
-#define SILO_DEM_RATE 2.4e7
+#define SILO_DEM_RATE 3.1e7
 #define SILO_FILL_STEPS 3.7e5
 /* CPU seconds of `steps` steps of the silo c with dem; NAN for another
  * method (no estimate). */
