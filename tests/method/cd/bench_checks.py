@@ -8,17 +8,16 @@ cases it compares. No timing is asserted beyond that.
 usage: bench_checks.py GRANO SICONOS(0|1)
 """
 import math
+import os
 import re
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from bench_tap import check, run  # noqa: E402
+
 LINE = re.compile(r"^RESULT method=cd case=(\w+) n=(\d+) contact_updates_per_s=(\S+) steps_per_s=(\S+)"
                   r" iterations_per_step=(\S+)(?: siconos_ratio=(\S+))?$", re.M)
-
-
-def check(cond, what):
-    print(("ok - " if cond else "not ok - ") + what)
-    return 0 if cond else 1
 
 
 def positive(s):

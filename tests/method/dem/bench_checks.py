@@ -11,20 +11,10 @@ usage: bench_checks.py GRANO OUTDIR
 import math
 import os
 import re
-import subprocess
 import sys
 
-
-def run(cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode:
-        sys.exit("%s: exit %d\n%s%s" % (" ".join(cmd), r.returncode, r.stdout, r.stderr))
-    return r.stdout
-
-
-def check(cond, what):
-    print(("ok - " if cond else "not ok - ") + what)
-    return 0 if cond else 1
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from bench_tap import check, run  # noqa: E402
 
 
 def throughput(grano):
