@@ -1,0 +1,241 @@
+/* The force evaluation's set-up and end: per-strip scratch, the context
+ * of one evaluation, the colours run on the threads, the sums and the
+ * overlap check. Above the pair loops of dem_force.c. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem.h"
+#include "dem_eval.h"
+#include "geom.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+void gr_dem_eval_free(struct gr_dem_eval *ev)
+{
+    if (!ev)
+        return;
+    free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
+    free(ev->si), free(ev->sj), free(ev->son);
+    free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
+    free(ev->smove), free(ev->svmax), free(ev->tdrift);
+    free((void *)ev->dflag), free((void *)ev->cflag);
+    free(ev);
+}
+
+static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err *err)
+{
+    struct gr_dem_eval *ev = d->ev;
+    if (!ev && !(ev = d->ev = calloc(1, sizeof *ev)))
+        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    if ((size_t)ns > ev->cap_ns) {
+        free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
+        free(ev->strial), free(ev->sway);
+        free(ev->kin), free(ev->kicker), free(ev->smove);
+        free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag);
+        ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
+        ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
+        ev->dflag = malloc((size_t)ns * sizeof *ev->dflag);
+        ev->cflag = malloc((size_t)ns * sizeof *ev->cflag);
+        for (int k = 0; ev->dflag && ev->cflag && k < ns; k++) {
+            atomic_init(&ev->dflag[k], ev->epoch);
+            atomic_init(&ev->cflag[k], ev->epoch);
+        }
+        ev->kin = malloc((size_t)ns * sizeof *ev->kin);
+        ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
+        ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
+        ev->smax = malloc((size_t)ns * sizeof *ev->smax);
+        ev->sel = malloc((size_t)ns * sizeof *ev->sel);
+        ev->si = malloc((size_t)ns * sizeof *ev->si);
+        ev->sj = malloc((size_t)ns * sizeof *ev->sj);
+        ev->stime = calloc((size_t)ns, sizeof *ev->stime);
+        ev->strial = calloc(2 * (size_t)ns, sizeof *ev->strial);
+        ev->sway = calloc((size_t)ns, 1);
+        ev->cap_ns = (size_t)ns;
+    } else if (ns != ev->ns) {
+        memset(ev->stime, 0, (size_t)ns * sizeof *ev->stime);
+    }
+    size_t nsp = (size_t)4 * ((size_t)nth + 1); /* three colours, then the one cut */
+    if (nsp > ev->cap_split) {
+        free(ev->split);
+        ev->split = malloc(nsp * sizeof *ev->split);
+        ev->cap_split = nsp;
+    }
+    if ((size_t)nseg + 1 > ev->cap_seg) {
+        free(ev->soff), free(ev->svy), free(ev->son);
+        ev->soff = malloc(((size_t)nseg + 1) * sizeof *ev->soff);
+        ev->svy = malloc(((size_t)nseg + 1) * sizeof *ev->svy);
+        ev->son = malloc((size_t)nseg + 1);
+        ev->cap_seg = (size_t)nseg + 1;
+    }
+    if (nsf > ev->cap_sseg) {
+        free(ev->sseg);
+        ev->sseg = aligned_alloc(64, nsf * sizeof *ev->sseg);
+        ev->cap_sseg = nsf;
+    }
+    if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
+        !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
+        !ev->tdrift || !ev->dflag || !ev->cflag) {
+        gr_dem_eval_free(ev);
+        d->ev = NULL;
+        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    }
+    return GR_OK;
+}
+
+int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
+{
+    if (mode == GR_DEM_NB_CELLS) {
+        if (gr_dem_bin(d, d->f[F_X][q], d->f[F_Y][q], err))
+            return err->code;
+    }
+    int ns = mode == GR_DEM_NB_BRUTE ? 1 : d->strips.n;
+    int nseg = d->nseg;
+    /* whole cache lines per strip: strips of a colour run at once */
+    size_t sstride = ((size_t)(nseg > 0 ? nseg : 1) * 3 + 7) & ~(size_t)7;
+    size_t nsf = (size_t)ns * sstride;
+    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1);
+    if (eval_scratch(d, ns, nseg, nsf, nth, err))
+        return err->code;
+    struct gr_dem_eval *ev = d->ev;
+    memset(ev->sseg, 0, nsf * sizeof *ev->sseg);
+    for (int s = 0; s < ns; s++) {
+        ev->smax[s] = -INFINITY;
+        ev->sel[s] = 0.0;
+        ev->si[s] = ev->sj[s] = -1;
+    }
+    for (int k = 0; k < nseg; k++) {
+        ev->son[k] = t_eval < d->seg[k].open_time;
+        ev->soff[k] = ev->svy[k] = 0.0;
+        if (d->seg[k].vibrating) {
+            ev->soff[k] = gr_floor_offset(&d->sc.floor, t_eval);
+            ev->svy[k] = gr_floor_velocity(&d->sc.floor, t_eval);
+        }
+    }
+    size_t n = d->n;
+    if (!d->f_zeroed) {
+        memset(d->f[F_FX][q], 0, n * sizeof(double));
+        memset(d->f[F_FY][q], 0, n * sizeof(double));
+        if (d->rot)
+            memset(d->f[F_TQ][q], 0, n * sizeof(double));
+    }
+    d->f_zeroed = 0;
+    ev->mode = mode;
+    ev->ns = ns;
+    ev->nseg = nseg;
+    ev->t_eval = t_eval;
+    ev->E = E;
+    ev->c = (dem_ctx){
+        .d = d,
+        .x = d->f[F_X][q], .y = d->f[F_Y][q],
+        .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
+        .ux = d->f[F_VX][q], .uy = d->f[F_VY][q], .uw = d->f[F_W][q], .rad = d->rad,
+        .tag = d->tag, .flags = d->flags,
+        .law = {d->kn, d->gn, d->kt, d->gt, d->mu, d->par.dt, d->clip},
+        .law_w = {d->kn, d->gw, d->kt, d->gt, d->mu, d->par.dt, d->clip},
+        .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
+        .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
+        .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
+        .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
+        .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
+    };
+    gr_dem_split_strips(d, ev, nth);
+    return GR_OK;
+}
+
+int gr_dem_eval_ncolours(const gr_dem *d) { return d->ev ? d->ev->c.ncol : 1; }
+
+
+/* The evaluation's error, if any: a grain out of history slots, or the
+ * largest overlap past the bound (pair bi, bj; bj = -1 - s a segment). */
+static int eval_error(const gr_dem *d, const dem_ctx *c, double best, long bi, long bj, gr_err *err)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    if (c->hist_full)
+        return gr_fail(err, GR_ERUN, "t = %.9g: grain id %lld has more than %d contacts at once; the packing is unphysically compressed",
+                       ev->t_eval, (long long)d->tag_id[d->tag[c->full_i]], d->hist.cap);
+    if (!(best > d->par.max_overlap))
+        return GR_OK;
+    char other[96];
+    if (bj >= 0)
+        snprintf(other, sizeof other, "grain id %lld", (long long)d->tag_id[d->tag[bj]]);
+    else
+        snprintf(other, sizeof other, "wall segment %ld", -1 - bj);
+    if (ev->E == 0)
+        return gr_fail(err, GR_EINPUT,
+                       "initial state: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); place the grains apart",
+                       (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+    return gr_fail(err, GR_ERUN,
+                   "unstable at t = %.9g: grain id %lld overlaps %s by %.4g of its diameter (bound max_overlap = %g); lower dt or check the scene",
+                   ev->t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
+}
+
+/* Per segment, the strips' forces summed in strip order. */
+static void segment_sums(const struct gr_dem_eval *ev, double *seg_out)
+{
+    for (int k = 0; k < ev->nseg; k++) {
+        double a = 0, b = 0, cfn = 0;
+        for (int s = 0; s < ev->ns; s++) {
+            const double *sf = ev->sseg + (size_t)s * ev->c.sstride + (size_t)k * 3;
+            a += sf[0];
+            b += sf[1];
+            cfn += sf[2];
+        }
+        seg_out[3 * k] = a;
+        seg_out[3 * k + 1] = b;
+        seg_out[3 * k + 2] = cfn;
+    }
+}
+
+int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
+{
+    struct gr_dem_eval *ev = d->ev;
+    dem_ctx *c = &ev->c;
+    size_t n = d->n;
+    if (d->ext_fx) {
+        for (size_t i = 0; i < n; i++) {
+            c->fx[i] += d->ext_fx[i];
+            c->fy[i] += d->ext_fy[i];
+        }
+    }
+    double best = 0.0, eel = 0.0;
+    long bi = -1, bj = -1;
+    for (int s = 0; s < ev->ns; s++) {
+        eel += ev->sel[s];
+        if (ev->smax[s] > best) {
+            best = ev->smax[s];
+            bi = ev->si[s];
+            bj = ev->sj[s];
+        }
+    }
+    if (seg_out)
+        segment_sums(ev, seg_out);
+    d->max_ovl = best;
+    d->eel_eval = eel;
+    return eval_error(d, c, best, bi, bj, err);
+}
+
+void gr_dem_eval_run(gr_dem *d)
+{
+    int nth = (int)(d->par.threads > 0 ? d->par.threads : 1), ncol = gr_dem_eval_ncolours(d);
+    if (nth > 1 && d->ev->ns > 1 && !omp_in_parallel()) {
+#pragma omp parallel num_threads(nth)
+        for (int col = 0; col < ncol; col++)
+            gr_dem_eval_colour(d, col);
+    } else {
+        for (int col = 0; col < ncol; col++)
+            gr_dem_eval_colour(d, col);
+    }
+}
+
+int gr_dem_eval_at(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode,
+                   double *seg_out, gr_err *err)
+{
+    if (gr_dem_eval_begin(d, q, t_eval, E, integ, mode, err))
+        return err->code;
+    gr_dem_eval_run(d);
+    return gr_dem_eval_end(d, seg_out, err);
+}
