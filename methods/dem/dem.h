@@ -102,7 +102,9 @@ typedef struct gr_dem {
     size_t ntag;             /* all grains ever (tags 0..ntag-1 in id order) */
     int nmobile;
     int cur;
-    double *f[F_NFIELDS][2];
+    /* [2]: the next step's drift done ahead (gr_dem_eval_fuse_kick),
+     * fields F_X .. F_TQ only; swapped with the new buffer when used */
+    double *f[F_NFIELDS][3];
     double *rad, *im, *iI, *gf, *mass, *inertia;
     int32_t *tag;
     uint32_t *flags;
@@ -151,8 +153,31 @@ typedef struct gr_dem {
      * this step, when exits_known: spares the step's end a pass over all */
     _Atomic long exits;
     int exits_known;
+    /* the step whose drift f[.][2] holds (0: none), and the grains it
+     * put outside the exit box */
+    uint64_t pre_E;
+    _Atomic long exits_pre;
     struct gr_dem_eval *ev;  /* force evaluation in progress (dem_force.c) */
 } gr_dem;
+
+/* The baseline build is x86-64 (SSE2); the hot loops (pair loop, drift) get an AVX2 clone
+ * chosen at load time (GCC's target_clones) on CPUs that have it. C11 mode
+ * contracts no multiply-add (-ffp-contract=off), and AVX2 alone brings no
+ * FMA, so both clones compute the same bits. -DDEM_NO_CLONES builds the
+ * baseline alone. */
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(DEM_NO_CLONES)
+#define DEM_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define DEM_CLONES
+#endif
+/* GCC keeps a loop with floating-point compares (a select, a count) from
+ * vectorising while it must preserve their exception flags; nothing here
+ * reads them, and the values do not change. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DEM_NOTRAP __attribute__((optimize("no-trapping-math")))
+#else
+#define DEM_NOTRAP
+#endif
 
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
  * the number of threads). */
@@ -243,7 +268,7 @@ int gr_dem_external_arrays(gr_dem *d, gr_err *err);
 /* Drift and first kick of grains [i0, i1) (two largest squared moves in
  * top2 when track); second kick, returning their kinetic energy, and in
  * *v2max (if not NULL) the largest squared speed of the next drift. */
-void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2]);
+void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, double top2[2], _Atomic long *exits);
 /* The box outside which a mobile grain leaves (open sides, the silo's
  * exit line; infinite bounds where none): box = xlo, xhi, ylo, yhi.
  * Returns 0 when every bound is infinite. */
@@ -302,6 +327,16 @@ double gr_dem_eval_kinetic(const gr_dem *d);
  * since the list build, from its per-strip drifts (the same value as from
  * blocks: a maximum). */
 double gr_dem_eval_moved(const gr_dem *d);
+/* The drift done ahead (velocity Verlet, Verlet lists, kick fused): after
+ * gr_dem_eval_fuse_kick, _pre(on) has the kicks also drift each strip for
+ * the next step into buffer 2; the step then sets d->pre_E to that step.
+ * At that step's start, before its evaluation, _use takes the drift if it
+ * is still good (nothing rebuilt, compacted, sorted or reinserted since),
+ * swapping buffer 2 in as the new buffer, with *moved and the exit count
+ * as the drift would give them; returns 0 when the step must drift. The
+ * same operations as the drift at its usual place: the same bits. */
+void gr_dem_eval_pre(gr_dem *d, int on);
+int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved);
 /* The one-barrier step (two colours, kick fused, two or more threads):
  * _begin (one thread, after the evaluation's begin and the fusing) says
  * whether it applies and cuts the strips; then every thread of the region

@@ -12,17 +12,6 @@
 
 #define DEM_INLINE static inline __attribute__((always_inline))
 
-/* The baseline build is x86-64 (SSE2); the hot loops get an AVX2 clone
- * chosen at load time (GCC's target_clones) on CPUs that have it. C11 mode
- * contracts no multiply-add (-ffp-contract=off), and AVX2 alone brings no
- * FMA, so both clones compute the same bits. -DDEM_NO_CLONES builds the
- * baseline alone. */
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(DEM_NO_CLONES)
-#define DEM_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define DEM_CLONES
-#endif
-
 typedef struct {
     double kn, gn, kt, gt, mu, dt;
     int clip;

@@ -42,6 +42,8 @@ typedef struct {
     double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
     int kick, kick_p;   /* fused kick on, and its old buffer */
+    int pre;            /* the kick also drifts the strip for the next step (buffer 2) */
+    double *spre;       /* per strip: that drift's two largest squared moves */
     double *svmax;      /* per strip: see struct gr_dem_eval */
     const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
     int nth;            /* threads the split is for */
@@ -69,6 +71,8 @@ struct gr_dem_eval {
     size_t cap_split;
     double *svmax;   /* per strip: largest speed^2 of the next drift's half kick */
     double *tdrift;  /* per strip: drift time of this step (timed steps) */
+    double *spre;    /* per strip: two largest squared moves of the drift done ahead */
+    int drifted;     /* this step's drift was done ahead: the one-barrier step skips it */
     /* one-barrier step: per strip, the epoch at which its drift and its
      * colour's pushes were done */
     _Atomic uint64_t *dflag, *cflag;

@@ -21,7 +21,7 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
     free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
     free(ev->si), free(ev->sj), free(ev->son);
     free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
-    free(ev->smove), free(ev->svmax), free(ev->tdrift);
+    free(ev->smove), free(ev->svmax), free(ev->tdrift), free(ev->spre);
     free((void *)ev->dflag), free((void *)ev->cflag);
     free(ev);
 }
@@ -35,7 +35,8 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
         free(ev->strial), free(ev->sway);
         free(ev->kin), free(ev->kicker), free(ev->smove);
-        free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag);
+        free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag), free(ev->spre);
+        ev->spre = calloc((size_t)ns * 2, sizeof *ev->spre);
         ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
         ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
         ev->dflag = malloc((size_t)ns * sizeof *ev->dflag);
@@ -78,7 +79,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
         !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
-        !ev->tdrift || !ev->dflag || !ev->cflag) {
+        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");

@@ -36,6 +36,38 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
     return 1;
 }
 
+void gr_dem_eval_pre(gr_dem *d, int on)
+{
+    struct gr_dem_eval *ev = d->ev;
+    ev->c.pre = on && ev->c.kick;
+    ev->c.spre = ev->spre;
+    atomic_store_explicit(&d->exits_pre, 0, memory_order_relaxed);
+}
+
+int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)
+{
+    struct gr_dem_eval *ev = d->ev;
+    int use = ev && d->pre_E == E && !d->need_build;
+    d->pre_E = 0;
+    if (ev)
+        ev->drifted = use;
+    if (!use)
+        return 0;
+    /* the drifted buffer becomes the new one; the state it replaces is
+     * two steps old, and a refused step keeps the current one */
+    int q = 1 - d->cur;
+    for (int f = 0; f < F_NBASIC; f++) {
+        double *t = d->f[f][q];
+        d->f[f][q] = d->f[f][2];
+        d->f[f][2] = t;
+    }
+    *moved = gr_dem_top2_sum(ev->spre, 2 * (size_t)ev->ns);
+    atomic_store_explicit(&d->exits, atomic_load_explicit(&d->exits_pre, memory_order_relaxed),
+                          memory_order_relaxed);
+    d->exits_known = 1;
+    return 1;
+}
+
 double gr_dem_eval_moved(const gr_dem *d) { return gr_dem_top2_sum(d->ev->smove, 2 * (size_t)d->ev->ns); }
 
 double gr_dem_eval_kinetic(const gr_dem *d)
@@ -123,7 +155,8 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
     int timed = (ev->c.E & 15) == 0;
     for (int s = s0; s < s1; s++) {
         double t0 = timed ? omp_get_wtime() : 0.0;
-        gr_dem_drift(d, p, q, 1, (size_t)i0[s], (size_t)i0[s + 1], ev->smove + 2 * s);
+        if (!ev->drifted) /* else the last step's kicks did it */
+            gr_dem_drift(d, p, q, 1, (size_t)i0[s], (size_t)i0[s + 1], ev->smove + 2 * s, &d->exits);
         if (timed)
             ev->tdrift[s] = omp_get_wtime() - t0;
         atomic_store_explicit(&ev->dflag[s], ep, memory_order_release);

@@ -318,15 +318,20 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
  * those of the last strip, but colour 0 is never the last to push): after
  * it, kick the strips whose last push it was, while their lines are in
  * this core's cache. Their velocities are read only by the strips that
- * push them, all done by then. */
+ * push them, all done by then; and nothing of the strip changes before
+ * the next step, so its drift can follow at once (into buffer 2). */
 static inline void kick_after(dem_ctx *c, int s)
 {
     gr_dem *d = c->d;
     int ns = d->strips.n;
-    for (int r = s; r <= s + 1 && r < ns; r++)
-        if (c->kicker[r] == s)
-            c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, (size_t)d->strips.i0[r],
-                                    (size_t)d->strips.i0[r + 1], c->svmax + r);
+    for (int r = s; r <= s + 1 && r < ns; r++) {
+        if (c->kicker[r] != s)
+            continue;
+        size_t a = (size_t)d->strips.i0[r], b = (size_t)d->strips.i0[r + 1];
+        c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
+        if (c->pre)
+            gr_dem_drift(d, 1 - c->kick_p, 2, 1, a, b, c->spre + 2 * r, &d->exits_pre);
+    }
 }
 
 /* One colour's strips, shared among the threads of the enclosing parallel

@@ -30,7 +30,7 @@ int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
     }
     for (int f = 0; f < F_NFIELDS; f++)
         if (field_used(d, f))
-            for (int p = 0; p < 2; p++)
+            for (int p = 0; p < (f < F_NBASIC ? 3 : 2); p++)
                 GROW(double, d->f[f][p]);
     GROW(double, d->rad) GROW(double, d->im) GROW(double, d->iI) GROW(double, d->gf)
     GROW(double, d->mass) GROW(double, d->inertia) GROW(double, d->xref) GROW(double, d->yref)
@@ -90,6 +90,7 @@ static void record(gr_dem *d, size_t i, uint32_t extra_flags)
 int gr_dem_compact(gr_dem *d, const unsigned char *gone, gr_err *err)
 {
     (void)err;
+    d->pre_E = 0; /* a drift done ahead was not compacted */
     size_t hc = d->hist_on ? (size_t)d->hist.cap : 0;
     size_t k = 0;
     for (size_t i = 0; i < d->n; i++) {

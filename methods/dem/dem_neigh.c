@@ -248,6 +248,7 @@ int gr_dem_sort(gr_dem *d, gr_err *err)
     for (size_t i = 0; i < d->n; i++)
         g->idx[i] = (int32_t)i;
     d->since_sort = 0;
+    d->pre_E = 0; /* a drift done ahead was not permuted */
     return GR_OK;
 }
 

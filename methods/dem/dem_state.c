@@ -17,7 +17,7 @@ void gr_dem_free(gr_dem *d)
     gr_dem_cv_free(d);
     gr_dem_eval_free(d->ev);
     for (int f = 0; f < F_NFIELDS; f++)
-        for (int p = 0; p < 2; p++)
+        for (int p = 0; p < 3; p++)
             free(d->f[f][p]);
     free(d->rad), free(d->im), free(d->iI), free(d->gf), free(d->mass), free(d->inertia);
     free(d->tag), free(d->flags), free(d->species), free(d->xref), free(d->yref);
@@ -378,7 +378,7 @@ double gr_dem_memory(const gr_dem *d)
 {
     double b = 0;
     for (int f = 0; f < F_NFIELDS; f++)
-        for (int p = 0; p < 2; p++)
+        for (int p = 0; p < 3; p++)
             b += d->f[f][p] ? (double)d->cap * sizeof(double) : 0;
     const double *arr[] = {d->rad, d->im, d->iI, d->gf, d->mass, d->inertia,
                            d->xref, d->yref, d->ext_fx, d->ext_fy};

@@ -88,6 +88,7 @@ static int handle_exits(gr_dem *d, gr_err *err)
         nout += d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi);
     if (!nout)
         return GR_OK;
+    d->pre_E = 0; /* the drift done ahead has the grains where they were */
     int reinsert = sc->silo.present && sc->silo.reinsert;
     unsigned char *gone = calloc(d->n + 1, 1);
     if (!gone)
@@ -269,7 +270,9 @@ static int commit(gr_dem *d, int q, uint64_t E, double tn, double ek, gr_err *er
     return handle_exits(d, err);
 }
 
-int gr_dem_step(gr_dem *d, gr_err *err)
+/* A step; next: another follows in this advance (the kicks then drift
+ * ahead for it). */
+static int step(gr_dem *d, int next, gr_err *err)
 {
     if (!d->gates_open && d->t >= d->sc.silo.open_time && open_gates(d, err))
         return err->code;
@@ -284,7 +287,8 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     if (ahead) {
         if (d->need_build && rebuild_now(d, err))
             return err->code;
-        moved = gr_dem_predict_verlet(d, p, q, 1);
+        if (!gr_dem_pre_use(d, E, &moved))
+            moved = gr_dem_predict_verlet(d, p, q, 1);
     } else {
         switch (d->par.integrator) {
         case GR_DEM_GEAR: gr_dem_predict_gear(d, p, q); break;
@@ -309,11 +313,14 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
         return err->code;
     int fused = d->par.integrator == GR_DEM_VERLET && gr_dem_eval_fuse_kick(d, p);
+    gr_dem_eval_pre(d, ahead && fused && next);
     gr_dem_eval_run(d);
     if (gr_dem_eval_end(d, d->seg_force, err)) {
         gr_dem_hist_undo_at(d, E);
         return err->code;
     }
+    if (ahead && fused && next)
+        d->pre_E = E + 1; /* unless the commit moves grains */
     double ek;
     if (fused) {
         ek = gr_dem_eval_kinetic(d);
@@ -331,11 +338,25 @@ int gr_dem_step(gr_dem *d, gr_err *err)
     return GR_OK;
 }
 
+int gr_dem_step(gr_dem *d, gr_err *err)
+{
+    d->pre_E = 0; /* the caller may change the state between steps */
+    return step(d, 0, err);
+}
+
+/* Whether another step follows the one now starting (steps done before it,
+ * and its time t1) in an advance to t_end or max_steps. */
+static int another(const gr_dem *d, uint64_t done, double t1, double t_end, uint64_t max_steps)
+{
+    return (max_steps == 0 || done + 1 < max_steps) && t1 < t_end - 1e-6 * d->par.dt;
+}
+
 /* What the threaded Verlet loop carries from one step to the next. */
 typedef struct {
     int stop, p, q, track, fused, early, flow;
+    int pre, ahead; /* this step's drift was done ahead; this one drifts ahead */
     uint64_t done, E;
-    double tn;
+    double tn, moved_pre;
     size_t nb;
 } vt_step;
 
@@ -345,7 +366,7 @@ typedef struct {
 static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err)
 {
     const double eps = 1e-6 * d->par.dt;
-    v->fused = v->flow = 0;
+    v->fused = v->flow = v->pre = v->ahead = 0;
     v->stop = !(d->t < t_end - eps && (max_steps == 0 || v->done < max_steps));
     if (v->stop)
         return GR_OK;
@@ -362,12 +383,15 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
     d->exits_known = 1;
     v->track = d->par.neighbour == GR_DEM_NB_VERLET && !d->need_build;
     v->nb = (d->n + DEM_BLOCK - 1) / DEM_BLOCK;
+    v->pre = v->early && v->track && gr_dem_pre_use(d, v->E, &v->moved_pre);
     if (v->track) {
         d->f_zeroed = 1; /* the drift zeroes the new forces */
         if (gr_dem_eval_begin(d, v->q, v->tn, v->E, d->par.dt, d->par.neighbour, err))
             return v->stop = 1, err->code;
         v->fused = gr_dem_eval_fuse_kick(d, v->p);
         v->flow = v->early && v->fused && gr_dem_eval_flow_begin(d);
+        v->ahead = v->early && v->fused && another(d, v->done, v->tn, t_end, max_steps);
+        gr_dem_eval_pre(d, v->ahead);
     }
     return GR_OK;
 }
@@ -381,11 +405,13 @@ static int vt_colours(gr_dem *d, vt_step *v, int *rc, int *stop, gr_err *err)
 {
     const int p = v->p, q = v->q, mode = d->par.neighbour;
     const size_t nb = v->nb;
+    if (!v->pre) {
 #pragma omp for schedule(static)
-    for (size_t b = 0; b < nb; b++)
-        gr_dem_predict_block(d, p, q, v->track, b);
+        for (size_t b = 0; b < nb; b++)
+            gr_dem_predict_block(d, p, q, v->track, b);
+    }
     /* every thread reads the same maxima: the same decision */
-    double moved = v->track ? gr_dem_moved_blocks(d) : 0.0;
+    double moved = !v->track ? 0.0 : v->pre ? v->moved_pre : gr_dem_moved_blocks(d);
     if (!v->track || (!v->early && moved > d->par.skin)) {
 #pragma omp single
         {
@@ -422,14 +448,15 @@ static void vt_end(gr_dem *d, vt_step *v, int *rc, double t_end, uint64_t max_st
     if (gr_dem_eval_end(d, d->seg_force, err)) {
         gr_dem_hist_undo_at(d, v->E);
         *rc = err->code, v->stop = 1;
-    } else if (commit(d, v->q, v->E, v->tn, ek, err)) {
+    } else if ((d->pre_E = v->ahead ? v->E + 1 : 0), commit(d, v->q, v->E, v->tn, ek, err)) {
         *rc = err->code, v->stop = 1;
     } else {
-        /* the drift's maxima: per strip in the one-barrier step, per block
-         * otherwise (no kick over blocks has overwritten them when the kick
-         * was fused) */
+        /* the drift's maxima: done ahead, per strip in the one-barrier
+         * step, per block otherwise (no kick over blocks has overwritten
+         * them when the kick was fused) */
+        double moved = v->pre ? v->moved_pre : v->flow ? gr_dem_eval_moved(d) : gr_dem_moved_blocks(d);
         if (v->early)
-            plan_rebuild(d, v->fused, !v->fused ? 0.0 : v->flow ? gr_dem_eval_moved(d) : gr_dem_moved_blocks(d));
+            plan_rebuild(d, v->fused, !v->fused ? 0.0 : moved);
         v->done++;
         *rc = vt_start(d, v, t_end, max_steps, err);
     }
@@ -470,6 +497,7 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
 
 int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
+    d->pre_E = 0; /* the caller may have changed the state since the last advance */
     if (d->par.integrator == GR_DEM_CVODE)
         return gr_dem_cv_advance(d, t_end, max_steps, err);
     if (d->par.integrator == GR_DEM_VERLET && gr_dem_threads(d) > 1 && d->par.neighbour != GR_DEM_NB_BRUTE)
@@ -477,7 +505,7 @@ int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
     uint64_t done = 0;
     double eps = 1e-6 * d->par.dt;
     while (d->t < t_end - eps && (max_steps == 0 || done < max_steps)) {
-        if (gr_dem_step(d, err))
+        if (step(d, another(d, done, d->t0 + (double)(d->step + 1) * d->par.dt, t_end, max_steps), err))
             return err->code;
         done++;
     }
