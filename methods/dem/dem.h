@@ -329,13 +329,14 @@ double gr_dem_eval_kinetic(const gr_dem *d);
 double gr_dem_eval_moved(const gr_dem *d);
 /* The drift done ahead (velocity Verlet, Verlet lists, kick fused): after
  * gr_dem_eval_fuse_kick, _pre(on) has the kicks also drift each strip for
- * the next step into buffer 2; the step then sets d->pre_E to that step.
+ * the next step into buffer 2 (returns 1 if so); after the evaluation the
+ * step then sets d->pre_E to that step.
  * At that step's start, before its evaluation, _use takes the drift if it
  * is still good (nothing rebuilt, compacted, sorted or reinserted since),
  * swapping buffer 2 in as the new buffer, with *moved and the exit count
  * as the drift would give them; returns 0 when the step must drift. The
  * same operations as the drift at its usual place: the same bits. */
-void gr_dem_eval_pre(gr_dem *d, int on);
+int gr_dem_eval_pre(gr_dem *d, int on);
 int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved);
 /* The one-barrier step (two colours, kick fused, two or more threads):
  * _begin (one thread, after the evaluation's begin and the fusing) says

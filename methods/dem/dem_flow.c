@@ -36,12 +36,13 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
     return 1;
 }
 
-void gr_dem_eval_pre(gr_dem *d, int on)
+int gr_dem_eval_pre(gr_dem *d, int on)
 {
     struct gr_dem_eval *ev = d->ev;
     ev->c.pre = on && ev->c.kick;
     ev->c.spre = ev->spre;
     atomic_store_explicit(&d->exits_pre, 0, memory_order_relaxed);
+    return ev->c.pre;
 }
 
 int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)

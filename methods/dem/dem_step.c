@@ -313,13 +313,13 @@ static int step(gr_dem *d, int next, gr_err *err)
     if (gr_dem_eval_begin(d, q, tn, E, dt, mode, err))
         return err->code;
     int fused = d->par.integrator == GR_DEM_VERLET && gr_dem_eval_fuse_kick(d, p);
-    gr_dem_eval_pre(d, ahead && fused && next);
+    int pre = gr_dem_eval_pre(d, ahead && fused && next);
     gr_dem_eval_run(d);
     if (gr_dem_eval_end(d, d->seg_force, err)) {
         gr_dem_hist_undo_at(d, E);
         return err->code;
     }
-    if (ahead && fused && next)
+    if (pre)
         d->pre_E = E + 1; /* unless the commit moves grains */
     double ek;
     if (fused) {
@@ -390,8 +390,7 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
             return v->stop = 1, err->code;
         v->fused = gr_dem_eval_fuse_kick(d, v->p);
         v->flow = v->early && v->fused && gr_dem_eval_flow_begin(d);
-        v->ahead = v->early && v->fused && another(d, v->done, v->tn, t_end, max_steps);
-        gr_dem_eval_pre(d, v->ahead);
+        v->ahead = gr_dem_eval_pre(d, v->early && v->fused && another(d, v->done, v->tn, t_end, max_steps));
     }
     return GR_OK;
 }
