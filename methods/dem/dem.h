@@ -355,8 +355,14 @@ int gr_dem_cv_create(gr_dem *d, gr_err *err);
 int gr_dem_cv_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);
 void gr_dem_cv_free(gr_dem *d);
 
-/* dem_step.c: a step (also gr_dem_step, gr_dem_advance, gr_dem_forces). */
+/* dem_commit.c: the end of a step. Undo the contact history written by
+ * evaluation E; the energy checks, then the new state (buffer q) becomes
+ * the current one and the grains that left are handled; the gates open. */
 void gr_dem_hist_undo_at(gr_dem *d, uint64_t E);
+int gr_dem_commit(gr_dem *d, int q, uint64_t E, double tn, double ek, gr_err *err);
+int gr_dem_open_gates(gr_dem *d, gr_err *err);
+
+/* dem_step.c: a step (also gr_dem_step, gr_dem_advance, gr_dem_forces). */
 int gr_dem_step(gr_dem *d, gr_err *err);
 
 /* dem_state.c: creation and freeing (also gr_dem_create, gr_dem_free,
