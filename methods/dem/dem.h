@@ -122,6 +122,7 @@ typedef struct gr_dem {
     gr_dem_strips strips;
     /* Verlet list (half: j > i), CSR */
     int32_t *nb_start, *nb_j;
+    int32_t *nb_i;           /* the grain of each pair (the batched loop's flat pass) */
     size_t nb_cap;
     int32_t *sg_start, *sg_j; /* candidate segments per particle */
     size_t sg_cap;

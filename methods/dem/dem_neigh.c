@@ -392,6 +392,13 @@ int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
     d->sg_start[n] = (int32_t)scnt;
     if (cnt > INT32_MAX / 2)
         return gr_fail(err, GR_ERUN, "neighbour list too long (%zu pairs)", cnt);
+    int32_t *owner = realloc(d->nb_i, (d->nb_cap + 1) * sizeof *owner);
+    if (!owner)
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    d->nb_i = owner;
+    for (size_t i = 0; i < n; i++)
+        for (int32_t k = d->nb_start[i]; k < d->nb_start[i + 1]; k++)
+            owner[k] = (int32_t)i;
     strips_index(d);
     d->need_build = 0;
     d->builds++;

@@ -31,7 +31,7 @@ void gr_dem_free(gr_dem *d)
     free(d->cells.start), free(d->cells.idx), free(d->cells.cell);
     free(d->cells.cell_seg_start), free(d->cells.cell_seg);
     free(d->strips.row0), free(d->strips.i0);
-    free(d->nb_start), free(d->nb_j), free(d->sg_start), free(d->sg_j);
+    free(d->nb_start), free(d->nb_j), free(d->nb_i), free(d->sg_start), free(d->sg_j);
     gr_dem_hist *h = &d->hist;
     free(h->partner), free(h->partner_old), free(h->z), free(h->z_old), free(h->stamp), free(h->stamp_old);
     gr_rng_free(d->rng);
@@ -385,7 +385,7 @@ double gr_dem_memory(const gr_dem *d)
     for (size_t k = 0; k < sizeof arr / sizeof *arr; k++)
         b += arr[k] ? (double)d->cap * sizeof(double) : 0;
     b += (double)d->cap * (sizeof(int32_t) * 2 + sizeof(uint32_t));
-    b += (double)(d->nb_cap + d->sg_cap + 2 * (d->n + 1)) * sizeof(int32_t);
+    b += (double)(2 * d->nb_cap + d->sg_cap + 2 * (d->n + 1)) * sizeof(int32_t);
     b += (double)d->cells.cap * 2 * sizeof(int32_t);
     b += (double)(d->cells.nx * d->cells.ny + 1) * sizeof(int32_t);
     if (d->hist_on)
