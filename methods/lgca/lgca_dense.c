@@ -45,13 +45,6 @@ static inline __attribute__((always_inline, target("bmi2"))) uint64_t pdep_hw(ui
 {
     return _pdep_u64(src, mask);
 }
-
-/* BMI2 present and not microcoded. */
-static int pdep_is_fast(void)
-{
-    __builtin_cpu_init();
-    return __builtin_cpu_supports("bmi2") && !__builtin_cpu_is("znver1") && !__builtin_cpu_is("znver2");
-}
 #endif
 
 /* Results back from the deepest round to the nodes: a round's dense words
@@ -92,21 +85,6 @@ scatter_t(size_t nl, size_t nw, int nr, const uint32_t *cnt, uint64_t *lt, const
     }
 }
 
-static void scatter_soft(size_t nl, size_t nw, int nr, const uint32_t *cnt, uint64_t *lt, const uint64_t *eq,
-                         const uint64_t *need, uint64_t *out)
-{
-    scatter_t(nl, nw, nr, cnt, lt, eq, need, out, lgca_pdep_soft);
-}
-
-#ifdef HAVE_BMI2_PATH
-__attribute__((target("bmi2"))) static void scatter_bmi2(size_t nl, size_t nw, int nr, const uint32_t *cnt,
-                                                         uint64_t *lt, const uint64_t *eq, const uint64_t *need,
-                                                         uint64_t *out)
-{
-    scatter_t(nl, nw, nr, cnt, lt, eq, need, out, pdep_hw);
-}
-#endif
-
 /* Round r (Philox purpose + q) on the nd dense words from lt + 0, eq + 0
  * of the lanes' undecided counts c; the undecided counts of the next round
  * into cn. */
@@ -144,15 +122,10 @@ static inline __attribute__((always_inline)) void round_t(const uint32_t key[2],
     }
 }
 
-LGCA_CLONES void lgca_rand_biased_lanes(const uint32_t key[2], uint64_t lane0, size_t nl, size_t nw, unsigned purpose,
-                                        uint64_t step, uint32_t thr, const uint64_t *need, uint64_t *out,
-                                        uint64_t *scratch)
+static inline __attribute__((always_inline)) void
+biased_t(const uint32_t key[2], uint64_t lane0, size_t nl, size_t nw, unsigned purpose, uint64_t step, uint32_t thr,
+         const uint64_t *need, uint64_t *out, uint64_t *scratch, uint64_t (*dep)(uint64_t, uint64_t))
 {
-    if (thr == 0 || thr >= 65536u) {
-        for (size_t w = 0; w < nl * nw; w++)
-            out[w] = thr ? need[w] : 0;
-        return;
-    }
     uint32_t cnt[(ROUNDS + 1) * LGCA_CHUNK_WORDS]; /* [r * nl + l]; the row after the last round unused */
     uint64_t *lt = scratch, *eq = scratch + ROUNDS * nl * nw;
     size_t nd = 0, at = 0;
@@ -171,11 +144,46 @@ LGCA_CLONES void lgca_rand_biased_lanes(const uint32_t key[2], uint64_t lane0, s
         for (size_t l = 0; l < nl; l++)
             nd += (cn[l] + 63) / 64;
     }
+    scatter_t(nl, nw, nr, cnt, lt, eq, need, out, dep);
+}
+
+#define BIASED_ARGS                                                                                             \
+    const uint32_t key[2], uint64_t lane0, size_t nl, size_t nw, unsigned purpose, uint64_t step, uint32_t thr, \
+        const uint64_t *need, uint64_t *out, uint64_t *scratch
+static void biased_base(BIASED_ARGS)
+{
+    biased_t(key, lane0, nl, nw, purpose, step, thr, need, out, scratch, lgca_pdep_soft);
+}
+
 #ifdef HAVE_BMI2_PATH
-    if (pdep_is_fast()) {
-        scatter_bmi2(nl, nw, nr, cnt, lt, eq, need, out);
+/* popcnt too: AVX2 alone leaves popcount to a call into libgcc */
+__attribute__((target("avx2,popcnt"))) static void biased_avx2(BIASED_ARGS)
+{
+    biased_t(key, lane0, nl, nw, purpose, step, thr, need, out, scratch, lgca_pdep_soft);
+}
+
+__attribute__((target("avx2,popcnt,bmi2"))) static void biased_bmi2(BIASED_ARGS)
+{
+    biased_t(key, lane0, nl, nw, purpose, step, thr, need, out, scratch, pdep_hw);
+}
+#endif
+
+void lgca_rand_biased_lanes(BIASED_ARGS)
+{
+    if (thr == 0 || thr >= 65536u) {
+        for (size_t w = 0; w < nl * nw; w++)
+            out[w] = thr ? need[w] : 0;
         return;
     }
+#ifdef HAVE_BMI2_PATH
+    __builtin_cpu_init();
+    int avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+    /* Zen 1 and 2 run pdep in microcode */
+    if (avx2 && __builtin_cpu_supports("bmi2") && !__builtin_cpu_is("znver1") && !__builtin_cpu_is("znver2"))
+        biased_bmi2(key, lane0, nl, nw, purpose, step, thr, need, out, scratch);
+    else if (avx2)
+        biased_avx2(key, lane0, nl, nw, purpose, step, thr, need, out, scratch);
+    else
 #endif
-    scatter_soft(nl, nw, nr, cnt, lt, eq, need, out);
+        biased_base(key, lane0, nl, nw, purpose, step, thr, need, out, scratch);
 }

@@ -208,6 +208,12 @@ static void fast_equals_reference_unwalled(void **unused)
                               "rules = granular\np = 0.3\nthreads = 1\n"};
     /* g = 0.05 set on the lattice for the granular rules (a periodic scene has no gravity) */
     against_reference(base, variants, sizeof variants / sizeof variants[0], 7, 3277);
+    /* lanes of 900 nodes (15 words): the kernel's eight-word (AVX-512),
+     * four-word and one-word paths */
+    const char *lanes = "[scene]\nseed = 13\n[domain]\nwidth = 8\nheight = 900\nleft = periodic\n"
+                        "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    against_reference(lanes, variants, sizeof variants / sizeof variants[0], 7, 3277);
 }
 
 /* The batched random words (vectorised Philox rounds) against Random123's
