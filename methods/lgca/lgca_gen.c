@@ -163,21 +163,46 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
     body(f, &G, n1, "uint64_t", with_pb);
     body(f, &G, n4, "lgca_v4", with_pb);
     body(f, &G, n8, "lgca_v8", with_pb);
-    /* an exported copy for the tests, and the loops over a lane's words:
-     * eight (AVX-512) or four at a time, then the rest one by one */
+    /* an exported copy for the tests, and the loops over the lanes' words:
+     * eight (AVX-512) or four at a time, then the rest one by one; lanes
+     * of four words go by pairs into eight-word vectors */
     const char *pa = with_pb ? "pb, " : "", *pw = with_pb ? "pb[w], " : "";
-    const char *args = with_pb ? ", const uint64_t *pb" : "";
+    const char *args = with_pb ? ", const uint64_t *pb0" : "";
     fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, ch, %sd);\n}\n\n",
             name, with_pb ? "uint64_t pb, " : "", n1, pa);
     for (int v = 0; v < 2; v++) {
         if (v == 0)
-            fprintf(f, "#ifdef LGCA_AVX512\n__attribute__((target(\"avx512f\"))) static void %s_lane8(uint64_t *lane, "
-                       "size_t nw, const uint64_t *fluid,\n    const uint64_t *ch%s)\n{\n    size_t w = 0;\n",
-                    name, args);
+            fprintf(f,
+                    "#ifdef LGCA_AVX512\n__attribute__((target(\"avx512f\"))) static void %s_lanes8(uint64_t *lanes, "
+                    "size_t nl, size_t nw,\n    const uint64_t *fluid0, const uint64_t *ch0%s)\n{\n    size_t l = 0;\n"
+                    "    for (; nw == 4 && l + 2 <= nl; l += 2) {\n"
+                    "        uint64_t *lane = lanes + l * 7 * nw;\n"
+                    "        size_t o = l * nw;\n"
+                    "        lgca_v8 s[7], d[7], c, fl%s;\n"
+                    "        for (int k = 0; k < 7; k++) {\n"
+                    "            memcpy(&s[k], lane + k * 4, 32);\n"
+                    "            memcpy((char *)&s[k] + 32, lane + 28 + k * 4, 32);\n"
+                    "        }\n"
+                    "        memcpy(&c, ch0 + o, sizeof c);\n"
+                    "        memcpy(&fl, fluid0 + o, sizeof fl);\n%s"
+                    "        %s(s, c, %sd);\n"
+                    "        for (int k = 0; k < 7; k++) {\n"
+                    "            s[k] ^= d[k] & fl;\n"
+                    "            memcpy(lane + k * 4, &s[k], 32);\n"
+                    "            memcpy(lane + 28 + k * 4, (char *)&s[k] + 32, 32);\n"
+                    "        }\n"
+                    "    }\n",
+                    name, args, with_pb ? ", p" : "", with_pb ? "        memcpy(&p, pb0 + o, sizeof p);\n" : "", n8,
+                    with_pb ? "p, " : "");
         else
-            fprintf(f, "LGCA_CLONES static void %s_lane4(uint64_t *lane, size_t nw, const uint64_t *fluid, "
-                       "const uint64_t *ch%s)\n{\n    size_t w = 0;\n",
+            fprintf(f, "LGCA_CLONES static void %s_lanes4(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, "
+                       "const uint64_t *ch0%s)\n{\n    size_t l = 0;\n",
                     name, args);
+        fprintf(f, "    for (; l < nl; l++) {\n"
+                   "        uint64_t *lane = lanes + l * 7 * nw;\n"
+                   "        const uint64_t *fluid = fluid0 + l * nw, *ch = ch0 + l * nw%s;\n"
+                   "        size_t w = 0;\n",
+                with_pb ? ", *pb = pb0 + l * nw" : "");
         if (v == 0)
             vloop(f, 8, "lgca_v8", n8, with_pb);
         vloop(f, 4, "lgca_v4", n4, with_pb);
@@ -189,18 +214,18 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
                 "        %s(s, ch[w], %sd);\n"
                 "        for (int k = 0; k < 7; k++)\n"
                 "            lane[k * nw + w] = s[k] ^ (d[k] & fluid[w]);\n"
-                "    }\n}\n%s\n",
+                "    }\n    }\n}\n%s\n",
                 n1, pw, v == 0 ? "#endif\n" : "");
     }
-    fprintf(f, "void %s_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch%s)\n{\n"
+    fprintf(f, "void %s_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0%s)\n{\n"
                "#ifdef LGCA_AVX512\n"
-               "    if (nw >= 8 && __builtin_cpu_supports(\"avx512f\")) {\n"
-               "        %s_lane8(lane, nw, fluid, ch%s);\n"
+               "    if ((nw >= 8 || (nw == 4 && nl >= 2)) && __builtin_cpu_supports(\"avx512f\")) {\n"
+               "        %s_lanes8(lanes, nl, nw, fluid0, ch0%s);\n"
                "        return;\n"
                "    }\n"
                "#endif\n"
-               "    %s_lane4(lane, nw, fluid, ch%s);\n}\n\n",
-            name, args, name, with_pb ? ", pb" : "", name, with_pb ? ", pb" : "");
+               "    %s_lanes4(lanes, nl, nw, fluid0, ch0%s);\n}\n\n",
+            name, args, name, with_pb ? ", pb0" : "", name, with_pb ? ", pb0" : "");
 }
 
 int main(int argc, char **argv)
@@ -227,9 +252,10 @@ int main(int argc, char **argv)
                "#else\n#define LGCA_CLONES\n#endif\n\n"
                "void lgca_delta_fhp3(const uint64_t s[7], uint64_t ch, uint64_t d[7]);\n"
                "void lgca_delta_granular(const uint64_t s[7], uint64_t ch, uint64_t pb, uint64_t d[7]);\n"
-               "void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);\n"
-               "void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch,\n"
-               "                              const uint64_t *pb);\n\n");
+               "void lgca_delta_fhp3_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0,\n"
+               "                           const uint64_t *ch0);\n"
+               "void lgca_delta_granular_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0,\n"
+               "                               const uint64_t *ch0, const uint64_t *pb0);\n\n");
     emit(f, LGCA_RULES_FHP3, "lgca_delta_fhp3", 0);
     emit(f, LGCA_RULES_GRANULAR, "lgca_delta_granular", 1);
     return fclose(f) ? 1 : 0;

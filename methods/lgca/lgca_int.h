@@ -63,11 +63,11 @@ static inline int lgca_mirror(int m, int k)
 /* d: the bits that change (apply as s ^= d & fluid). */
 void lgca_delta_fhp3(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t d[LGCA_CH]);
 void lgca_delta_granular(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t pb, uint64_t d[LGCA_CH]);
-/* The collision of a lane's nw words (lane: 7 planes of nw words) at its
- * fluid nodes. */
-void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);
-void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch,
-                              const uint64_t *pb);
+/* The collision of nl consecutive lanes of nw words (a lane: 7 planes of
+ * nw words) at their fluid nodes (fluid, ch, pb: nw words a lane). */
+void lgca_delta_fhp3_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0);
+void lgca_delta_granular_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0,
+                               const uint64_t *pb0);
 
 /* ---- random bits (lgca_rand.c): Philox4x32-10 keyed by the run's key,
  * counted by word, purpose and step ---- */

@@ -103,11 +103,9 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
                 need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
             lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_P, step, L->thr_p, need, pb,
                                    dense);
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
+            lgca_delta_granular_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch, pb);
         } else
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
+            lgca_delta_fhp3_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch);
         if (L->thr_g) {
             for (size_t o = 0; o < n; o += nw)
                 need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);

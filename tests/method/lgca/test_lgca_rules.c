@@ -214,6 +214,12 @@ static void fast_equals_reference_unwalled(void **unused)
                         "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
                         "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
     against_reference(lanes, variants, sizeof variants / sizeof variants[0], 7, 3277);
+    /* 23 lanes of 250 nodes (4 words): by pairs in eight-word vectors, and
+     * an odd one */
+    const char *pairs = "[scene]\nseed = 14\n[domain]\nwidth = 20\nheight = 250\nleft = periodic\n"
+                        "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    against_reference(pairs, variants, sizeof variants / sizeof variants[0], 7, 3277);
 }
 
 /* The batched random words (vectorised Philox rounds) against Random123's
