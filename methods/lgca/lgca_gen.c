@@ -93,8 +93,10 @@ static void group(int rules, int with_pb, groups *G)
 static void body(FILE *f, const groups *G, const char *name, const char *T, int with_pb)
 {
     const uint8_t *tab = G->tab;
-    fprintf(f, "static inline __attribute__((always_inline)) void %s(const %s *s, %s ch, %s%s%s *d)\n{\n",
-            name, T, T, with_pb ? T : "", with_pb ? " pb, " : "", T);
+    /* the random words by pointer: a 64-byte vector by value draws GCC's ABI note */
+    fprintf(f, "static inline __attribute__((always_inline)) void %s(const %s *s, const %s *chp, %s%s%s%s *d)\n{\n",
+            name, T, T, with_pb ? "const " : "", with_pb ? T : "", with_pb ? " *pbp, " : "", T);
+    fprintf(f, "    const %s ch = *chp%s;\n", T, with_pb ? ", pb = *pbp" : "");
     literals(f, T);
     for (unsigned s = 0; s < 128; s++)
         if (G->used[s])
@@ -142,14 +144,14 @@ static void vloop(FILE *f, int wd, const char *T, const char *bname, int with_pb
             "            memcpy(&s[k], lane + k * nw + w, sizeof s[k]);\n"
             "        memcpy(&c, ch + w, sizeof c);\n"
             "        memcpy(&fl, fluid + w, sizeof fl);\n%s"
-            "        %s(s, c, %sd);\n"
+            "        %s(s, &c, %sd);\n"
             "        for (int k = 0; k < 7; k++) {\n"
             "            s[k] ^= d[k] & fl;\n"
             "            memcpy(lane + k * nw + w, &s[k], sizeof s[k]);\n"
             "        }\n"
             "    }\n",
             wd, wd, T, with_pb ? ", p" : "", with_pb ? "        memcpy(&p, pb + w, sizeof p);\n" : "", bname,
-            with_pb ? "p, " : "");
+            with_pb ? "&p, " : "");
 }
 
 static void emit(FILE *f, int rules, const char *name, int with_pb)
@@ -166,9 +168,9 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
     /* an exported copy for the tests, and the loops over the lanes' words:
      * eight (AVX-512) or four at a time, then the rest one by one; lanes
      * of four words go by pairs into eight-word vectors */
-    const char *pa = with_pb ? "pb, " : "", *pw = with_pb ? "pb[w], " : "";
+    const char *pa = with_pb ? "&pb, " : "", *pw = with_pb ? "&pb[w], " : "";
     const char *args = with_pb ? ", const uint64_t *pb0" : "";
-    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, ch, %sd);\n}\n\n",
+    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, &ch, %sd);\n}\n\n",
             name, with_pb ? "uint64_t pb, " : "", n1, pa);
     for (int v = 0; v < 2; v++) {
         if (v == 0)
@@ -185,7 +187,7 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
                     "        }\n"
                     "        memcpy(&c, ch0 + o, sizeof c);\n"
                     "        memcpy(&fl, fluid0 + o, sizeof fl);\n%s"
-                    "        %s(s, c, %sd);\n"
+                    "        %s(s, &c, %sd);\n"
                     "        for (int k = 0; k < 7; k++) {\n"
                     "            s[k] ^= d[k] & fl;\n"
                     "            memcpy(lane + k * 4, &s[k], 32);\n"
@@ -193,7 +195,7 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
                     "        }\n"
                     "    }\n",
                     name, args, with_pb ? ", p" : "", with_pb ? "        memcpy(&p, pb0 + o, sizeof p);\n" : "", n8,
-                    with_pb ? "p, " : "");
+                    with_pb ? "&p, " : "");
         else
             fprintf(f, "LGCA_CLONES static void %s_lanes4(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, "
                        "const uint64_t *ch0%s)\n{\n    size_t l = 0;\n",
@@ -211,7 +213,7 @@ static void emit(FILE *f, int rules, const char *name, int with_pb)
                 "        uint64_t s[7], d[7];\n"
                 "        for (int k = 0; k < 7; k++)\n"
                 "            s[k] = lane[k * nw + w];\n"
-                "        %s(s, ch[w], %sd);\n"
+                "        %s(s, &ch[w], %sd);\n"
                 "        for (int k = 0; k < 7; k++)\n"
                 "            lane[k * nw + w] = s[k] ^ (d[k] & fluid[w]);\n"
                 "    }\n    }\n}\n%s\n",
