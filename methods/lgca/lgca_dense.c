@@ -16,8 +16,9 @@
  * the undecided bits of the round before, and round 0's fill the needed
  * nodes. Results depend on the lane, not on which thread draws it. BMI2's
  * pdep is used where it is fast; AMD Zen 1 and 2 run it in microcode
- * (tens of cycles and more per set bit), so they take the portable loop,
- * which gives the same bits (and so does a -DLGCA_NO_CLONES build). */
+ * (tens to hundreds of cycles, growing with the mask's set bits), so
+ * they take the portable loop, which gives the same bits (and so does a
+ * -DLGCA_NO_CLONES build). */
 #include <string.h>
 
 #include "lgca_int.h"
@@ -49,7 +50,7 @@ static inline __attribute__((always_inline, target("bmi2"))) uint64_t pdep_hw(ui
 
 /* Results back from the deepest round to the nodes: a round's dense words
  * (lt) take, at their undecided bits (eq), the next bits of the following
- * round's results; cnt[r][l]: undecided nodes of lane l entering round r. */
+ * round's results; cnt[r nl + l]: undecided nodes of lane l entering round r. */
 static inline __attribute__((always_inline)) void
 scatter_t(size_t nl, size_t nw, int nr, const uint32_t *cnt, uint64_t *lt, const uint64_t *eq, const uint64_t *need,
           uint64_t *out, uint64_t (*dep)(uint64_t, uint64_t))
