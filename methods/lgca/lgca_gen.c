@@ -93,8 +93,10 @@ static void group(int rules, int with_pb, groups *G)
 static void body(FILE *f, const groups *G, const char *name, const char *T, int with_pb)
 {
     const uint8_t *tab = G->tab;
-    fprintf(f, "static inline __attribute__((always_inline)) void %s(const %s *s, %s ch, %s%s%s *d)\n{\n",
-            name, T, T, with_pb ? T : "", with_pb ? " pb, " : "", T);
+    /* the random words by pointer: a 64-byte vector by value draws GCC's ABI note */
+    fprintf(f, "static inline __attribute__((always_inline)) void %s(const %s *s, const %s *chp, %s%s%s%s *d)\n{\n",
+            name, T, T, with_pb ? "const " : "", with_pb ? T : "", with_pb ? " *pbp, " : "", T);
+    fprintf(f, "    const %s ch = *chp%s;\n", T, with_pb ? ", pb = *pbp" : "");
     literals(f, T);
     for (unsigned s = 0; s < 128; s++)
         if (G->used[s])
@@ -132,44 +134,100 @@ static void body(FILE *f, const groups *G, const char *name, const char *T, int 
     fprintf(f, "}\n\n");
 }
 
+/* A loop over words wd at a time (vectors of type T, body bname) from w. */
+static void vloop(FILE *f, int wd, const char *T, const char *bname, int with_pb)
+{
+    fprintf(f,
+            "    for (; w + %d <= nw; w += %d) {\n"
+            "        %s s[7], d[7], c, fl%s;\n"
+            "        for (int k = 0; k < 7; k++)\n"
+            "            memcpy(&s[k], lane + k * nw + w, sizeof s[k]);\n"
+            "        memcpy(&c, ch + w, sizeof c);\n"
+            "        memcpy(&fl, fluid + w, sizeof fl);\n%s"
+            "        %s(s, &c, %sd);\n"
+            "        for (int k = 0; k < 7; k++) {\n"
+            "            s[k] ^= d[k] & fl;\n"
+            "            memcpy(lane + k * nw + w, &s[k], sizeof s[k]);\n"
+            "        }\n"
+            "    }\n",
+            wd, wd, T, with_pb ? ", p" : "", with_pb ? "        memcpy(&p, pb + w, sizeof p);\n" : "", bname,
+            with_pb ? "&p, " : "");
+}
+
 static void emit(FILE *f, int rules, const char *name, int with_pb)
 {
     groups G;
     group(rules, with_pb, &G);
-    char n1[64], n4[64];
+    char n1[64], n4[64], n8[64];
     snprintf(n1, sizeof n1, "%s_1", name);
     snprintf(n4, sizeof n4, "%s_4", name);
+    snprintf(n8, sizeof n8, "%s_8", name);
     body(f, &G, n1, "uint64_t", with_pb);
     body(f, &G, n4, "lgca_v4", with_pb);
-    /* an exported copy for the tests, and the loop over a lane's words:
-     * four at a time, then the rest one by one */
-    const char *pa = with_pb ? "pb, " : "", *pw = with_pb ? "pb[w], " : "";
-    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, ch, %sd);\n}\n\n",
+    body(f, &G, n8, "lgca_v8", with_pb);
+    /* an exported copy for the tests, and the loops over the lanes' words:
+     * eight (AVX-512) or four at a time, then the rest one by one; lanes
+     * of four words go by pairs into eight-word vectors */
+    const char *pa = with_pb ? "&pb, " : "", *pw = with_pb ? "&pb[w], " : "";
+    const char *args = with_pb ? ", const uint64_t *pb0" : "";
+    fprintf(f, "void %s(const uint64_t s[7], uint64_t ch, %suint64_t d[7])\n{\n    %s(s, &ch, %sd);\n}\n\n",
             name, with_pb ? "uint64_t pb, " : "", n1, pa);
-    fprintf(f, "LGCA_CLONES void %s_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch%s)\n{\n"
-               "    size_t w = 0;\n"
-               "    for (; w + 4 <= nw; w += 4) {\n"
-               "        lgca_v4 s[7], d[7], c, fl%s;\n"
-               "        for (int k = 0; k < 7; k++)\n"
-               "            memcpy(&s[k], lane + k * nw + w, sizeof s[k]);\n"
-               "        memcpy(&c, ch + w, sizeof c);\n"
-               "        memcpy(&fl, fluid + w, sizeof fl);\n%s"
-               "        %s(s, c, %sd);\n"
-               "        for (int k = 0; k < 7; k++) {\n"
-               "            s[k] ^= d[k] & fl;\n"
-               "            memcpy(lane + k * nw + w, &s[k], sizeof s[k]);\n"
-               "        }\n"
+    for (int v = 0; v < 2; v++) {
+        if (v == 0)
+            fprintf(f,
+                    "#ifdef LGCA_AVX512\n__attribute__((target(\"avx512f\"))) static void %s_lanes8(uint64_t *lanes, "
+                    "size_t nl, size_t nw,\n    const uint64_t *fluid0, const uint64_t *ch0%s)\n{\n    size_t l = 0;\n"
+                    "    for (; nw == 4 && l + 2 <= nl; l += 2) {\n"
+                    "        uint64_t *lane = lanes + l * 7 * nw;\n"
+                    "        size_t o = l * nw;\n"
+                    "        lgca_v8 s[7], d[7], c, fl%s;\n"
+                    "        for (int k = 0; k < 7; k++) {\n"
+                    "            memcpy(&s[k], lane + k * 4, 32);\n"
+                    "            memcpy((char *)&s[k] + 32, lane + 28 + k * 4, 32);\n"
+                    "        }\n"
+                    "        memcpy(&c, ch0 + o, sizeof c);\n"
+                    "        memcpy(&fl, fluid0 + o, sizeof fl);\n%s"
+                    "        %s(s, &c, %sd);\n"
+                    "        for (int k = 0; k < 7; k++) {\n"
+                    "            s[k] ^= d[k] & fl;\n"
+                    "            memcpy(lane + k * 4, &s[k], 32);\n"
+                    "            memcpy(lane + 28 + k * 4, (char *)&s[k] + 32, 32);\n"
+                    "        }\n"
+                    "    }\n",
+                    name, args, with_pb ? ", p" : "", with_pb ? "        memcpy(&p, pb0 + o, sizeof p);\n" : "", n8,
+                    with_pb ? "&p, " : "");
+        else
+            fprintf(f, "LGCA_CLONES static void %s_lanes4(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, "
+                       "const uint64_t *ch0%s)\n{\n    size_t l = 0;\n",
+                    name, args);
+        fprintf(f, "    for (; l < nl; l++) {\n"
+                   "        uint64_t *lane = lanes + l * 7 * nw;\n"
+                   "        const uint64_t *fluid = fluid0 + l * nw, *ch = ch0 + l * nw%s;\n"
+                   "        size_t w = 0;\n",
+                with_pb ? ", *pb = pb0 + l * nw" : "");
+        if (v == 0)
+            vloop(f, 8, "lgca_v8", n8, with_pb);
+        vloop(f, 4, "lgca_v4", n4, with_pb);
+        fprintf(f,
+                "    for (; w < nw; w++) {\n"
+                "        uint64_t s[7], d[7];\n"
+                "        for (int k = 0; k < 7; k++)\n"
+                "            s[k] = lane[k * nw + w];\n"
+                "        %s(s, &ch[w], %sd);\n"
+                "        for (int k = 0; k < 7; k++)\n"
+                "            lane[k * nw + w] = s[k] ^ (d[k] & fluid[w]);\n"
+                "    }\n    }\n}\n%s\n",
+                n1, pw, v == 0 ? "#endif\n" : "");
+    }
+    fprintf(f, "void %s_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0%s)\n{\n"
+               "#ifdef LGCA_AVX512\n"
+               "    if ((nw >= 8 || (nw == 4 && nl >= 2)) && __builtin_cpu_supports(\"avx512f\")) {\n"
+               "        %s_lanes8(lanes, nl, nw, fluid0, ch0%s);\n"
+               "        return;\n"
                "    }\n"
-               "    for (; w < nw; w++) {\n"
-               "        uint64_t s[7], d[7];\n"
-               "        for (int k = 0; k < 7; k++)\n"
-               "            s[k] = lane[k * nw + w];\n"
-               "        %s(s, ch[w], %sd);\n"
-               "        for (int k = 0; k < 7; k++)\n"
-               "            lane[k * nw + w] = s[k] ^ (d[k] & fluid[w]);\n"
-               "    }\n}\n\n",
-            name, with_pb ? ", const uint64_t *pb" : "", with_pb ? ", p" : "",
-            with_pb ? "        memcpy(&p, pb + w, sizeof p);\n" : "", n4, with_pb ? "p, " : "", n1, pw);
+               "#endif\n"
+               "    %s_lanes4(lanes, nl, nw, fluid0, ch0%s);\n}\n\n",
+            name, args, name, with_pb ? ", pb0" : "", name, with_pb ? ", pb0" : "");
 }
 
 int main(int argc, char **argv)
@@ -185,18 +243,23 @@ int main(int argc, char **argv)
     }
     fprintf(f, "/* Generated by methods/lgca/lgca_gen.c from lgca_table.c: do not edit. */\n"
                "#include <stddef.h>\n#include <stdint.h>\n#include <string.h>\n\n"
-               "typedef uint64_t lgca_v4 __attribute__((vector_size(32)));\n\n"
+               "typedef uint64_t lgca_v4 __attribute__((vector_size(32)));\n"
+               "typedef uint64_t lgca_v8 __attribute__((vector_size(64)));\n\n"
                "/* The build is baseline x86-64 (SSE2, two words a vector); an AVX2 copy\n"
                " * (four words a vector) is picked at load time on CPUs that have it.\n"
                " * -DLGCA_NO_CLONES builds the baseline alone (to test it on any CPU). */\n"
                "#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(LGCA_NO_CLONES)\n"
                "#define LGCA_CLONES __attribute__((target_clones(\"avx2\", \"default\")))\n"
+               "#ifndef LGCA_NO_AVX512 /* -DLGCA_NO_AVX512: what an AVX2-only CPU runs */\n"
+               "#define LGCA_AVX512 1 /* eight words a vector, three-input logic (vpternlogq) */\n"
+               "#endif\n"
                "#else\n#define LGCA_CLONES\n#endif\n\n"
                "void lgca_delta_fhp3(const uint64_t s[7], uint64_t ch, uint64_t d[7]);\n"
                "void lgca_delta_granular(const uint64_t s[7], uint64_t ch, uint64_t pb, uint64_t d[7]);\n"
-               "void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);\n"
-               "void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch,\n"
-               "                              const uint64_t *pb);\n\n");
+               "void lgca_delta_fhp3_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0,\n"
+               "                           const uint64_t *ch0);\n"
+               "void lgca_delta_granular_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0,\n"
+               "                               const uint64_t *ch0, const uint64_t *pb0);\n\n");
     emit(f, LGCA_RULES_FHP3, "lgca_delta_fhp3", 0);
     emit(f, LGCA_RULES_GRANULAR, "lgca_delta_granular", 1);
     return fclose(f) ? 1 : 0;

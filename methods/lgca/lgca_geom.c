@@ -151,7 +151,7 @@ static int alloc_lattice(lgca *L, gr_err *err)
     L->solid = calloc(nj * nw, sizeof *L->solid);
     L->valid = calloc(nw, sizeof *L->valid);
     L->chunk = nw >= LGCA_CHUNK_WORDS ? 1 : (int)(LGCA_CHUNK_WORDS / nw);
-    L->scratch = calloc(T * 6 * (size_t)L->chunk * nw, sizeof *L->scratch);
+    L->scratch = calloc(T * LGCA_SCRATCH * (size_t)L->chunk * nw, sizeof *L->scratch);
     L->edge = calloc(2 * T * 4 * nw, sizeof *L->edge);
     if (L->thr_stop && !(L->stop_mask = calloc(nj * nw, sizeof *L->stop_mask)))
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);

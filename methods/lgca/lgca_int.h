@@ -63,33 +63,38 @@ static inline int lgca_mirror(int m, int k)
 /* d: the bits that change (apply as s ^= d & fluid). */
 void lgca_delta_fhp3(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t d[LGCA_CH]);
 void lgca_delta_granular(const uint64_t s[LGCA_CH], uint64_t ch, uint64_t pb, uint64_t d[LGCA_CH]);
-/* The collision of a lane's nw words (lane: 7 planes of nw words) at its
- * fluid nodes. */
-void lgca_delta_fhp3_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch);
-void lgca_delta_granular_lane(uint64_t *lane, size_t nw, const uint64_t *fluid, const uint64_t *ch,
-                              const uint64_t *pb);
+/* The collision of nl consecutive lanes of nw words (a lane: 7 planes of
+ * nw words) at their fluid nodes (fluid, ch, pb: nw words a lane). */
+void lgca_delta_fhp3_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0);
+void lgca_delta_granular_lanes(uint64_t *lanes, size_t nl, size_t nw, const uint64_t *fluid0, const uint64_t *ch0,
+                               const uint64_t *pb0);
 
 /* ---- random bits (lgca_rand.c): Philox4x32-10 keyed by the run's key,
  * counted by word, purpose and step ---- */
 enum { LGCA_RND_CHIRAL = 0, LGCA_RND_P = 2, LGCA_RND_G = 18, LGCA_RND_WALL = 34, LGCA_RND_REINSERT = 35,
        LGCA_RND_STOP = 36 /* and 37 */ };
 uint64_t lgca_rand_word(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step);
-/* 64 bits each set with probability thr / 2^16 (thr <= 65536). */
-uint64_t lgca_rand_biased(const uint32_t key[2], uint64_t word, unsigned purpose, uint64_t step,
-                          uint32_t thr);
 uint32_t lgca_rand_u32(const uint32_t key[2], uint64_t node, unsigned purpose, uint64_t step);
-/* The same bits for words word0 .. word0 + n - 1 into out, batched so that
- * the Philox rounds vectorise: lgca_rand_word and lgca_rand_biased word by
- * word, bit for bit. */
+/* The same bits as lgca_rand_word for words word0 .. word0 + n - 1 into
+ * out, batched so that the Philox rounds vectorise. */
 void lgca_rand_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
                      uint64_t *out);
-void lgca_rand_biased_words(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
-                            uint32_t thr, uint64_t *out);
-/* lgca_rand_biased's bits at the lanes set in need[w] (0 elsewhere),
- * drawn only for the words and bits that decide them; eq and idx: n
- * entries of scratch. */
-void lgca_rand_biased_need(const uint32_t key[2], uint64_t word0, size_t n, unsigned purpose, uint64_t step,
-                           uint32_t thr, const uint64_t *need, uint64_t *out, uint64_t *eq, uint32_t *idx);
+/* lgca_dense.c. Lanes lane0 .. lane0 + nl - 1 (nl <= LGCA_CHUNK_WORDS) of
+ * nw words each: out (nl nw words) has a 1 with probability thr / 2^16
+ * (thr <= 65536) at each node set in need, 0 elsewhere; a function of the
+ * key, the lane, its need, purpose and step (purposes purpose .. purpose +
+ * 7). scratch: LGCA_DENSE_SCRATCH nl nw words. */
+#define LGCA_DENSE_SCRATCH 16
+/* BMI2's pdep, portable: the low bits of src at the set bits of mask. */
+static inline __attribute__((always_inline)) uint64_t lgca_pdep_soft(uint64_t src, uint64_t mask)
+{
+    uint64_t r = 0;
+    for (; mask; mask &= mask - 1, src >>= 1)
+        r |= (uint64_t)-(int64_t)(src & 1u) & (mask & -mask);
+    return r;
+}
+void lgca_rand_biased_lanes(const uint32_t key[2], uint64_t lane0, size_t nl, size_t nw, unsigned purpose,
+                            uint64_t step, uint32_t thr, const uint64_t *need, uint64_t *out, uint64_t *scratch);
 /* The baseline build is x86-64 (SSE2); hot loops get an AVX2 clone chosen
  * at load time (GCC's target_clones) on CPUs that have it. -DLGCA_NO_CLONES
  * builds the baseline alone, so that its tests run on an AVX2 machine. */
@@ -102,6 +107,8 @@ void lgca_rand_biased_need(const uint32_t key[2], uint64_t word0, size_t n, unsi
 /* The random words of a few lanes are drawn together, so that short lanes
  * fill the batches of Philox calls. */
 #define LGCA_CHUNK_WORDS 256
+/* fluid, chirality, biased bits, need, and lgca_rand_biased_lanes' */
+#define LGCA_SCRATCH (4 + LGCA_DENSE_SCRATCH)
 
 /* A wall node: where, its mirror kind, whether it is a gate. */
 typedef struct {
@@ -137,7 +144,7 @@ typedef struct lgca {
     uint64_t outflow, reinserted, lost;
     int nthreads;
     int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
-    uint64_t *scratch;      /* per thread: 6 chunk nw words (fluid, random bits, masks) */
+    uint64_t *scratch;      /* per thread: LGCA_SCRATCH chunk nw words (fluid, random bits, masks) */
     uint64_t *edge;         /* per step parity and thread: 4 planes of a block's edge lanes */
 } lgca;
 

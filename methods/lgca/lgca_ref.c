@@ -30,23 +30,58 @@ static unsigned gravity(unsigned s)
     return s;
 }
 
-static void collide(const lgca *L, uint8_t *b, uint64_t step, const uint8_t *tab)
+/* A dissipation bit can change the collision of a fluid node with no rest
+ * particle and two movers or more; gravity, a node it can move. The fast
+ * step draws bits for these nodes only, numbered in order along the lane
+ * (lgca_dense.c), so the reference asks for the same. */
+static int needs_p(unsigned s)
 {
+    return !(s >> LGCA_REST & 1u) && __builtin_popcount(s & 63u) >= 2;
+}
+
+/* One lane: chirality, the collision (by table), gravity; need, bits and
+ * scratch: the lane's words. */
+static void collide_lane(const lgca *L, int j, uint8_t *b, uint64_t step, const uint8_t *tab, uint64_t *need,
+                         uint64_t *bits, uint64_t *scratch)
+{
+    size_t nw = (size_t)L->nw;
     int granular = L->par.rules == LGCA_RULES_GRANULAR;
+    memset(need, 0, nw * sizeof *need), memset(bits, 0, nw * sizeof *bits);
+    for (int i = 0; i < L->ni; i++)
+        if (granular && !lgca_is_solid(L, i, j) && needs_p(b[i]))
+            need[i >> 6] |= (uint64_t)1 << (i & 63);
+    if (granular)
+        lgca_rand_biased_lanes(L->key, (uint64_t)j, 1, nw, LGCA_RND_P, step, L->thr_p, need, bits, scratch);
+    for (int i = 0; i < L->ni; i++) {
+        if (lgca_is_solid(L, i, j))
+            continue;
+        uint64_t word = (uint64_t)j * nw + (uint64_t)(i >> 6);
+        unsigned ch = (unsigned)(lgca_rand_word(L->key, word, LGCA_RND_CHIRAL, step) >> (i & 63) & 1u);
+        unsigned pb = (unsigned)(bits[i >> 6] >> (i & 63) & 1u);
+        b[i] = tab[b[i] | ch << 7 | pb << 8];
+    }
+    if (!L->thr_g)
+        return;
+    memset(need, 0, nw * sizeof *need);
+    for (int i = 0; i < L->ni; i++)
+        if (!lgca_is_solid(L, i, j) && gravity(b[i]) != b[i])
+            need[i >> 6] |= (uint64_t)1 << (i & 63);
+    lgca_rand_biased_lanes(L->key, (uint64_t)j, 1, nw, LGCA_RND_G, step, L->thr_g, need, bits, scratch);
+    for (int i = 0; i < L->ni; i++)
+        if (bits[i >> 6] >> (i & 63) & 1u)
+            b[i] = (uint8_t)gravity(b[i]);
+}
+
+static int collide(const lgca *L, uint8_t *b, uint64_t step, const uint8_t *tab)
+{
+    size_t nw = (size_t)L->nw;
+    uint64_t *w = malloc((2 + LGCA_DENSE_SCRATCH) * nw * sizeof *w);
+    if (!w)
+        return GR_ERUN;
     for (int j = 0; j < L->nj; j++)
-        for (int i = 0; i < L->ni; i++) {
-            if (lgca_is_solid(L, i, j))
-                continue;
-            uint64_t word = (uint64_t)j * (uint64_t)L->nw + (uint64_t)(i >> 6);
-            unsigned bit = (unsigned)(i & 63);
-            unsigned ch = (unsigned)(lgca_rand_word(L->key, word, LGCA_RND_CHIRAL, step) >> bit & 1u);
-            unsigned pb = granular ? (unsigned)(lgca_rand_biased(L->key, word, LGCA_RND_P, step, L->thr_p) >> bit & 1u) : 0;
-            uint8_t *s = &b[(size_t)j * (size_t)L->ni + (size_t)i];
-            unsigned out = tab[*s | ch << 7 | pb << 8];
-            if (L->thr_g && (lgca_rand_biased(L->key, word, LGCA_RND_G, step, L->thr_g) >> bit & 1u))
-                out = gravity(out);
-            *s = (uint8_t)out;
-        }
+        collide_lane(L, j, b + (size_t)j * (size_t)L->ni, step, tab, w, w + nw, w + 2 * nw);
+    free(w);
+    return GR_OK;
 }
 
 static void reflect(const lgca *L, uint8_t *b, uint64_t step)
@@ -115,8 +150,7 @@ int lgca_ref_step(const lgca *L, uint8_t *b, uint64_t step, gr_err *err)
     uint8_t *nb = calloc(n, 1);
     if (!nb)
         return gr_fail(err, GR_ERUN, "out of memory");
-    collide(L, b, step, tab);
-    if (L->thr_stop && stop_pass(L, b, step)) {
+    if (collide(L, b, step, tab) || (L->thr_stop && stop_pass(L, b, step))) {
         free(nb);
         return gr_fail(err, GR_ERUN, "out of memory");
     }

@@ -87,8 +87,7 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
 {
     uint64_t out = 0;
     size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
-    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *eq = scr + 4 * cw;
-    uint32_t *idx = (uint32_t *)(scr + 5 * cw);
+    uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *dense = scr + 4 * cw;
     int granular = L->par.rules == LGCA_RULES_GRANULAR;
     for (int ja = j0; ja < j1; ja += L->chunk) {
         int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
@@ -102,16 +101,16 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
         if (granular) {
             for (size_t o = 0; o < n; o += nw)
                 need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_P, step, L->thr_p, need, pb, eq, idx);
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_granular_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o, pb + o);
+            lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_P, step, L->thr_p, need, pb,
+                                   dense);
+            lgca_delta_granular_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch, pb);
         } else
-            for (size_t o = 0; o < n; o += nw)
-                lgca_delta_fhp3_lane(lanes + o * LGCA_CH, nw, fluid + o, ch + o);
+            lgca_delta_fhp3_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch);
         if (L->thr_g) {
             for (size_t o = 0; o < n; o += nw)
                 need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
-            lgca_rand_biased_need(L->key, base, n, LGCA_RND_G, step, L->thr_g, need, pb, eq, idx);
+            lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_G, step, L->thr_g, need, pb,
+                                   dense);
             for (size_t o = 0; o < n; o += nw)
                 for (size_t w = 0; w < nw; w++)
                     gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
@@ -239,7 +238,7 @@ static void open_gates(lgca *L)
 static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost)
 {
     int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
-    uint64_t *scr = L->scratch + (size_t)t * 6 * (size_t)L->chunk * (size_t)L->nw;
+    uint64_t *scr = L->scratch + (size_t)t * LGCA_SCRATCH * (size_t)L->chunk * (size_t)L->nw;
     static const int across[4] = {1, 2, 4, 5};
     int serial = L->thr_stop || L->nwalls || L->exits || L->has_gates;
     uint64_t step0 = L->step;

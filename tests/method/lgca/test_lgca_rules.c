@@ -208,16 +208,27 @@ static void fast_equals_reference_unwalled(void **unused)
                               "rules = granular\np = 0.3\nthreads = 1\n"};
     /* g = 0.05 set on the lattice for the granular rules (a periodic scene has no gravity) */
     against_reference(base, variants, sizeof variants / sizeof variants[0], 7, 3277);
+    /* lanes of 900 nodes (15 words): the kernel's eight-word (AVX-512),
+     * four-word and one-word paths */
+    const char *lanes = "[scene]\nseed = 13\n[domain]\nwidth = 8\nheight = 900\nleft = periodic\n"
+                        "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    against_reference(lanes, variants, sizeof variants / sizeof variants[0], 7, 3277);
+    /* 23 lanes of 250 nodes (4 words): by pairs in eight-word vectors, and
+     * an odd one */
+    const char *pairs = "[scene]\nseed = 14\n[domain]\nwidth = 20\nheight = 250\nleft = periodic\n"
+                        "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
+                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
+    against_reference(pairs, variants, sizeof variants / sizeof variants[0], 7, 3277);
 }
 
 /* The batched random words (vectorised Philox rounds) against Random123's
- * philox4x32 word by word, over more than two batches and thresholds from
- * never to always; the biased words drawn only where needed agree there. */
+ * philox4x32 word by word, over more than two batches (the biased bits:
+ * test_lgca_rand.c). */
 static void batched_random_words(void **unused)
 {
     (void)unused;
     const uint32_t key[2] = {0x12345678u, 0x9abcdef0u};
-    const uint32_t thr[] = {0, 1, 6554, 32768, 65535, 65536};
     const size_t ns[] = {3, 7, 37}; /* batches of 4, 8, and 16 + 16 + 8 calls */
     uint64_t out[37];
     for (size_t k = 0; k < sizeof ns / sizeof ns[0]; k++)
@@ -227,20 +238,6 @@ static void batched_random_words(void **unused)
             lgca_rand_words(key, word0, n, LGCA_RND_CHIRAL, step, out);
             for (size_t w = 0; w < n; w++)
                 assert_true(out[w] == lgca_rand_word(key, word0 + w, LGCA_RND_CHIRAL, step));
-            for (size_t t = 0; t < sizeof thr / sizeof thr[0]; t++) {
-                lgca_rand_biased_words(key, word0, n, LGCA_RND_P, step, thr[t], out);
-                for (size_t w = 0; w < n; w++)
-                    assert_true(out[w] == lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]));
-                /* only where needed: words with none, one, some and all lanes */
-                uint64_t need[37], eq[37];
-                uint32_t idx[37];
-                for (size_t w = 0; w < n; w++)
-                    need[w] = w % 4 == 0 ? 0 : w % 4 == 1 ? (uint64_t)1 << (w % 64)
-                                                  : w % 4 == 2 ? lgca_rand_word(key, w, 99, step) : ~(uint64_t)0;
-                lgca_rand_biased_need(key, word0, n, LGCA_RND_P, step, thr[t], need, out, eq, idx);
-                for (size_t w = 0; w < n; w++)
-                    assert_true(out[w] == (lgca_rand_biased(key, word0 + w, LGCA_RND_P, step, thr[t]) & need[w]));
-            }
         }
 }
 
