@@ -164,6 +164,7 @@ int cmd_silo_start(int argc, char **argv)
     make_times(&c);
     char dir[1024];
     c.dir = silo_cli_dir(&ss_cli, &o, dir, sizeof dir);
-    c.fills = (silo_fills){&c.base, c.seed, c.dir};
+    /* filled with the first orifice closed: its discharges branch without a lift */
+    c.fills = (silo_fills){&c.base, c.seed, c.dir, c.orifice[0]};
     return silo_cli_sweep(&ss_cli, &o, &c, &c.fills, (size_t)c.nreal, c.norif * (size_t)c.nreal, c.dir);
 }
