@@ -109,10 +109,15 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n);
 
 /* dem's speed on the flowing silo, one thread, on an idle core
  * (particle-steps per CPU second, wall grains included; docs/experiments.md
- * "Measured cost"), and the steps of a thesis-size filling: the estimates
+ * "Measured cost"); the cost of a thesis-size filling and of a branch to
+ * another orifice in steps at that speed (measured means): the estimates
  * printed before a full run. */
 #define SILO_DEM_RATE 3.1e7
-#define SILO_FILL_STEPS 3.7e5
+#define SILO_FILL_STEPS 3.0e5
+#define SILO_BRANCH_STEPS 1.9e4
+/* a branch to the filling's own orifice: its packing is lifted only off
+ * the contact overlaps (0.014-0.024 d) and settles in 0.66 tau (mean) */
+#define SILO_REBRANCH_STEPS 5.3e3
 /* CPU seconds of `steps` steps of the silo c with dem; NAN for another
  * method (no estimate). */
 double silo_cpu_estimate(const silo_cfg *c, double steps);

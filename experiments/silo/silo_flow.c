@@ -221,14 +221,13 @@ static const struct option sf_own_opts[] = {
 
 static int sf_own_option(int ch, const char *arg, void *own);
 
-/* The branch's settling onto its new base: SF_BRANCH_STEPS steps, measured */
-#define SF_BRANCH_STEPS 4e4
-
+/* A filling per realisation; a unit: the branch, the discarded steps and
+ * the blocks. */
 static void sf_estimate(const void *ctx, double *pre, double *unit)
 {
     const sf_ctx *c = ctx;
     *pre = silo_cpu_estimate(&c->base, SILO_FILL_STEPS);
-    *unit = silo_cpu_estimate(&c->base, SF_BRANCH_STEPS + (double)c->discard + (double)c->block * c->nblocks);
+    *unit = silo_cpu_estimate(&c->base, SILO_BRANCH_STEPS + (double)c->discard + (double)c->block * c->nblocks);
 }
 
 static const silo_cli sf_cli = {
