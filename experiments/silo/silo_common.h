@@ -64,9 +64,15 @@ typedef struct {
     double lift;         /* silo_rebase: how far the packing was lifted */
 } silo_settled;
 
+/* How often a filling or a branch checks whether it has settled (tau):
+ * it stops at the first check that passes, half a check late on average,
+ * and a check (a snapshot and a sort of the energies) costs 0.3 % of the
+ * steps between two. */
+#define SILO_CHECK 0.1
+
 /* Fill and settle: run with the orifice closed until every grain is inside
  * the container and the kinetic energy per grain is below ke_tol (checked
- * every 0.5 tau). progress (may be NULL) receives the fraction done. */
+ * every SILO_CHECK). progress (may be NULL) receives the fraction done. */
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err);
 void silo_settled_free(silo_settled *s);
 
@@ -103,10 +109,15 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n);
 
 /* dem's speed on the flowing silo, one thread, on an idle core
  * (particle-steps per CPU second, wall grains included; docs/experiments.md
- * "Measured cost"), and the steps of a thesis-size filling: the estimates
+ * "Measured cost"); the cost of a thesis-size filling and of a branch to
+ * another orifice in steps at that speed (measured means): the estimates
  * printed before a full run. */
 #define SILO_DEM_RATE 3.1e7
-#define SILO_FILL_STEPS 3.7e5
+#define SILO_FILL_STEPS 3.0e5
+#define SILO_BRANCH_STEPS 1.9e4
+/* a branch to the filling's own orifice: its packing is lifted only off
+ * the contact overlaps (0.014-0.024 d) and settles in 0.66 tau (mean) */
+#define SILO_REBRANCH_STEPS 5.3e3
 /* CPU seconds of `steps` steps of the silo c with dem; NAN for another
  * method (no estimate). */
 double silo_cpu_estimate(const silo_cfg *c, double steps);

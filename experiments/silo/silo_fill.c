@@ -1,5 +1,5 @@
 /* The fillings of silo-flow and silo-start (silo_fill.h): fill and settle
- * with the orifice SILO_FILL_D closed, once per realisation. */
+ * with an orifice closed, once per realisation. */
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -13,8 +13,8 @@
 static int fill_key(const silo_fills *f, size_t r, char *buf, size_t n)
 {
     const silo_cfg *b = f->base;
-    int k = snprintf(buf, n, "silo-fill 1 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
-                     b->n, b->width, b->height, b->base, b->hopper, SILO_FILL_D, (unsigned long long)(f->seed + r),
+    int k = snprintf(buf, n, "silo-fill 2 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
+                     b->n, b->width, b->height, b->base, b->hopper, f->orifice, (unsigned long long)(f->seed + r),
                      b->method->name, b->dt, b->ke_tol);
     silo_key_params(b, buf, n);
     return k;
@@ -35,7 +35,7 @@ int silo_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vo
 {
     const silo_fills *f = ctx;
     silo_cfg cfg = *f->base;
-    cfg.orifice = SILO_FILL_D;
+    cfg.orifice = f->orifice;
     cfg.seed = f->seed + unit;
     silo_settled set;
     double w0 = gr_wall_seconds(), c0 = (double)clock() / CLOCKS_PER_SEC;

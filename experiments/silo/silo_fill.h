@@ -1,6 +1,6 @@
 /* Settle once, branch many: the fillings that silo-flow and silo-start
- * share. One unit per realisation fills and settles the silo with the
- * orifice SILO_FILL_D closed and keeps the settled grains in its part
+ * share. One unit per realisation fills and settles the silo with an
+ * orifice closed (silo-flow's SILO_FILL_D, silo-start's first) and keeps the settled grains in its part
  * (DIR/parts/fill-r<r>.part); every orifice's unit of that realisation
  * branches from it (silo_rebase), as does --peer lammps. */
 #ifndef GR_SILO_FILL_H
@@ -11,16 +11,18 @@
 
 #include "silo_common.h"
 
-/* The orifice closed during the filling. */
+/* The orifice closed during silo-flow's fillings. */
 #define SILO_FILL_D 6.0
 
 /* What the fillings of a sweep depend on: the silo (its orifice is
- * replaced by SILO_FILL_D), realisation r's seed is seed + r, the parts go
- * to dir/parts. */
+ * replaced by `orifice`, closed), realisation r's seed is seed + r, the
+ * parts go to dir/parts. A branch to the filling's own orifice needs no
+ * lift and settles at its first check. */
 typedef struct {
     const silo_cfg *base;
     uint64_t seed;
     const char *dir;
+    double orifice;
 } silo_fills;
 
 /* The pre-units of a sweep (silo_cli's pre_unit, pre_label, pre_key), ctx

@@ -29,7 +29,7 @@ void sf_key(size_t unit, void *ctx, char *buf, size_t n)
 {
     const sf_ctx *c = ctx;
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
-    int k = snprintf(buf, n, "silo-flow 3 band=top+1..5 branchmax=%g D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
+    int k = snprintf(buf, n, "silo-flow 4 band=top+1..5 branchmax=%g D=%.17g discard=%ld block=%ld nblocks=%d sample=%ld lift=%.17g ",
                      SILO_BRANCH_MAX, c->orifice[o], c->discard, c->block, c->nblocks, c->sample_every, c->lift);
     if (k > 0 && (size_t)k < n)
         silo_fill_key(r, (void *)&c->fills, buf + k, n - (size_t)k);
@@ -221,14 +221,13 @@ static const struct option sf_own_opts[] = {
 
 static int sf_own_option(int ch, const char *arg, void *own);
 
-/* The branch's settling onto its new base: SF_BRANCH_STEPS steps, measured */
-#define SF_BRANCH_STEPS 4e4
-
+/* A filling per realisation; a unit: the branch, the discarded steps and
+ * the blocks. */
 static void sf_estimate(const void *ctx, double *pre, double *unit)
 {
     const sf_ctx *c = ctx;
     *pre = silo_cpu_estimate(&c->base, SILO_FILL_STEPS);
-    *unit = silo_cpu_estimate(&c->base, SF_BRANCH_STEPS + (double)c->discard + (double)c->block * c->nblocks);
+    *unit = silo_cpu_estimate(&c->base, SILO_BRANCH_STEPS + (double)c->discard + (double)c->block * c->nblocks);
 }
 
 static const silo_cli sf_cli = {
@@ -283,7 +282,7 @@ int cmd_silo_flow(int argc, char **argv)
     c.split = 9;
     char dir[1024];
     c.dir = silo_cli_dir(&sf_cli, &o, dir, sizeof dir);
-    c.fills = (silo_fills){&c.base, c.seed, c.dir};
+    c.fills = (silo_fills){&c.base, c.seed, c.dir, SILO_FILL_D};
     if (w.peer) {
         char summary[1024] = "";
         gr_err e = {0};

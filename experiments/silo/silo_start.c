@@ -1,8 +1,8 @@
 /* grano silo-start: the start of the discharge (thesis chapter 3). The
  * silo is filled and settled once per realisation (silo_fill.h); each unit
  * of work is one discharge: branch that settled silo to the orifice, open,
- * and follow the grains until the top grain has fallen two diameters; the
- * report averages the units of each orifice. */
+ * and follow the grains until the surface has fallen two diameters through
+ * the outflow; the report averages the units of each orifice. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,7 +29,7 @@ void ss_key(size_t unit, void *ctx, char *buf, size_t n)
     size_t o = unit / (size_t)c->nreal, r = unit % (size_t)c->nreal;
     const silo_cfg *b = &c->base;
     int k = snprintf(buf, n,
-                     "silo-start 3 branchmax=%g surface n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
+                     "silo-start 5 branchmax=%g surface+outflow n=%ld W=%.17g H=%.17g base=%.17g hopper=%d D=%.17g seed=%llu method=%s dt=%.17g "
                      "ke=%.17g fs=%ld min=%ld max=%ld fall=%.17g win=%.17g cell=%.17g cap=%zu sub=%d/%d lags=",
                      SILO_BRANCH_MAX, b->n, b->width, b->height, b->base, b->hopper, c->orifice[o],
                      (unsigned long long)(c->seed + r), b->method->name, b->dt, b->ke_tol, c->fs, c->min_steps,
@@ -313,17 +313,32 @@ static int create_fields(const ss_ctx *c, const silo_cfg *cfg, double xl, gr_fie
     return GR_OK;
 }
 
+/* The grains that fill the top `fall` d of the packing p (surface top0)
+ * across the silo: as many as in a band 10 d deep below them, scaled. */
+static double layer_grains(const gr_particles *p, double top0, double fall)
+{
+    double n = 0, lo = top0 - fall - 10, hi = top0 - fall;
+    for (size_t i = 0; i < p->n; i++)
+        n += !(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && p->y[i] >= lo && p->y[i] < hi;
+    return n * fall / 10;
+}
+
 /* Follow the open silo frame by frame (every fs steps): the fields near
  * their snapshot times, the lagged displacements, the surface and the
  * outflow every 10 frames into ts (step, surface, outflow; at most tscap
- * numbers), until the surface has fallen fall_stop after min_steps, or
- * max_steps. *step is the last step reached. */
+ * numbers), until the surface has fallen fall_stop after min_steps and
+ * as many grains have left as filled the top fall_stop of the packing
+ * (need), or max_steps. The pile creeps (no static friction in the
+ * thesis's law), so its surface sinks without any outflow too, the more
+ * the sooner after the filling: the outflow makes the fall the
+ * discharge's own. *step is the last step reached. */
 static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_particles *snap, gr_field **fld,
                             double *ts, size_t tscap, size_t *nts, const double *win, size_t klayer,
-                            double *ybuf, double top0, volatile double *progress, long *step, gr_err *err)
+                            double *ybuf, double top0, double need, volatile double *progress, long *step,
+                            gr_err *err)
 {
     const ss_ctx *c = u->c;
-    double top = top0;
+    double top = top0, out = 0;
     long f = 0;
     int rc = GR_OK;
     while (!rc) {
@@ -339,17 +354,19 @@ static int follow_discharge(ustate *u, const silo_cfg *cfg, gr_sim *st, gr_parti
             break;
         if (f % 10 == 0)
             top = silo_surface(snap, klayer, ybuf);
-        if (f % 10 == 0 && *nts + 3 <= tscap) {
+        if (f % 10 == 0) {
             gr_obs ob;
             gr_obs_clear(&ob);
             if ((rc = gr_sim_observe(st, &ob, err)))
                 break;
-            ts[(*nts)++] = (double)*step, ts[(*nts)++] = top, ts[(*nts)++] = (double)ob.outflow;
+            out = (double)ob.outflow;
+            if (*nts + 3 <= tscap)
+                ts[(*nts)++] = (double)*step, ts[(*nts)++] = top, ts[(*nts)++] = out;
         }
+        double done = fmin((top0 - top) / c->fall_stop, out / need);
         if (progress)
-            *progress = fmax((double)*step / (double)c->max_steps,
-                             *step >= c->min_steps ? fmin(0.99, (top0 - top) / c->fall_stop) : 0.0);
-        if ((*step >= c->min_steps && top0 - top >= c->fall_stop) || *step >= c->max_steps)
+            *progress = fmax((double)*step / (double)c->max_steps, *step >= c->min_steps ? fmin(0.99, done) : 0.0);
+        if ((*step >= c->min_steps && done >= 1) || *step >= c->max_steps)
             break;
         if ((rc = silo_advance(cfg, st, (uint64_t)c->fs, err)))
             break;
@@ -428,7 +445,8 @@ int ss_unit(size_t unit, const char *part, const char *key, void *ctx, volatile 
     double top0 = ybuf ? silo_surface(set.p, klayer, ybuf) : 0;
     long step = 0;
     if (!rc)
-        rc = follow_discharge(&u, &cfg, st, snap, fld, ts, tscap, &nts, win, klayer, ybuf, top0, progress, &step, err);
+        rc = follow_discharge(&u, &cfg, st, snap, fld, ts, tscap, &nts, win, klayer, ybuf, top0,
+                              layer_grains(set.p, top0, c->fall_stop), progress, &step, err);
     double cost[5] = {w1 - w0, c1 - c0, gr_wall_seconds() - w1, (double)clock() / CLOCKS_PER_SEC - c1,
                       (double)step};
     if (!rc)

@@ -32,7 +32,8 @@ typedef struct {
     uint64_t seed;
     long fs;                /* frame interval, steps */
     long min_steps, max_steps;
-    double fall_stop;       /* stop once the top grain has fallen this far */
+    double fall_stop;       /* stop once the surface has fallen this far, and as
+                               many grains have left as filled that height */
     double window;          /* side of the displacement window */
     double cell;            /* velocity field cells */
     size_t nslots;
