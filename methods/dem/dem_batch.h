@@ -133,17 +133,40 @@ DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, co
     }
 }
 
-/* Strip s in chunks: pass 1 here, then passes 2 and 3. Pass 1 runs over
- * the chunk's list pairs in one flat loop (the grain of each pair from
- * nb_i): a loop per grain ended after its 0 to 6 pairs, a branch the
- * predictor loses about once per grain. m after each pair, in mk, gives
- * each grain's end of contacts. */
+/* Pass 1 over list pairs k0 .. k1 - 1 (PER: periodic sides, a constant
+ * so that the open silo's loop carries no wrap tests); returns the
+ * number of contacts packed, m after each pair in mk. */
+DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b, int32_t *restrict mk,
+                          int32_t k0, int32_t k1)
+{
+    const int32_t *restrict nbj = c->d->nb_j, *restrict nbi = c->d->nb_i;
+    const double *restrict x = c->x, *restrict y = c->y, *restrict rad = c->rad;
+    const double Lx = c->Lx, Ly = c->Ly;
+    int m = 0;
+    for (int32_t k = k0; k < k1; k++) {
+        int32_t i = nbi[k], j = nbj[k];
+        double dx = x[j] - x[i], dy = y[j] - y[i];
+        if (PER && Lx > 0) dx = gr_min_image(dx, Lx);
+        if (PER && Ly > 0) dy = gr_min_image(dy, Ly);
+        double rs = rad[i] + rad[j], r2 = dx * dx + dy * dy;
+        b->i[m] = i, b->j[m] = j;
+        b->dx[m] = r2 > 0 ? dx : 1.0, b->dy[m] = r2 > 0 ? dy : 0.0, b->r2[m] = r2, b->rs[m] = rs;
+        m += r2 < rs * rs;
+        mk[k - k0] = m;
+    }
+    return m;
+}
+
+/* Strip s in chunks: pass 1 (batch_test), then passes 2 and 3. Pass 1
+ * runs over the chunk's list pairs in one flat loop (the grain of each
+ * pair from nb_i): a loop per grain ended after its 0 to 6 pairs, a branch
+ * the predictor loses about once per grain. m after each pair, in mk,
+ * gives each grain's end of contacts. */
 DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
 {
     gr_dem *d = c->d;
-    const int32_t *restrict nbs = d->nb_start, *restrict nbj = d->nb_j, *restrict nbi = d->nb_i;
-    const double *restrict x = c->x, *restrict y = c->y, *restrict rad = c->rad;
-    const double Lx = c->Lx, Ly = c->Ly;
+    const int32_t *restrict nbs = d->nb_start;
+    const int per = c->Lx > 0 || c->Ly > 0;
     int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
     dem_acc acc = acc_start(s);
     dem_batch b;
@@ -158,18 +181,8 @@ DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
             grain_verlet(c, NL, TL, &acc, g0++);
             continue;
         }
-        int m = 0;
-        for (int32_t k = kb; k < nbs[g0 + ng]; k++) {
-            int32_t i = nbi[k], j = nbj[k];
-            double dx = x[j] - x[i], dy = y[j] - y[i];
-            if (Lx > 0) dx = gr_min_image(dx, Lx);
-            if (Ly > 0) dy = gr_min_image(dy, Ly);
-            double rs = rad[i] + rad[j], r2 = dx * dx + dy * dy;
-            b.i[m] = i, b.j[m] = j;
-            b.dx[m] = r2 > 0 ? dx : 1.0, b.dy[m] = r2 > 0 ? dy : 0.0, b.r2[m] = r2, b.rs[m] = rs;
-            m += r2 < rs * rs;
-            mk[k - kb] = m;
-        }
+        int32_t k1 = nbs[g0 + ng];
+        int m = per ? batch_test(c, 1, &b, mk, kb, k1) : batch_test(c, 0, &b, mk, kb, k1);
         for (int g = 0; g < ng; g++) {
             int32_t e = nbs[g0 + g + 1] - kb;
             b.end[g] = e > 0 ? mk[e - 1] : 0;

@@ -12,7 +12,7 @@
 
 /* Contacts and grains per batch of the Verlet pair loop (dem_batch.h); a
  * grain with more list pairs than DEM_BATCH goes one pair at a time. */
-enum { DEM_BATCH = 256, DEM_BATCH_GRAINS = 128 };
+enum { DEM_BATCH = 128, DEM_BATCH_GRAINS = 64 };
 
 typedef struct {
     gr_dem *d;
