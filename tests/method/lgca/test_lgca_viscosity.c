@@ -44,7 +44,7 @@ static double shear_mean(double d, int lambda, int r, uint64_t first_seed, doubl
     return mean_se(v, r, se);
 }
 
-enum { R_WAVE = 8, R_LONG = 6, R_POIS = 16 };
+enum { R_WAVE = 8, R_LONG = 12, R_POIS = 16 };
 
 static void shear_wave_densities(void **unused)
 {
