@@ -52,6 +52,17 @@ static inline double lgca_mode_shear(const lgca *L, double k, long *acc)
     return r * LGCA_SX[1];
 }
 
+/* A periodic FHP-III scene whose collision bits are seeded by seed, so
+ * that runs of different seeds are independent realisations (the initial
+ * fill and the chiralities both differ). */
+static inline void lgca_seeded_text(char *buf, size_t n, int nx, int ny, uint64_t seed)
+{
+    char base[1024];
+    lgca_periodic_text(base, sizeof base, nx, ny, "rules = fhp3\n");
+    const char *rest = strstr(base, "[domain]");
+    snprintf(buf, n, "[scene]\nseed = %llu\n%s", (unsigned long long)seed, rest ? rest : "");
+}
+
 /* FHP-III shear viscosity from the decay of a shear wave of wavelength ny a
  * on nx lanes: the least-squares slope of the mode's logarithm over steps
  * [t0, t1] (every 5), divided by -k^2. eps is scaled by (1-d)/d above half
@@ -60,7 +71,7 @@ static inline double lgca_mode_shear(const lgca *L, double k, long *acc)
 static inline double lgca_shear_viscosity(double d, int nx, int ny, double eps, int t0, int t1, uint64_t seed)
 {
     char text[1024];
-    lgca_periodic_text(text, sizeof text, nx, ny, "rules = fhp3\n");
+    lgca_seeded_text(text, sizeof text, nx, ny, seed);
     gr_scene *sc;
     gr_sim *s = lgca_make(text, &sc);
     lgca *L = gr_sim_state(s);
