@@ -41,6 +41,21 @@ DEM_INLINE void track(dem_acc *a, double rel, long i, long j, double el)
     }
 }
 
+/* The tangential spring of (own, key): its slot (-1 when the table is
+ * full, which the step reports) and, unless the contact is new, its zeta. */
+DEM_INLINE long hist_find(dem_ctx *c, size_t own, int32_t key, double *zeta)
+{
+    int fresh;
+    long slot = dem_hist_slot(&c->d->hist, own, key, c->E, &fresh);
+    if (slot < 0) {
+        c->hist_full = 1;
+        c->full_i = (long)own;
+    } else if (!fresh) {
+        *zeta = c->d->hist.z[slot];
+    }
+    return slot;
+}
+
 /* Pair contact i-j (j = i + separation dx, dy) if they overlap. */
 DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t i, size_t j,
                      double dx, double dy, double *fxi, double *fyi, double *tqi)
@@ -62,17 +77,10 @@ DEM_INLINE void pair(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t 
     long slot = -1;
     int32_t key = 0;
     if (TL == GR_TANG_SPRING) {
-        int fresh;
         size_t own = c->tag[i] < c->tag[j] ? i : j;
         key = c->tag[own == i ? j : i];
-        slot = dem_hist_slot(&c->d->hist, own, key, c->E, &fresh);
-        if (slot < 0) {
-            c->hist_full = 1;
-            c->full_i = (long)own;
-        } else if (!fresh) {
-            zeta = c->d->hist.z[slot];
-        }
         /* v_t and F_t are symmetric in i and j, so zeta needs no sign per owner */
+        slot = hist_find(c, own, key, &zeta);
     }
     double el;
     dem_law_eval(&c->law, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
@@ -112,16 +120,8 @@ DEM_INLINE void wall(dem_ctx *c, const int NL, const int TL, dem_acc *a, size_t 
     double Fx, Fy, Ft, zeta = 0.0;
     long slot = -1;
     int32_t key = (int32_t)(c->d->ntag + (size_t)k);
-    if (TL == GR_TANG_SPRING) {
-        int fresh;
-        slot = dem_hist_slot(&c->d->hist, i, key, c->E, &fresh);
-        if (slot < 0) {
-            c->hist_full = 1;
-            c->full_i = (long)i;
-        } else if (!fresh) {
-            zeta = c->d->hist.z[slot];
-        }
-    }
+    if (TL == GR_TANG_SPRING)
+        slot = hist_find(c, i, key, &zeta);
     double el;
     dem_law_eval(&c->law_w, NL, TL, xi, nx, ny, dvx, dvy, wsum, &zeta, c->integ, &Fx, &Fy, &Ft, &el);
     if (TL == GR_TANG_SPRING && slot >= 0)

@@ -324,7 +324,7 @@ int lgca_steps(lgca *L, uint64_t n, gr_err *err)
     int T = L->nthreads < L->nj / 2 ? L->nthreads : L->nj / 2;
     uint64_t lost[256] = {0};
     lgca_flag flag[256];
-    for (int t = 0; t < 256; t++)
+    for (int t = 0; t < T; t++)
         atomic_init(&flag[t].saved, L->step);
     if (T > 1 && n > 0) {
         /* the team may be smaller than asked: blocks follow its size */
