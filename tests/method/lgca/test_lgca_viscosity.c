@@ -242,8 +242,28 @@ static void poiseuille_flow(void **unused)
     assert_rel(nu, f, 0.05);
 }
 
-int main(void)
+/* `test_lgca_viscosity scan`: the single-run scatter the asserted means
+ * rest on (docs/methods/lgca.md): 16 seeds (1 ... 16) per density at
+ * wavelength 32 a, the sample standard deviation of one run and the
+ * deviation of the 16-seed mean from the formula. Prints, asserts nothing. */
+static int scan(void)
 {
+    const double ds[] = {0.3, 0.35, 0.4, 0.45, 0.5, 0.55, 0.6};
+    for (size_t n = 0; n < sizeof ds / sizeof ds[0]; n++) {
+        double v[16], se, d = ds[n], f = lgca_frisch_nu(d);
+        for (int i = 0; i < 16; i++)
+            v[i] = lgca_shear_viscosity(d, 32768, 32, 0.1, 12, 250, 1 + (uint64_t)i);
+        double m = mean_se(v, 16, &se);
+        printf("d = %.2f: one run scatters by %.1f %%; mean of 16 %+.1f +- %.1f %% from Frisch et al.\n", d,
+               100 * se * 4 / m, 100 * (m / f - 1), 100 * se / f);
+    }
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc > 1 && !strcmp(argv[1], "scan"))
+        return scan();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shear_wave_densities),
         cmocka_unit_test(long_time_tail),
