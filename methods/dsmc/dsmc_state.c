@@ -161,7 +161,7 @@ static int make_cells(gr_dsmc *d, gr_err *err)
               "with enskog = yes, the cell side", fmin(d->cw, d->ch), side_min, err) ||
         /* the partners of a cell collide again while they share it (their
          * velocities correlated), with a probability ~ W sigma / side: the
-         * cooling rate at alpha = 0.8 is 0.35 W sigma / side low */
+         * cooling rate at alpha = 0.8 is about 0.33 W sigma / side low */
         limit(d, fmin(d->cw, d->ch) < GR_DSMC_SIDE_PER_W * d->W * d->sigma, GR_DSMC_BAD_RECOLLIDE, "cell",
               "the cell side", fmin(d->cw, d->ch), GR_DSMC_SIDE_PER_W * d->W * d->sigma, err))
         return err->code;
