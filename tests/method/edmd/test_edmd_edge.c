@@ -6,12 +6,9 @@
  * tc = 1e-5: grain 338 at t = 7.697). */
 #include "test.h"
 
-#include <stdlib.h>
 
+#include "edmd_compare.h"
 #include "edmd_int.h"
-#include "edmd_test.h"
-#include "init.h"
-#include "method.h"
 
 /* The state of grain 338 on the orifice edge E = (8, 5) before the stop:
  * centre at R along n = (0.0881, 0.996), tangential speed 0.63 (v^2 / R =
@@ -56,20 +53,12 @@ static void leaving_an_edge(void **st)
 static void compare_silo_tc5(void **st)
 {
     (void)st;
-    const char *root = getenv("GRANO_SOURCE_ROOT");
-    assert_non_null(root);
-    char path[1024];
-    snprintf(path, sizeof path, "%s/experiments/scenes/compare/silo.ini", root);
     const char *sets[2] = {"edmd.collapse=tc", "edmd.tc=1e-5"};
-    const char *names[GR_MAX_METHODS + 1];
-    gr_method_names(names, GR_MAX_METHODS + 1);
     gr_err e = {0};
-    gr_scene *sc = gr_scene_load_set(path, names, sets, 2, &e);
-    gr_particles *p = sc ? gr_particles_create(0, &e) : NULL;
-    gr_edmd_params prm;
+    gr_scene *sc = NULL;
+    gr_particles *p = NULL;
     gr_edmd *s = NULL;
-    if (!p || gr_init_particles(sc, p, &e) || gr_edmd_params_read(sc, &prm, &e) ||
-        gr_edmd_create(sc, p, &prm, &s, &e))
+    if (edmd_compare_state("silo.ini", sets, 2, &sc, &p, &s, &e))
         fail_msg("setup: %s", e.msg);
     int rc = gr_edmd_advance(s, 8.0, 0, &e);
     gr_edmd_counters c;

@@ -7,10 +7,9 @@
 
 #include <stdlib.h>
 
+#include "edmd_compare.h"
 #include "edmd_int.h"
 #include "edmd_test.h"
-#include "init.h"
-#include "method.h"
 
 static int slow;
 
@@ -47,21 +46,14 @@ static void leaving_from_below(void **st)
  * on the floor collapses onto it) but never with a grain below the floor. */
 static int run_case(int seed, const char *collapse, double t_end, double *t_stop)
 {
-    const char *root = getenv("GRANO_SOURCE_ROOT");
-    assert_non_null(root);
-    char path[1024], sseed[64];
-    snprintf(path, sizeof path, "%s/experiments/scenes/compare/vibrated.ini", root);
+    char sseed[64];
     snprintf(sseed, sizeof sseed, "scene.seed=%d", seed);
     const char *sets[2] = {sseed, collapse};
-    const char *names[GR_MAX_METHODS + 1];
-    gr_method_names(names, GR_MAX_METHODS + 1);
     gr_err e = {0};
-    gr_scene *sc = gr_scene_load_set(path, names, sets, collapse ? 2 : 1, &e);
-    gr_particles *p = sc ? gr_particles_create(0, &e) : NULL;
-    gr_edmd_params prm;
+    gr_scene *sc = NULL;
+    gr_particles *p = NULL;
     gr_edmd *s = NULL;
-    if (!p || gr_init_particles(sc, p, &e) || gr_edmd_params_read(sc, &prm, &e) ||
-        gr_edmd_create(sc, p, &prm, &s, &e))
+    if (edmd_compare_state("vibrated.ini", sets, collapse ? 2 : 1, &sc, &p, &s, &e))
         fail_msg("setup: %s", e.msg);
     int rc = GR_OK;
     double low = INFINITY;
