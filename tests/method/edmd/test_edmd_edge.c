@@ -6,7 +6,6 @@
  * tc = 1e-5: grain 338 at t = 7.697). */
 #include "test.h"
 
-
 #include "edmd_compare.h"
 #include "edmd_int.h"
 
