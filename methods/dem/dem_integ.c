@@ -5,6 +5,7 @@
  * force evaluation (which fuses the kick) and the step. */
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "dem.h"
 #include "geom.h"
@@ -41,6 +42,24 @@ int gr_dem_exit_box(const gr_dem *d, double box[4])
  * the stack for the two largest to be picked. */
 enum { DRIFT_CHUNK = 256 };
 
+/* Four lanes of doubles (GCC's vector extension: one AVX2 register, two
+ * SSE2 ones in the baseline clone) for the per-lane maxima and sums that
+ * the vectoriser does not make of scalar code; each lane rounds as the
+ * scalar operation would. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+
+/* (macros: a function taking or returning a 32-byte vector changes the
+ * ABI between the clones) */
+#define V4_LOAD(v, p) memcpy(&(v), (p), sizeof(v))
+/* r = a < b ? a : b, or > for max, per lane (b where a is NaN, as the
+ * scalar select) */
+#define V4_SEL(r, a, op, b)                                                   \
+    do {                                                                       \
+        v4l m_ = (a)op(b);                                                     \
+        (r) = (v4d)((m_ & (v4l)(a)) | (~m_ & (v4l)(b)));                       \
+    } while (0)
+
 /* gr_dem_drift without periodic sides and with tracking, the same
  * operations per grain in one loop without branches that the compiler
  * vectorises (AVX2: four grains per instruction); the squared moves go to
@@ -62,7 +81,8 @@ static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0,
     gr_dem_exit_box(d, box);
     const double bx0 = box[0], bx1 = box[1], by0 = box[2], by1 = box[3];
     const int rot = d->rot;
-    double m1 = 0, m2 = 0, s2[DRIFT_CHUNK];
+    v4d t1 = {0, 0, 0, 0}, t2 = {0, 0, 0, 0};
+    double s2[DRIFT_CHUNK];
     int64_t out = 0;
     for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
         size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
@@ -92,14 +112,28 @@ static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0,
                 tqn[i] = 0.0;
             }
         }
-        for (size_t k = 0; k < m; k++) {
-            if (s2[k] > m2) {
-                if (s2[k] > m1) {
-                    m2 = m1;
-                    m1 = s2[k];
-                } else {
-                    m2 = s2[k];
-                }
+        /* per lane k mod 4, selects only: the compiler vectorises it */
+        for (size_t k = m; k & 3; k++)
+            s2[k] = 0.0; /* a chunk's last lanes: no move */
+        /* per lane k mod 4: t2 = max(t2, min(t1, s)), t1 = max(t1, s) */
+        for (size_t k = 0; k < m; k += 4) {
+            v4d s, lo;
+            V4_LOAD(s, s2 + k);
+            V4_SEL(lo, t1, <, s);
+            V4_SEL(t2, lo, >, t2);
+            V4_SEL(t1, s, >, t1);
+        }
+    }
+    /* the two largest of the lanes' two largest: those of all grains */
+    double m1 = 0, m2 = 0;
+    for (int l = 0; l < 8; l++) {
+        double s = l < 4 ? t1[l] : t2[l - 4];
+        if (s > m2) {
+            if (s > m1) {
+                m2 = m1;
+                m1 = s;
+            } else {
+                m2 = s;
             }
         }
     }
@@ -228,7 +262,8 @@ DEM_CLONES DEM_NOTRAP double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, siz
     const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p];
     const double *restrict im = d->im, *restrict iI = d->iI;
     const int rot = d->rot;
-    double ek[4] = {0, 0, 0, 0}, vm[4] = {0, 0, 0, 0}, e[DRIFT_CHUNK], v2[DRIFT_CHUNK];
+    v4d ek = {0, 0, 0, 0}, vm = {0, 0, 0, 0};
+    double e[DRIFT_CHUNK], v2[DRIFT_CHUNK];
     for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
         size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
 #pragma GCC ivdep
@@ -253,9 +288,15 @@ DEM_CLONES DEM_NOTRAP double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, siz
                 e[k] += iI[i] != 0 ? er : 0.0;
             }
         }
-        for (size_t k = 0; k < m; k++) {
-            ek[k & 3] += e[k];
-            vm[k & 3] = v2[k] > vm[k & 3] ? v2[k] : vm[k & 3]; /* not fmax: a libm call */
+        /* in blocks of the four lanes, which the compiler vectorises */
+        for (size_t k = m; k & 3; k++)
+            e[k] = v2[k] = 0.0; /* a chunk's last lanes: nothing to add */
+        for (size_t k = 0; k < m; k += 4) {
+            v4d ee, vv;
+            V4_LOAD(ee, e + k);
+            V4_LOAD(vv, v2 + k);
+            ek += ee;
+            V4_SEL(vm, vv, >, vm); /* not fmax: a libm call */
         }
     }
     if (v2max) {
