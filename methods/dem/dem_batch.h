@@ -161,7 +161,8 @@ DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b
  * runs over the chunk's list pairs in one flat loop (the grain of each
  * pair from nb_i): a loop per grain ended after its 0 to 6 pairs, a branch
  * the predictor loses about once per grain. m after each pair, in mk,
- * gives each grain's end of contacts. */
+ * gives each grain's end of contacts (mk[0] = 0: a grain without list
+ * pairs before any). */
 DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
 {
     gr_dem *d = c->d;
@@ -170,23 +171,28 @@ DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
     int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
     dem_acc acc = acc_start(s);
     dem_batch b;
-    int32_t mk[DEM_BATCH];
+    int32_t mk[DEM_BATCH + 1]; /* contacts packed before list pair k: mk[k] */
+    mk[0] = 0;
     for (int32_t g0 = i0; g0 < i1;) {
+        /* the most grains (up to DEM_BATCH_GRAINS) whose list pairs fit:
+         * nbs is monotone, so a binary search whose steps depend only on
+         * the count (a loop per grain lost its end to the predictor) */
         int32_t kb = nbs[g0];
-        int ng = 0;
-        while (g0 + ng < i1 && ng < DEM_BATCH_GRAINS && nbs[g0 + ng + 1] - kb <= DEM_BATCH)
-            ng++;
+        int ng = 0, n = (i1 - g0 < DEM_BATCH_GRAINS ? i1 - g0 : DEM_BATCH_GRAINS) + 1;
+        while (n > 1) {
+            int half = n / 2;
+            ng = nbs[g0 + ng + half] - kb <= DEM_BATCH ? ng + half : ng;
+            n -= half;
+        }
         if (ng == 0) {
             /* a grain with more list pairs than a batch holds: one at a time */
             grain_verlet(c, NL, TL, &acc, g0++);
             continue;
         }
         int32_t k1 = nbs[g0 + ng];
-        int m = per ? batch_test(c, 1, &b, mk, kb, k1) : batch_test(c, 0, &b, mk, kb, k1);
-        for (int g = 0; g < ng; g++) {
-            int32_t e = nbs[g0 + g + 1] - kb;
-            b.end[g] = e > 0 ? mk[e - 1] : 0;
-        }
+        int m = per ? batch_test(c, 1, &b, mk + 1, kb, k1) : batch_test(c, 0, &b, mk + 1, kb, k1);
+        for (int g = 0; g < ng; g++)
+            b.end[g] = mk[nbs[g0 + g + 1] - kb];
         batch_law(c, NL, TL, &b, m);
         batch_add(c, NL, TL, &acc, &b, g0, ng);
         g0 += ng;
