@@ -96,29 +96,43 @@ DEM_INLINE void batch_law(const dem_ctx *c, const int NL, const int TL, dem_batc
     }
 }
 
-/* Pass 3 for the chunk's grains g0 .. g0 + ng - 1. */
+/* Pass 3, flat: grain i's list pairs all have j > i (dem_neigh.c), so
+ * within a chunk no contact adds to a grain whose turn has come, and its
+ * own sum may wait until a run of grains is done: fx[i] still gets its
+ * terms in the scalar loop's order. The run ends at each grain with wall
+ * segments, whose walls follow its pairs (the elastic energy and the
+ * largest overlap are taken in the scalar loop's order too). One loop
+ * over a run's contacts instead of one per grain: the predictor lost that
+ * loop's end about once per grain. */
 DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, const dem_batch *restrict b,
                           int32_t g0, int ng)
 {
     double *restrict fx = c->fx, *restrict fy = c->fy, *restrict tq = c->tq;
     const double *restrict rad = c->rad;
     const int32_t *restrict sgs = c->d->sg_start, *restrict sgj = c->d->sg_j;
-    int k = 0;
+    double ox[DEM_BATCH_GRAINS], oy[DEM_BATCH_GRAINS], ot[DEM_BATCH_GRAINS];
+    int32_t wg[DEM_BATCH_GRAINS + 1];
+    int nw = 0;
     for (int g = 0; g < ng; g++) {
-        int32_t i = g0 + g;
-        double fxi = 0, fyi = 0, tqi = 0, ri = rad[i];
-        for (; k < b->end[g]; k++) {
-            int32_t j = b->j[k];
+        ox[g] = oy[g] = ot[g] = 0.0;
+        wg[nw] = g;
+        nw += sgs[g0 + g] < sgs[g0 + g + 1];
+    }
+    wg[nw++] = ng - 1; /* the chunk's last run */
+    int k = 0, g = 0;
+    for (int w = 0; w < nw && g < ng; w++) {
+        int ge = wg[w];
+        for (int ke = b->end[ge]; k < ke; k++) {
+            int32_t i = b->i[k], j = b->j[k], gi = i - g0;
             fx[j] += b->fx[k];
             fy[j] += b->fy[k];
-            fxi -= b->fx[k];
-            fyi -= b->fy[k];
+            ox[gi] -= b->fx[k];
+            oy[gi] -= b->fy[k];
             if (TL != GR_TANG_NONE) {
                 tq[j] -= b->tj[k];
-                tqi -= b->ti[k];
+                ot[gi] -= b->ti[k];
             }
-            /* the largest overlap per diameter, compared without a divide */
-            double rj = rad[j], dm = 2.0 * (ri < rj ? ri : rj);
+            double ri = rad[i], rj = rad[j], dm = 2.0 * (ri < rj ? ri : rj);
             a->sel += b->el[k];
             if (b->xi[k] > a->smax * dm) {
                 a->smax = b->xi[k] / dm;
@@ -126,10 +140,12 @@ DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, co
                 a->sj = j;
             }
         }
-        for (int32_t q = sgs[i]; q < sgs[i + 1]; q++)
+        int32_t ie = g0 + ge;
+        for (int32_t q = sgs[ie]; q < sgs[ie + 1]; q++)
             if (c->seg_on[sgj[q]])
-                wall(c, NL, TL, a, (size_t)i, sgj[q], &fxi, &fyi, &tqi);
-        add_i(c, (size_t)i, fxi, fyi, tqi, TL);
+                wall(c, NL, TL, a, (size_t)ie, sgj[q], ox + ge, oy + ge, ot + ge);
+        for (; g <= ge; g++)
+            add_i(c, (size_t)(g0 + g), ox[g], oy[g], ot[g], TL);
     }
 }
 
