@@ -60,29 +60,43 @@ typedef long long v4l __attribute__((vector_size(32)));
         (r) = (v4d)((m_ & (v4l)(a)) | (~m_ & (v4l)(b)));                       \
     } while (0)
 
-/* gr_dem_drift without periodic sides and with tracking, the same
- * operations per grain in one loop without branches that the compiler
- * vectorises (AVX2: four grains per instruction); the squared moves go to
- * s2 and the two largest are picked after, a branch rarely taken. */
-static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1, double top2[2],
-                                  _Atomic long *exits_out)
+/* The Verlet kick and drift without periodic sides, the same operations
+ * per grain as gr_dem_drift in loops without branches that the compiler
+ * vectorises (AVX2: four grains per instruction). KICK: the second kick of
+ * velocity Verlet, v(t+dt) = u + (dt/2) (a(t+dt) - a(t)) in buffer pc from
+ * the old forces of po, where u is the predicted velocity (gravity
+ * cancels); its kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array
+ * to stream) is returned, and in *v2max the largest squared speed of the
+ * next drift's half kick. DRIFT: drift and first kick from pc into pn,
+ * the two largest squared moves since the list build in top2, the mobile
+ * grains put outside the exit box added to *exits_out. Both (the kick of
+ * a strip and its drift done ahead): one pass over the grains, the kicked
+ * velocities drifted from registers, the same values as in two passes.
+ * Per chunk, each grain's energy, speed and move wait in e, v2 and s2;
+ * grain k of a chunk then goes to lane k mod 4 (one chain of additions
+ * over the grains made the loop wait on it), the energy's lanes summed at
+ * the end: the order is the code's, the same for any thread count and
+ * either clone. */
+static inline __attribute__((always_inline)) double
+kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, size_t i0, size_t i1,
+           double *v2max, double top2[2], _Atomic long *exits_out)
 {
     const double dt = d->par.dt, h = 0.5 * dt, g = d->g;
-    const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
-    const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
-    const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
-    double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
-    double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
-    double *restrict fxn = d->f[F_FX][q], *restrict fyn = d->f[F_FY][q], *restrict tqn = d->f[F_TQ][q];
-    const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
-    double *restrict wn = d->f[F_W][q];
+    double *restrict vx = d->f[F_VX][pc], *restrict vy = d->f[F_VY][pc], *restrict w = d->f[F_W][pc];
+    const double *restrict fx = d->f[F_FX][pc], *restrict fy = d->f[F_FY][pc], *restrict tq = d->f[F_TQ][pc];
+    const double *restrict fxo = d->f[F_FX][po], *restrict fyo = d->f[F_FY][po], *restrict tqo = d->f[F_TQ][po];
+    const double *restrict x = d->f[F_X][pc], *restrict y = d->f[F_Y][pc];
+    double *restrict xn = d->f[F_X][pn], *restrict yn = d->f[F_Y][pn];
+    double *restrict vxn = d->f[F_VX][pn], *restrict vyn = d->f[F_VY][pn], *restrict wn = d->f[F_W][pn];
+    double *restrict fxn = d->f[F_FX][pn], *restrict fyn = d->f[F_FY][pn], *restrict tqn = d->f[F_TQ][pn];
     const double *restrict im = d->im, *restrict iI = d->iI, *restrict xr = d->xref, *restrict yr = d->yref;
-    double box[4];
-    gr_dem_exit_box(d, box);
+    double box[4] = {0, 0, 0, 0};
+    if (DRIFT)
+        gr_dem_exit_box(d, box);
     const double bx0 = box[0], bx1 = box[1], by0 = box[2], by1 = box[3];
     const int rot = d->rot;
-    v4d t1 = {0, 0, 0, 0}, t2 = {0, 0, 0, 0};
-    double s2[DRIFT_CHUNK];
+    v4d ek = {0, 0, 0, 0}, vm = {0, 0, 0, 0}, t1 = {0, 0, 0, 0}, t2 = {0, 0, 0, 0};
+    double e[DRIFT_CHUNK], v2[DRIFT_CHUNK], s2[DRIFT_CHUNK];
     int64_t out = 0;
     for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
         size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
@@ -92,55 +106,100 @@ static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0,
         for (size_t k = 0; k < m; k++) {
             size_t i = c0 + k;
             double mob = im[i] != 0 ? 1.0 : 0.0; /* as the bool in gr_dem_drift */
-            double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * mob;
-            double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
-            double nx = x[i] + dt * hx, ny = y[i] + dt * hy;
-            fxn[i] = 0.0;
-            fyn[i] = 0.0;
-            xn[i] = nx;
-            yn[i] = ny;
-            out += ((nx < bx0) | (nx > bx1) | (ny < by0) | (ny > by1)) & (im[i] != 0);
-            vxn[i] = hx + h * ax;
-            vyn[i] = hy + h * ay;
-            double dx = nx - xr[i], dy = ny - yr[i];
-            s2[k] = dx * dx + dy * dy;
+            double ux = vx[i], uy = vy[i];
+            if (KICK) {
+                double a = ux + h * (fx[i] - fxo[i]) * im[i], c = uy + h * (fy[i] - fyo[i]) * im[i];
+                vx[i] = ux = a;
+                vy[i] = uy = c;
+                double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * mob);
+                v2[k] = hx * hx + hy * hy;
+                double et = 0.5 * (a * a + c * c) / im[i]; /* selected away when im = 0 */
+                e[k] = im[i] != 0 ? et : 0.0;
+            }
+            if (DRIFT) {
+                double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * mob;
+                double hx = ux + h * ax, hy = uy + h * ay;
+                double nx = x[i] + dt * hx, ny = y[i] + dt * hy;
+                fxn[i] = 0.0;
+                fyn[i] = 0.0;
+                xn[i] = nx;
+                yn[i] = ny;
+                out += ((nx < bx0) | (nx > bx1) | (ny < by0) | (ny > by1)) & (im[i] != 0);
+                vxn[i] = hx + h * ax;
+                vyn[i] = hy + h * ay;
+                double dx = nx - xr[i], dy = ny - yr[i];
+                s2[k] = dx * dx + dy * dy;
+            }
         }
         if (rot) {
 #pragma GCC ivdep
-            for (size_t i = c0; i < c0 + m; i++) {
-                wn[i] = w[i] + dt * tq[i] * iI[i];
-                tqn[i] = 0.0;
+            for (size_t k = 0; k < m; k++) {
+                size_t i = c0 + k;
+                double ww = w[i];
+                if (KICK) {
+                    ww += h * (tq[i] - tqo[i]) * iI[i];
+                    w[i] = ww;
+                    double er = 0.5 * ww * ww / iI[i];
+                    e[k] += iI[i] != 0 ? er : 0.0;
+                }
+                if (DRIFT) {
+                    wn[i] = ww + dt * tq[i] * iI[i];
+                    tqn[i] = 0.0;
+                }
             }
         }
-        /* per lane k mod 4, selects only: the compiler vectorises it */
+        /* the four lanes as vectors (the vectoriser does not make them of
+         * scalar code); a chunk's last lanes padded with what adds nothing */
         for (size_t k = m; k & 3; k++)
-            s2[k] = 0.0; /* a chunk's last lanes: no move */
-        /* per lane k mod 4: t2 = max(t2, min(t1, s)), t1 = max(t1, s) */
-        for (size_t k = 0; k < m; k += 4) {
-            v4d s, lo;
-            V4_LOAD(s, s2 + k);
-            V4_SEL(lo, t1, <, s);
+            e[k] = v2[k] = s2[k] = 0.0;
+        for (size_t k = 0; KICK && k < m; k += 4) {
+            v4d ee, vv;
+            V4_LOAD(ee, e + k);
+            V4_LOAD(vv, v2 + k);
+            ek += ee;
+            V4_SEL(vm, vv, >, vm); /* not fmax: a libm call */
+        }
+        /* t2 = max(t2, min(t1, s)), t1 = max(t1, s) */
+        for (size_t k = 0; DRIFT && k < m; k += 4) {
+            v4d sv, lo;
+            V4_LOAD(sv, s2 + k);
+            V4_SEL(lo, t1, <, sv);
             V4_SEL(t2, lo, >, t2);
-            V4_SEL(t1, s, >, t1);
+            V4_SEL(t1, sv, >, t1);
         }
     }
-    /* the two largest of the lanes' two largest: those of all grains */
-    double m1 = 0, m2 = 0;
-    for (int l = 0; l < 8; l++) {
-        double s = l < 4 ? t1[l] : t2[l - 4];
-        if (s > m2) {
-            if (s > m1) {
-                m2 = m1;
-                m1 = s;
-            } else {
-                m2 = s;
+    if (DRIFT) {
+        /* the two largest of the lanes' two largest: those of all grains */
+        double m1 = 0, m2 = 0;
+        for (int l = 0; l < 8; l++) {
+            double sv = l < 4 ? t1[l] : t2[l - 4];
+            if (sv > m2) {
+                if (sv > m1) {
+                    m2 = m1;
+                    m1 = sv;
+                } else {
+                    m2 = sv;
+                }
             }
         }
+        top2[0] = m1;
+        top2[1] = m2;
+        if (out)
+            atomic_fetch_add_explicit(exits_out, out, memory_order_relaxed);
     }
-    top2[0] = m1;
-    top2[1] = m2;
-    if (out)
-        atomic_fetch_add_explicit(exits_out, out, memory_order_relaxed);
+    if (!KICK)
+        return 0.0;
+    if (v2max) {
+        double a = vm[0] > vm[1] ? vm[0] : vm[1], b = vm[2] > vm[3] ? vm[2] : vm[3];
+        *v2max = a > b ? a : b;
+    }
+    return (ek[0] + ek[1]) + (ek[2] + ek[3]);
+}
+
+static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1, double top2[2],
+                                             _Atomic long *exits_out)
+{
+    kick_drift(d, 0, 1, p, p, q, i0, i1, NULL, top2, exits_out);
 }
 
 /* Drift and first kick of grains [i0, i1) from buffer p into q (2: the
@@ -244,66 +303,20 @@ double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track)
     return track ? gr_dem_moved_blocks(d) : 0.0;
 }
 
-/* Second kick of grains [i0, i1): v(t+dt) = u + (dt/2) (a(t+dt) - a(t)),
- * where u is the predicted velocity (gravity cancels); returns their
- * kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array to stream)
- * and in *v2max the largest squared speed of the next drift's half kick.
- * In chunks: a loop without branches that the compiler vectorises leaves
- * each grain's energy and speed in e and v2; grain k of a chunk then adds
- * to lane k mod 4, the lanes summed at the end (one chain of additions
- * over the grains made the loop wait on it). The order is the code's, the
- * same for any thread count and either clone. */
 DEM_CLONES DEM_NOTRAP double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
 {
-    const double h = 0.5 * d->par.dt, g = d->g;
-    double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q], *restrict w = d->f[F_W][q];
-    const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
-    const double *restrict fxo = d->f[F_FX][p], *restrict fyo = d->f[F_FY][p];
-    const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p];
-    const double *restrict im = d->im, *restrict iI = d->iI;
-    const int rot = d->rot;
-    v4d ek = {0, 0, 0, 0}, vm = {0, 0, 0, 0};
-    double e[DRIFT_CHUNK], v2[DRIFT_CHUNK];
-    for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
-        size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
-#pragma GCC ivdep
-        for (size_t k = 0; k < m; k++) {
-            size_t i = c0 + k;
-            double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
-            vx[i] = a;
-            vy[i] = c;
-            double mob = im[i] != 0 ? 1.0 : 0.0; /* as the bool in the drift */
-            double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * mob);
-            v2[k] = hx * hx + hy * hy;
-            double et = 0.5 * (a * a + c * c) / im[i]; /* selected away when im = 0 */
-            e[k] = im[i] != 0 ? et : 0.0;
-        }
-        if (rot) {
-#pragma GCC ivdep
-            for (size_t k = 0; k < m; k++) {
-                size_t i = c0 + k;
-                double ww = w[i] + h * (tq[i] - tqo[i]) * iI[i];
-                w[i] = ww;
-                double er = 0.5 * ww * ww / iI[i];
-                e[k] += iI[i] != 0 ? er : 0.0;
-            }
-        }
-        /* in blocks of the four lanes, which the compiler vectorises */
-        for (size_t k = m; k & 3; k++)
-            e[k] = v2[k] = 0.0; /* a chunk's last lanes: nothing to add */
-        for (size_t k = 0; k < m; k += 4) {
-            v4d ee, vv;
-            V4_LOAD(ee, e + k);
-            V4_LOAD(vv, v2 + k);
-            ek += ee;
-            V4_SEL(vm, vv, >, vm); /* not fmax: a libm call */
-        }
+    return kick_drift(d, 1, 0, p, q, q, i0, i1, v2max, NULL, NULL);
+}
+
+DEM_CLONES DEM_NOTRAP double gr_dem_kick_drift(gr_dem *d, int p, int q, int r, size_t i0, size_t i1, double *v2max,
+                                               double top2[2], _Atomic long *exits)
+{
+    if (d->Lx > 0 || d->Ly > 0) {
+        double ek = gr_dem_kick(d, p, q, i0, i1, v2max);
+        gr_dem_drift(d, q, r, 1, i0, i1, top2, exits);
+        return ek;
     }
-    if (v2max) {
-        double a = vm[0] > vm[1] ? vm[0] : vm[1], b = vm[2] > vm[3] ? vm[2] : vm[3];
-        *v2max = a > b ? a : b;
-    }
-    return (ek[0] + ek[1]) + (ek[2] + ek[3]);
+    return kick_drift(d, 1, 1, p, q, r, i0, i1, v2max, top2, exits);
 }
 
 void gr_dem_kick_block(gr_dem *d, int p, int q, size_t b)
