@@ -23,7 +23,7 @@
 /* The batched strip in a function of its own per law: inlined beside the
  * one-pair loop it made that loop slower too (register pressure). */
 #define DEM_SB(NL, TL)                                                                 \
-    static __attribute__((noinline)) DEM_CLONES void sb_##NL##_##TL(dem_ctx *c, int s) \
+    static __attribute__((noinline)) DEM_CLONES DEM_NODIST void sb_##NL##_##TL(dem_ctx *c, int s) \
     {                                                                                  \
         strip_batched(c, NL, TL, s);                                                   \
     }
