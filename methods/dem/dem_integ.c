@@ -38,10 +38,6 @@ int gr_dem_exit_box(const gr_dem *d, double box[4])
     return isfinite(box[0]) || isfinite(box[1]) || isfinite(box[2]) || isfinite(box[3]);
 }
 
-/* Chunk of the branch-free drift: its squared moves wait in a buffer on
- * the stack for the two largest to be picked. */
-enum { DRIFT_CHUNK = 256 };
-
 /* Four lanes of doubles (GCC's vector extension: one AVX2 register, two
  * SSE2 ones in the baseline clone) for the per-lane maxima and sums that
  * the vectoriser does not make of scalar code; each lane rounds as the
@@ -61,118 +57,156 @@ typedef long long v4l __attribute__((vector_size(32)));
     } while (0)
 
 /* The Verlet kick and drift without periodic sides, the same operations
- * per grain as gr_dem_drift in loops without branches that the compiler
- * vectorises (AVX2: four grains per instruction). KICK: the second kick of
- * velocity Verlet, v(t+dt) = u + (dt/2) (a(t+dt) - a(t)) in buffer pc from
- * the old forces of po, where u is the predicted velocity (gravity
- * cancels); its kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array
- * to stream) is returned, and in *v2max the largest squared speed of the
- * next drift's half kick. DRIFT: drift and first kick from pc into pn,
- * the two largest squared moves since the list build in top2, the mobile
- * grains put outside the exit box added to *exits_out. Both (the kick of
- * a strip and its drift done ahead): one pass over the grains, the kicked
- * velocities drifted from registers, the same values as in two passes.
- * Per chunk, each grain's energy, speed and move wait in e, v2 and s2;
- * grain k of a chunk then goes to lane k mod 4 (one chain of additions
- * over the grains made the loop wait on it), the energy's lanes summed at
- * the end: the order is the code's, the same for any thread count and
- * either clone. */
+ * per grain as gr_dem_drift and the scalar kick, four grains at a time in
+ * GCC's vector extension (one AVX2 register, two SSE2 ones in the
+ * baseline clone; each lane rounds as the scalar operation, nothing is
+ * fused). KICK: the second kick of velocity Verlet, v(t+dt) = u + (dt/2)
+ * (a(t+dt) - a(t)) in buffer pc from the old forces of po, where u is the
+ * predicted velocity (gravity cancels); its kinetic energy (m v^2 / 2 as
+ * v^2 / (2 im): no mass array to stream) is returned, and in *v2max the
+ * largest squared speed of the next drift's half kick. DRIFT: drift and
+ * first kick from pc into pn, the two largest squared moves since the
+ * list build in top2, the mobile grains put outside the exit box added to
+ * *exits_out. Both (the kick of a strip and its drift done ahead): one
+ * pass, the kicked velocities drifted from registers. Grain i0 + k adds
+ * its energy to lane k mod 4 (one chain of additions over the grains made
+ * the loop wait on it), the lanes summed at the end: the order is the
+ * code's, the same for any thread count and either clone. */
+typedef struct {
+    double *vx, *vy, *w;                          /* pc, kicked in place */
+    const double *fx, *fy, *tq, *fxo, *fyo, *tqo; /* pc, po */
+    const double *x, *y, *im, *iI, *xr, *yr;
+    double *xn, *yn, *vxn, *vyn, *wn, *fxn, *fyn, *tqn; /* pn */
+} kd_arr;
+
+typedef struct {
+    v4d ek, vm, t1, t2; /* energy, largest speed, two largest moves per lane */
+    v4l out;            /* minus the grains put outside the exit box */
+} kd_acc;
+
+#define V4_STORE(p, v) memcpy((p), &(v), sizeof(v))
+#define V4_SPLAT(s) ((v4d){(s), (s), (s), (s)})
+
+/* Grains i .. i + 3 of A into lanes 0 .. 3 of s. */
+static inline __attribute__((always_inline)) void kd_four(const kd_arr *A, size_t i, const int KICK, const int DRIFT,
+                                                          int rot, double h, double dt, double g,
+                                                          const double box[4], kd_acc *s)
+{
+    const v4d zero = V4_SPLAT(0.0), hv = V4_SPLAT(h), dtv = V4_SPLAT(dt), half = V4_SPLAT(0.5);
+    v4d im, fx, fy, ux, uy, e = zero;
+    V4_LOAD(im, A->im + i);
+    V4_LOAD(fx, A->fx + i);
+    V4_LOAD(fy, A->fy + i);
+    V4_LOAD(ux, A->vx + i);
+    V4_LOAD(uy, A->vy + i);
+    v4l mobile = im != zero;
+    v4d mob = (v4d)(mobile & (v4l)V4_SPLAT(1.0)); /* as the bool in gr_dem_drift */
+    if (KICK) {
+        v4d fxo, fyo;
+        V4_LOAD(fxo, A->fxo + i);
+        V4_LOAD(fyo, A->fyo + i);
+        ux = ux + hv * (fx - fxo) * im;
+        uy = uy + hv * (fy - fyo) * im;
+        V4_STORE(A->vx + i, ux);
+        V4_STORE(A->vy + i, uy);
+        v4d hx = ux + hv * fx * im, hy = uy + hv * (fy * im - V4_SPLAT(g) * mob);
+        v4d v2 = hx * hx + hy * hy;
+        V4_SEL(s->vm, v2, >, s->vm); /* not fmax: a libm call */
+        v4d et = half * (ux * ux + uy * uy) / im; /* selected away when im = 0 */
+        e = (v4d)(mobile & (v4l)et);
+    }
+    if (DRIFT) {
+        v4d x, y, xr, yr;
+        V4_LOAD(x, A->x + i);
+        V4_LOAD(y, A->y + i);
+        V4_LOAD(xr, A->xr + i);
+        V4_LOAD(yr, A->yr + i);
+        v4d ax = fx * im, ay = fy * im - V4_SPLAT(g) * mob;
+        v4d hx = ux + hv * ax, hy = uy + hv * ay;
+        v4d nx = x + dtv * hx, ny = y + dtv * hy;
+        V4_STORE(A->fxn + i, zero);
+        V4_STORE(A->fyn + i, zero);
+        V4_STORE(A->xn + i, nx);
+        V4_STORE(A->yn + i, ny);
+        s->out += ((nx < V4_SPLAT(box[0])) | (nx > V4_SPLAT(box[1])) | (ny < V4_SPLAT(box[2])) |
+                   (ny > V4_SPLAT(box[3]))) & mobile;
+        v4d vxn = hx + hv * ax, vyn = hy + hv * ay;
+        V4_STORE(A->vxn + i, vxn);
+        V4_STORE(A->vyn + i, vyn);
+        v4d dx = nx - xr, dy = ny - yr, s2 = dx * dx + dy * dy, lo;
+        /* t2 = max(t2, min(t1, s2)), t1 = max(t1, s2) */
+        V4_SEL(lo, s->t1, <, s2);
+        V4_SEL(s->t2, lo, >, s->t2);
+        V4_SEL(s->t1, s2, >, s->t1);
+    }
+    if (rot) {
+        v4d ww, tq, iI;
+        V4_LOAD(ww, A->w + i);
+        V4_LOAD(tq, A->tq + i);
+        V4_LOAD(iI, A->iI + i);
+        if (KICK) {
+            v4d tqo;
+            V4_LOAD(tqo, A->tqo + i);
+            ww = ww + hv * (tq - tqo) * iI;
+            V4_STORE(A->w + i, ww);
+            v4d er = half * ww * ww / iI;
+            e += (v4d)((iI != zero) & (v4l)er);
+        }
+        if (DRIFT) {
+            v4d wn = ww + dtv * tq * iI;
+            V4_STORE(A->wn + i, wn);
+            V4_STORE(A->tqn + i, zero);
+        }
+    }
+    s->ek += e;
+}
+
 static inline __attribute__((always_inline)) double
 kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, size_t i0, size_t i1,
            double *v2max, double top2[2], _Atomic long *exits_out)
 {
     const double dt = d->par.dt, h = 0.5 * dt, g = d->g;
-    double *restrict vx = d->f[F_VX][pc], *restrict vy = d->f[F_VY][pc], *restrict w = d->f[F_W][pc];
-    const double *restrict fx = d->f[F_FX][pc], *restrict fy = d->f[F_FY][pc], *restrict tq = d->f[F_TQ][pc];
-    const double *restrict fxo = d->f[F_FX][po], *restrict fyo = d->f[F_FY][po], *restrict tqo = d->f[F_TQ][po];
-    const double *restrict x = d->f[F_X][pc], *restrict y = d->f[F_Y][pc];
-    double *restrict xn = d->f[F_X][pn], *restrict yn = d->f[F_Y][pn];
-    double *restrict vxn = d->f[F_VX][pn], *restrict vyn = d->f[F_VY][pn], *restrict wn = d->f[F_W][pn];
-    double *restrict fxn = d->f[F_FX][pn], *restrict fyn = d->f[F_FY][pn], *restrict tqn = d->f[F_TQ][pn];
-    const double *restrict im = d->im, *restrict iI = d->iI, *restrict xr = d->xref, *restrict yr = d->yref;
+    const int rot = d->rot;
+    kd_arr A = {d->f[F_VX][pc], d->f[F_VY][pc], d->f[F_W][pc],
+                d->f[F_FX][pc], d->f[F_FY][pc], d->f[F_TQ][pc], d->f[F_FX][po], d->f[F_FY][po], d->f[F_TQ][po],
+                d->f[F_X][pc], d->f[F_Y][pc], d->im, d->iI, d->xref, d->yref,
+                d->f[F_X][pn], d->f[F_Y][pn], d->f[F_VX][pn], d->f[F_VY][pn], d->f[F_W][pn],
+                d->f[F_FX][pn], d->f[F_FY][pn], d->f[F_TQ][pn]};
     double box[4] = {0, 0, 0, 0};
     if (DRIFT)
         gr_dem_exit_box(d, box);
-    const double bx0 = box[0], bx1 = box[1], by0 = box[2], by1 = box[3];
-    const int rot = d->rot;
-    v4d ek = {0, 0, 0, 0}, vm = {0, 0, 0, 0}, t1 = {0, 0, 0, 0}, t2 = {0, 0, 0, 0};
-    double e[DRIFT_CHUNK], v2[DRIFT_CHUNK], s2[DRIFT_CHUNK];
-    int64_t out = 0;
-    for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
-        size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
-        /* GCC does not take restrict from pointers set inside a function:
-         * the arrays are distinct (a grain's own fields) */
-#pragma GCC ivdep
-        for (size_t k = 0; k < m; k++) {
-            size_t i = c0 + k;
-            double mob = im[i] != 0 ? 1.0 : 0.0; /* as the bool in gr_dem_drift */
-            double ux = vx[i], uy = vy[i];
-            if (KICK) {
-                double a = ux + h * (fx[i] - fxo[i]) * im[i], c = uy + h * (fy[i] - fyo[i]) * im[i];
-                vx[i] = ux = a;
-                vy[i] = uy = c;
-                double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * mob);
-                v2[k] = hx * hx + hy * hy;
-                double et = 0.5 * (a * a + c * c) / im[i]; /* selected away when im = 0 */
-                e[k] = im[i] != 0 ? et : 0.0;
-            }
-            if (DRIFT) {
-                double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * mob;
-                double hx = ux + h * ax, hy = uy + h * ay;
-                double nx = x[i] + dt * hx, ny = y[i] + dt * hy;
-                fxn[i] = 0.0;
-                fyn[i] = 0.0;
-                xn[i] = nx;
-                yn[i] = ny;
-                out += ((nx < bx0) | (nx > bx1) | (ny < by0) | (ny > by1)) & (im[i] != 0);
-                vxn[i] = hx + h * ax;
-                vyn[i] = hy + h * ay;
-                double dx = nx - xr[i], dy = ny - yr[i];
-                s2[k] = dx * dx + dy * dy;
-            }
-        }
-        if (rot) {
-#pragma GCC ivdep
-            for (size_t k = 0; k < m; k++) {
-                size_t i = c0 + k;
-                double ww = w[i];
-                if (KICK) {
-                    ww += h * (tq[i] - tqo[i]) * iI[i];
-                    w[i] = ww;
-                    double er = 0.5 * ww * ww / iI[i];
-                    e[k] += iI[i] != 0 ? er : 0.0;
-                }
-                if (DRIFT) {
-                    wn[i] = ww + dt * tq[i] * iI[i];
-                    tqn[i] = 0.0;
-                }
-            }
-        }
-        /* the four lanes as vectors (the vectoriser does not make them of
-         * scalar code); a chunk's last lanes padded with what adds nothing */
-        for (size_t k = m; k & 3; k++)
-            e[k] = v2[k] = s2[k] = 0.0;
-        for (size_t k = 0; KICK && k < m; k += 4) {
-            v4d ee, vv;
-            V4_LOAD(ee, e + k);
-            V4_LOAD(vv, v2 + k);
-            ek += ee;
-            V4_SEL(vm, vv, >, vm); /* not fmax: a libm call */
-        }
-        /* t2 = max(t2, min(t1, s)), t1 = max(t1, s) */
-        for (size_t k = 0; DRIFT && k < m; k += 4) {
-            v4d sv, lo;
-            V4_LOAD(sv, s2 + k);
-            V4_SEL(lo, t1, <, sv);
-            V4_SEL(t2, lo, >, t2);
-            V4_SEL(t1, sv, >, t1);
+    kd_acc s = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+    size_t i = i0;
+    for (; i + 4 <= i1; i += 4)
+        kd_four(&A, i, KICK, DRIFT, rot, h, dt, g, box, &s);
+    if (i < i1) {
+        /* the last one to three grains: through copies padded with fixed
+         * grains at rest (im = iI = 0), which add nothing to any lane */
+        enum { NIN = 15, NOUT = 11 };
+        double in[NIN][4] = {{0}}, o[NOUT][4] = {{0}};
+        const double *src[NIN] = {A.vx, A.vy, A.w, A.fx, A.fy, A.tq, A.fxo, A.fyo, A.tqo,
+                                  A.x, A.y, A.im, A.iI, A.xr, A.yr};
+        size_t r = i1 - i;
+        for (int f = 0; f < NIN; f++)
+            memcpy(in[f], src[f] + i, r * sizeof(double));
+        memcpy(o[0], in[0], sizeof o[0]);
+        memcpy(o[1], in[1], sizeof o[1]);
+        memcpy(o[2], in[2], sizeof o[2]);
+        kd_arr B = {o[0], o[1], o[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12],
+                    in[13], in[14], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]};
+        kd_four(&B, 0, KICK, DRIFT, rot, h, dt, g, box, &s);
+        double *dst[NOUT] = {A.vx, A.vy, A.w, A.xn, A.yn, A.vxn, A.vyn, A.wn, A.fxn, A.fyn, A.tqn};
+        for (int f = 0; f < NOUT; f++) {
+            int kicked = f < 3 && f != 2, drifted = f >= 3 && f != 7 && f != 10;
+            if ((KICK && (kicked || (f == 2 && rot))) || (DRIFT && (drifted || ((f == 7 || f == 10) && rot))))
+                memcpy(dst[f] + i, o[f], r * sizeof(double));
         }
     }
     if (DRIFT) {
         /* the two largest of the lanes' two largest: those of all grains */
         double m1 = 0, m2 = 0;
         for (int l = 0; l < 8; l++) {
-            double sv = l < 4 ? t1[l] : t2[l - 4];
+            double sv = l < 4 ? s.t1[l] : s.t2[l - 4];
             if (sv > m2) {
                 if (sv > m1) {
                     m2 = m1;
@@ -184,16 +218,17 @@ kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, s
         }
         top2[0] = m1;
         top2[1] = m2;
+        long out = -(long)(s.out[0] + s.out[1] + s.out[2] + s.out[3]);
         if (out)
             atomic_fetch_add_explicit(exits_out, out, memory_order_relaxed);
     }
     if (!KICK)
         return 0.0;
     if (v2max) {
-        double a = vm[0] > vm[1] ? vm[0] : vm[1], b = vm[2] > vm[3] ? vm[2] : vm[3];
+        double a = s.vm[0] > s.vm[1] ? s.vm[0] : s.vm[1], b = s.vm[2] > s.vm[3] ? s.vm[2] : s.vm[3];
         *v2max = a > b ? a : b;
     }
-    return (ek[0] + ek[1]) + (ek[2] + ek[3]);
+    return (s.ek[0] + s.ek[1]) + (s.ek[2] + s.ek[3]);
 }
 
 static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1, double top2[2],
