@@ -188,7 +188,8 @@ kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, s
                                   A.x, A.y, A.im, A.iI, A.xr, A.yr};
         size_t r = i1 - i;
         for (int f = 0; f < NIN; f++)
-            memcpy(in[f], src[f] + i, r * sizeof(double));
+            if (src[f]) /* (the arrays a scene does not need may be absent) */
+                memcpy(in[f], src[f] + i, r * sizeof(double));
         memcpy(o[0], in[0], sizeof o[0]);
         memcpy(o[1], in[1], sizeof o[1]);
         memcpy(o[2], in[2], sizeof o[2]);
