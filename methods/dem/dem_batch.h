@@ -64,6 +64,15 @@ DEM_INLINE void batch_law(const dem_ctx *c, const int NL, const int TL, dem_batc
     const double *restrict ux = c->ux, *restrict uy = c->uy, *restrict uw = c->uw, *restrict rad = c->rad;
     const double kn = c->law.kn, gn = c->law.gn, gt = c->law.gt, mu = c->law.mu;
     const int clip = c->law.clip;
+    /* pass 1 stored the separation only: r^2, r_i + r_j again (the same
+     * operations), and grains on one spot get n = (1, 0) */
+    for (int k = 0; k < m; k++) {
+        double dx = b->dx[k], dy = b->dy[k], r2 = dx * dx + dy * dy;
+        b->r2[k] = r2;
+        b->rs[k] = rad[b->i[k]] + rad[b->j[k]];
+        b->dx[k] = r2 > 0 ? dx : 1.0;
+        b->dy[k] = r2 > 0 ? dy : 0.0;
+    }
     batch_sqrt(b->r2, b->r, m);
     for (int k = 0; k < m; k++)
         b->xi[k] = b->rs[k] - b->r[k];
@@ -72,7 +81,7 @@ DEM_INLINE void batch_law(const dem_ctx *c, const int NL, const int TL, dem_batc
     for (int k = 0; k < m; k++) {
         int32_t i = b->i[k], j = b->j[k];
         double r = b->r[k], xi = b->xi[k];
-        /* r = 0 (grains on one spot; pass 1 made dx = 1, dy = 0): n = (1, 0) */
+        /* r = 0 (grains on one spot; dx = 1, dy = 0 above): n = (1, 0) */
         double inv = 1.0 / (r + (double)(r == 0.0));
         double nx = b->dx[k] * inv, ny = b->dy[k] * inv;
         double dvx = ux[j] - ux[i], dvy = uy[j] - uy[i];
@@ -173,8 +182,7 @@ DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b
         if (PER && Lx > 0) dx = gr_min_image(dx, Lx);
         if (PER && Ly > 0) dy = gr_min_image(dy, Ly);
         double rs = rad[i] + rad[j], r2 = dx * dx + dy * dy;
-        b->i[m] = i, b->j[m] = j;
-        b->dx[m] = r2 > 0 ? dx : 1.0, b->dy[m] = r2 > 0 ? dy : 0.0, b->r2[m] = r2, b->rs[m] = rs;
+        b->i[m] = i, b->j[m] = j, b->dx[m] = dx, b->dy[m] = dy;
         m += r2 < rs * rs;
         mk[k - k0] = m;
     }
