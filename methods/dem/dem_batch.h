@@ -39,7 +39,6 @@ typedef struct {
     double r[DEM_BATCH], sxi[DEM_BATCH]; /* distance, square root of the overlap */
     /* pass 2's results: force on j, torques on j and i, elastic energy, overlap */
     double fx[DEM_BATCH], fy[DEM_BATCH], tj[DEM_BATCH], ti[DEM_BATCH], el[DEM_BATCH], xi[DEM_BATCH];
-    int32_t end[DEM_BATCH_GRAINS]; /* per grain of the chunk: one past its last contact */
 } dem_batch;
 
 /* out[k] = sqrt(in[k]) for k < m, two at a time where SSE2 is (every
@@ -122,7 +121,7 @@ DEM_INLINE void batch_law(const dem_ctx *c, const int NL, const int TL, dem_batc
  * over a run's contacts instead of one per grain: the predictor lost that
  * loop's end about once per grain. */
 DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, const dem_batch *restrict b,
-                          int32_t g0, int ng)
+                          int32_t g0, int ng, int m)
 {
     double *restrict fx = c->fx, *restrict fy = c->fy, *restrict tq = c->tq;
     const double *restrict rad = c->rad;
@@ -139,7 +138,9 @@ DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, co
     int k = 0, g = 0;
     for (int w = 0; w < nw && g < ng; w++) {
         int ge = wg[w];
-        for (int ke = b->end[ge]; k < ke; k++) {
+        int32_t ie = g0 + ge;
+        /* contacts are packed in list order: grain ie's end where i passes it */
+        for (; k < m && b->i[k] <= ie; k++) {
             int32_t i = b->i[k], j = b->j[k], gi = i - g0;
             fx[j] += b->fx[k];
             fy[j] += b->fy[k];
@@ -157,7 +158,6 @@ DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, co
                 a->sj = j;
             }
         }
-        int32_t ie = g0 + ge;
         for (int32_t q = sgs[ie]; q < sgs[ie + 1]; q++)
             if (c->seg_on[sgj[q]])
                 wall(c, NL, TL, a, (size_t)ie, sgj[q], ox + ge, oy + ge, ot + ge);
@@ -168,9 +168,8 @@ DEM_INLINE void batch_add(dem_ctx *c, const int NL, const int TL, dem_acc *a, co
 
 /* Pass 1 over list pairs k0 .. k1 - 1 (PER: periodic sides, a constant
  * so that the open silo's loop carries no wrap tests); returns the
- * number of contacts packed, m after each pair in mk. */
-DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b, int32_t *restrict mk,
-                          int32_t k0, int32_t k1)
+ * number of contacts packed. */
+DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b, int32_t k0, int32_t k1)
 {
     const int32_t *restrict nbj = c->d->nb_j, *restrict nbi = c->d->nb_i;
     const double *restrict x = c->x, *restrict y = c->y, *restrict rad = c->rad;
@@ -184,7 +183,6 @@ DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b
         double rs = rad[i] + rad[j], r2 = dx * dx + dy * dy;
         b->i[m] = i, b->j[m] = j, b->dx[m] = dx, b->dy[m] = dy;
         m += r2 < rs * rs;
-        mk[k - k0] = m;
     }
     return m;
 }
@@ -192,9 +190,7 @@ DEM_INLINE int batch_test(const dem_ctx *c, const int PER, dem_batch *restrict b
 /* Strip s in chunks: pass 1 (batch_test), then passes 2 and 3. Pass 1
  * runs over the chunk's list pairs in one flat loop (the grain of each
  * pair from nb_i): a loop per grain ended after its 0 to 6 pairs, a branch
- * the predictor loses about once per grain. m after each pair, in mk,
- * gives each grain's end of contacts (mk[0] = 0: a grain without list
- * pairs before any). */
+ * the predictor loses about once per grain. */
 DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
 {
     gr_dem *d = c->d;
@@ -203,8 +199,6 @@ DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
     int32_t i0 = d->strips.i0[s], i1 = d->strips.i0[s + 1];
     dem_acc acc = acc_start(s);
     dem_batch b;
-    int32_t mk[DEM_BATCH + 1]; /* contacts packed before list pair k: mk[k] */
-    mk[0] = 0;
     for (int32_t g0 = i0; g0 < i1;) {
         /* the most grains (up to DEM_BATCH_GRAINS) whose list pairs fit:
          * nbs is monotone, so a binary search whose steps depend only on
@@ -222,11 +216,9 @@ DEM_INLINE void strip_batched(dem_ctx *c, const int NL, const int TL, int s)
             continue;
         }
         int32_t k1 = nbs[g0 + ng];
-        int m = per ? batch_test(c, 1, &b, mk + 1, kb, k1) : batch_test(c, 0, &b, mk + 1, kb, k1);
-        for (int g = 0; g < ng; g++)
-            b.end[g] = mk[nbs[g0 + g + 1] - kb];
+        int m = per ? batch_test(c, 1, &b, kb, k1) : batch_test(c, 0, &b, kb, k1);
         batch_law(c, NL, TL, &b, m);
-        batch_add(c, NL, TL, &acc, &b, g0, ng);
+        batch_add(c, NL, TL, &acc, &b, g0, ng, m);
         g0 += ng;
     }
     acc_store(c, &acc);
