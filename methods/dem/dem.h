@@ -179,6 +179,13 @@ typedef struct gr_dem {
 #else
 #define DEM_NOTRAP
 #endif
+/* Short copies and zeroings stay loops: GCC makes them calls to memcpy or
+ * memset, each costing more than the loop at these sizes. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DEM_NODIST __attribute__((optimize("no-tree-loop-distribute-patterns")))
+#else
+#define DEM_NODIST
+#endif
 
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
  * the number of threads). */

@@ -25,14 +25,6 @@
 #include "dem_contact.h"
 #include "dem_eval.h"
 
-/* For the batched strip: GCC made the zeroing of pass 3's own sums three
- * calls to memset per chunk, each costing more than the loop. */
-#if defined(__GNUC__) && !defined(__clang__)
-#define DEM_NODIST __attribute__((optimize("no-tree-loop-distribute-patterns")))
-#else
-#define DEM_NODIST
-#endif
-
 typedef struct {
     int32_t i[DEM_BATCH], j[DEM_BATCH];
     double dx[DEM_BATCH], dy[DEM_BATCH], r2[DEM_BATCH], rs[DEM_BATCH];

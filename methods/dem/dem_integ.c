@@ -188,11 +188,11 @@ kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, s
                                   A.x, A.y, A.im, A.iI, A.xr, A.yr};
         size_t r = i1 - i;
         for (int f = 0; f < NIN; f++)
-            if (src[f]) /* (the arrays a scene does not need may be absent) */
-                memcpy(in[f], src[f] + i, r * sizeof(double));
-        memcpy(o[0], in[0], sizeof o[0]);
-        memcpy(o[1], in[1], sizeof o[1]);
-        memcpy(o[2], in[2], sizeof o[2]);
+            for (size_t l = 0; src[f] && l < r; l++) /* (absent: a field the scene does not need) */
+                in[f][l] = src[f][i + l];
+        for (int f = 0; f < 3; f++)
+            for (int l = 0; l < 4; l++)
+                o[f][l] = in[f][l];
         kd_arr B = {o[0], o[1], o[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12],
                     in[13], in[14], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]};
         kd_four(&B, 0, KICK, DRIFT, rot, h, dt, g, box, &s);
@@ -200,7 +200,8 @@ kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, s
         for (int f = 0; f < NOUT; f++) {
             int kicked = f < 3 && f != 2, drifted = f >= 3 && f != 7 && f != 10;
             if ((KICK && (kicked || (f == 2 && rot))) || (DRIFT && (drifted || ((f == 7 || f == 10) && rot))))
-                memcpy(dst[f] + i, o[f], r * sizeof(double));
+                for (size_t l = 0; l < r; l++)
+                    dst[f][i + l] = o[f][l];
         }
     }
     if (DRIFT) {
@@ -232,8 +233,8 @@ kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, s
     return (s.ek[0] + s.ek[1]) + (s.ek[2] + s.ek[3]);
 }
 
-static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1, double top2[2],
-                                             _Atomic long *exits_out)
+static DEM_CLONES DEM_NOTRAP DEM_NODIST void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1,
+                                                        double top2[2], _Atomic long *exits_out)
 {
     kick_drift(d, 0, 1, p, p, q, i0, i1, NULL, top2, exits_out);
 }
@@ -339,13 +340,13 @@ double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track)
     return track ? gr_dem_moved_blocks(d) : 0.0;
 }
 
-DEM_CLONES DEM_NOTRAP double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
+DEM_CLONES DEM_NOTRAP DEM_NODIST double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
 {
     return kick_drift(d, 1, 0, p, q, q, i0, i1, v2max, NULL, NULL);
 }
 
-DEM_CLONES DEM_NOTRAP double gr_dem_kick_drift(gr_dem *d, int p, int q, int r, size_t i0, size_t i1, double *v2max,
-                                               double top2[2], _Atomic long *exits)
+DEM_CLONES DEM_NOTRAP DEM_NODIST double gr_dem_kick_drift(gr_dem *d, int p, int q, int r, size_t i0, size_t i1,
+                                                          double *v2max, double top2[2], _Atomic long *exits)
 {
     if (d->Lx > 0 || d->Ly > 0) {
         double ek = gr_dem_kick(d, p, q, i0, i1, v2max);
