@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "lgca_int.h"
+#include "lgca_philox.h"
 
 /* Gravity: at a fluid node drawn with probability g, one unit of downward
  * momentum: a rest particle starts down, or else up-right turns down-right,
@@ -177,34 +178,37 @@ static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_
     return 0;
 }
 
-/* Block [j0, j1) of thread t of T, after the barrier that follows the
- * saving of every block's edge lanes: rightward channels (1, 2) take lane
- * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
- * before it is overwritten; the block's first (last) lane takes the edge
- * lane saved by its neighbour. */
-static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
+/* Channel c across block [j0, j1), but for the lane that takes its
+ * neighbour's edge lane: rightward channels (1, 2) take lane j - 1,
+ * leftward (4, 5) lane j + 1, in the order that reads each source before
+ * it is overwritten. */
+static uint64_t propagate_inner(lgca *L, int c, int j0, int j1)
+{
+    uint64_t lost = 0;
+    if (c == 1 || c == 2)
+        for (int j = j1 - 1; j > j0; j--)
+            lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
+    else
+        for (int j = j0; j < j1 - 1; j++)
+            lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
+    return lost;
+}
+
+/* The block's first lane (channels 1, 2) or last (4, 5) from the edge lane
+ * saved by the neighbour of thread t in slot q of the step's parity, once
+ * the neighbour has published it. */
+static uint64_t propagate_edge(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
 {
     size_t nw = (size_t)L->nw, slot = lgca_edge_slot(L);
     const uint64_t *edge = L->edge + (size_t)par * (size_t)T * slot + (size_t)q * nw;
-    uint64_t lost = 0;
-    if (c == 1 || c == 2) {
-        for (int j = j1 - 1; j > j0; j--)
-            lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
-        const uint64_t *e = edge + (size_t)(t > 0 ? t - 1 : T - 1) * slot;
-        if (j0 > 0 || L->per_j)
-            lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
-        else
-            memset(plane(L, j0, c), 0, nw * sizeof *e);
-    } else {
-        for (int j = j0; j < j1 - 1; j++)
-            lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        const uint64_t *e = edge + (size_t)(t + 1 < T ? t + 1 : 0) * slot;
-        if (j1 < L->nj || L->per_j)
-            lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
-        else
-            memset(plane(L, j1 - 1, c), 0, nw * sizeof *e);
+    int right = c == 1 || c == 2, jd = right ? j0 : j1 - 1;
+    int js = right ? (j0 > 0 ? j0 - 1 : L->nj - 1) : (j1 < L->nj ? j1 : 0);
+    if (!L->per_j && (right ? j0 == 0 : j1 == L->nj)) {
+        memset(plane(L, jd, c), 0, nw * sizeof *edge);
+        return 0;
     }
-    return lost;
+    const uint64_t *e = edge + (size_t)(right ? (t > 0 ? t - 1 : T - 1) : (t + 1 < T ? t + 1 : 0)) * slot;
+    return move_across(L, c, js, e, plane(L, jd, c));
 }
 
 /* The block's edge lane that a neighbouring block reads (slot q of the
@@ -260,22 +264,29 @@ static void wait_neighbours(lgca_flag *f, int t, int T, uint64_t s)
 
 static const int across[4] = {1, 2, 4, 5};
 
-/* Lanes at each end of a block collided ahead of the rest. */
-#define LGCA_END_LANES 1
+/* The lanes at each end of a block collided ahead of the rest: enough
+ * words for a whole batch of Philox calls (lgca_philox.h), as a lane or two
+ * alone would leave most of their batch idle. */
+static int end_lanes(const lgca *L, int j0, int j1)
+{
+    int e = (2 * LGCA_BATCH + L->nw - 1) / L->nw;
+    return e < (j1 - j0) / 2 ? e : (j1 - j0) / 2;
+}
 
 /* One step of thread t without serial work: one synchronisation, with the
  * neighbours only. The block's end lanes are collided first, their edge
- * planes saved and the step published; the middle of the block is collided
- * while the neighbours do the same, so that by the time the thread needs
- * their edge lanes (for the propagation) they were published long ago and
- * the wait rarely blocks. A collision touches the block's own lanes only
- * (random bits are a function of the lane, not of the chunk). Edge slots
- * of the step's parity are written again two steps later, after the
- * thread saw the neighbours publish the step in between, which they do
- * after the propagation that read the slot. */
+ * planes saved and the step published; the middle of the block is
+ * collided and the lanes not at the ends propagated while the neighbours
+ * do the same, so that by the time the thread needs their edge lanes (to
+ * propagate its end lanes) they were published long ago and the wait
+ * rarely blocks. A collision touches the block's own lanes only, and its
+ * random bits are a function of the lane, not of the chunk. Edge slots of
+ * the step's parity are written again two steps later, after the thread
+ * saw the neighbours publish the step in between, which they do after the
+ * propagation that read the slot. */
 static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr, uint64_t step, lgca_flag *flag)
 {
-    int par = (int)(step & 1u), e = (j1 - j0) / 2 < LGCA_END_LANES ? (j1 - j0) / 2 : LGCA_END_LANES;
+    int par = (int)(step & 1u), e = end_lanes(L, j0, j1);
     uint64_t out = 0;
     if (T > 1) {
         out += collide_block(L, j0, j0 + e, scr, step, 1);
@@ -287,10 +298,13 @@ static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr,
     if (T > 1) {
         atomic_store_explicit(&flag[t].saved, step + 1, memory_order_release);
         out += collide_block(L, j0 + e, j1 - e, scr, step, 1);
-        wait_neighbours(flag, t, T, step + 1);
     }
     for (int q = 0; q < 4; q++)
-        out += propagate_across(L, q, across[q], t, T, j0, j1, par);
+        out += propagate_inner(L, across[q], j0, j1);
+    if (T > 1)
+        wait_neighbours(flag, t, T, step + 1);
+    for (int q = 0; q < 4; q++)
+        out += propagate_edge(L, q, across[q], t, T, j0, j1, par);
     return out;
 }
 
@@ -315,7 +329,7 @@ static uint64_t step_serial(lgca *L, int t, int T, int j0, int j1, uint64_t *scr
     }
 #pragma omp barrier
     for (int q = 0; q < 4; q++)
-        out += propagate_across(L, q, across[q], t, T, j0, j1, par);
+        out += propagate_inner(L, across[q], j0, j1) + propagate_edge(L, q, across[q], t, T, j0, j1, par);
 #pragma omp barrier
 #pragma omp single
     {
