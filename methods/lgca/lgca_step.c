@@ -282,8 +282,9 @@ static int end_lanes(const lgca *L, int j0, int j1)
  * rarely blocks. A collision touches the block's own lanes only, and its
  * random bits are a function of the lane, not of the chunk. Edge slots of
  * the step's parity are written again two steps later, after the thread
- * saw the neighbours publish the step in between, which they do after the
- * propagation that read the slot. */
+ * saw the neighbours publish the step in between, which they do after
+ * moving the slot's lanes into their end lanes (program order, release
+ * and acquire). */
 static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr, uint64_t step, lgca_flag *flag)
 {
     int par = (int)(step & 1u), e = end_lanes(L, j0, j1);
