@@ -144,15 +144,27 @@ static int check_size(lgca *L, gr_err *err)
     return GR_OK;
 }
 
+/* Zeroed words on whole cache lines of their own: where two threads' parts
+ * of an array meet (blocks of lanes, scratch, edge slots) neither writes the
+ * other's line. */
+static uint64_t *zalloc_lines(size_t n)
+{
+    size_t bytes = (n * sizeof(uint64_t) + 63) & ~(size_t)63;
+    uint64_t *p = aligned_alloc(64, bytes ? bytes : 64);
+    if (p)
+        memset(p, 0, bytes);
+    return p;
+}
+
 static int alloc_lattice(lgca *L, gr_err *err)
 {
     size_t nj = (size_t)L->nj, nw = (size_t)L->nw, T = (size_t)L->nthreads;
-    L->s = calloc(nj * LGCA_CH * nw, sizeof *L->s);
+    L->s = zalloc_lines(nj * LGCA_CH * nw);
     L->solid = calloc(nj * nw, sizeof *L->solid);
     L->valid = calloc(nw, sizeof *L->valid);
     L->chunk = nw >= LGCA_CHUNK_WORDS ? 1 : (int)(LGCA_CHUNK_WORDS / nw);
-    L->scratch = calloc(T * LGCA_SCRATCH * (size_t)L->chunk * nw, sizeof *L->scratch);
-    L->edge = calloc(2 * T * 4 * nw, sizeof *L->edge);
+    L->scratch = zalloc_lines(T * LGCA_SCRATCH * (size_t)L->chunk * nw);
+    L->edge = zalloc_lines(2 * T * lgca_edge_slot(L));
     if (L->thr_stop && !(L->stop_mask = calloc(nj * nw, sizeof *L->stop_mask)))
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
     if (!L->s || !L->solid || !L->valid || !L->scratch || !L->edge)

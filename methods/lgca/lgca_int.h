@@ -145,8 +145,14 @@ typedef struct lgca {
     int nthreads;
     int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
     uint64_t *scratch;      /* per thread: LGCA_SCRATCH chunk nw words (fluid, random bits, masks) */
-    uint64_t *edge;         /* per step parity and thread: 4 planes of a block's edge lanes */
+    uint64_t *edge;         /* per step parity and thread: a slot of 4 planes of a block's edge lanes */
 } lgca;
+
+/* Words per slot of L->edge: 4 planes, rounded up to whole cache lines. */
+static inline size_t lgca_edge_slot(const lgca *L)
+{
+    return (4 * (size_t)L->nw + 7) & ~(size_t)7;
+}
 
 /* lgca_geom.c: lattice size, walls, the initial state. */
 /* init: the scene's grains, rasterised onto nodes; rng fills the channels

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "lgca_int.h"
+#include "lgca_philox.h"
 
 /* Gravity: at a fluid node drawn with probability g, one unit of downward
  * momentum: a rest particle starts down, or else up-right turns down-right,
@@ -177,34 +178,37 @@ static uint64_t move_across(lgca *L, int c, int js, const uint64_t *src, uint64_
     return 0;
 }
 
-/* Block [j0, j1) of thread t of T, after the barrier that follows the
- * saving of every block's edge lanes: rightward channels (1, 2) take lane
- * j - 1, leftward (4, 5) lane j + 1, in the order that reads each source
- * before it is overwritten; the block's first (last) lane takes the edge
- * lane saved by its neighbour. */
-static uint64_t propagate_across(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
+/* Channel c across block [j0, j1), but for the lane that takes its
+ * neighbour's edge lane: rightward channels (1, 2) take lane j - 1,
+ * leftward (4, 5) lane j + 1, in the order that reads each source before
+ * it is overwritten. */
+static uint64_t propagate_inner(lgca *L, int c, int j0, int j1)
 {
-    size_t nw = (size_t)L->nw;
-    const uint64_t *edge = L->edge + (size_t)par * (size_t)T * 4 * nw;
     uint64_t lost = 0;
-    if (c == 1 || c == 2) {
+    if (c == 1 || c == 2)
         for (int j = j1 - 1; j > j0; j--)
             lost += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
-        const uint64_t *e = edge + ((size_t)(t > 0 ? t - 1 : T - 1) * 4 + (size_t)q) * nw;
-        if (j0 > 0 || L->per_j)
-            lost += move_across(L, c, j0 > 0 ? j0 - 1 : L->nj - 1, e, plane(L, j0, c));
-        else
-            memset(plane(L, j0, c), 0, nw * sizeof *e);
-    } else {
+    else
         for (int j = j0; j < j1 - 1; j++)
             lost += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        const uint64_t *e = edge + ((size_t)(t + 1 < T ? t + 1 : 0) * 4 + (size_t)q) * nw;
-        if (j1 < L->nj || L->per_j)
-            lost += move_across(L, c, j1 < L->nj ? j1 : 0, e, plane(L, j1 - 1, c));
-        else
-            memset(plane(L, j1 - 1, c), 0, nw * sizeof *e);
-    }
     return lost;
+}
+
+/* The block's first lane (channels 1, 2) or last (4, 5) from the edge lane
+ * saved by the neighbour of thread t in slot q of the step's parity, once
+ * the neighbour has published it. */
+static uint64_t propagate_edge(lgca *L, int q, int c, int t, int T, int j0, int j1, int par)
+{
+    size_t nw = (size_t)L->nw, slot = lgca_edge_slot(L);
+    const uint64_t *edge = L->edge + (size_t)par * (size_t)T * slot + (size_t)q * nw;
+    int right = c == 1 || c == 2, jd = right ? j0 : j1 - 1;
+    int js = right ? (j0 > 0 ? j0 - 1 : L->nj - 1) : (j1 < L->nj ? j1 : 0);
+    if (!L->per_j && (right ? j0 == 0 : j1 == L->nj)) {
+        memset(plane(L, jd, c), 0, nw * sizeof *edge);
+        return 0;
+    }
+    const uint64_t *e = edge + (size_t)(right ? (t > 0 ? t - 1 : T - 1) : (t + 1 < T ? t + 1 : 0)) * slot;
+    return move_across(L, c, js, e, plane(L, jd, c));
 }
 
 /* The block's edge lane that a neighbouring block reads (slot q of the
@@ -214,7 +218,8 @@ static uint64_t save_edge(lgca *L, int q, int c, int t, int T, int j0, int j1, i
     size_t nw = (size_t)L->nw;
     int right = c == 1 || c == 2;
     int je = right ? j1 - 1 : j0;
-    memcpy(L->edge + (((size_t)par * (size_t)T + (size_t)t) * 4 + (size_t)q) * nw, plane(L, je, c), nw * sizeof *L->edge);
+    uint64_t *slot = L->edge + ((size_t)par * (size_t)T + (size_t)t) * lgca_edge_slot(L);
+    memcpy(slot + (size_t)q * nw, plane(L, je, c), nw * sizeof *slot);
     int off = right ? je == L->nj - 1 : je == 0;
     return off && !L->per_j ? count(plane(L, je, c), nw) : 0;
 }
@@ -257,58 +262,97 @@ static void wait_neighbours(lgca_flag *f, int t, int T, uint64_t s)
         }
 }
 
-/* n steps by thread t of a team of T. With serial work (rest collision,
- * walls, exits, gates) four synchronisations a step; without, one, with
- * the neighbours only: a block's collision and shifts touch its own lanes
- * only, and its edge lanes go to the buffer of the step's parity, which
- * the neighbours have read before it is written again (they had saved the
- * step in between, after their propagation). */
+static const int across[4] = {1, 2, 4, 5};
+
+/* The lanes at each end of a block collided ahead of the rest: enough
+ * words for a whole batch of Philox calls (lgca_philox.h), as a lane or two
+ * alone would leave most of their batch idle. */
+static int end_lanes(const lgca *L, int j0, int j1)
+{
+    int e = (2 * LGCA_BATCH + L->nw - 1) / L->nw;
+    return e < (j1 - j0) / 2 ? e : (j1 - j0) / 2;
+}
+
+/* One step of thread t without serial work: one synchronisation, with the
+ * neighbours only. The block's end lanes are collided first, their edge
+ * planes saved and the step published; the middle of the block is
+ * collided and the lanes not at the ends propagated while the neighbours
+ * do the same, so that by the time the thread needs their edge lanes (to
+ * propagate its end lanes) they were published long ago and the wait
+ * rarely blocks. A collision touches the block's own lanes only, and its
+ * random bits are a function of the lane, not of the chunk. Edge slots of
+ * the step's parity are written again two steps later, after the thread
+ * saw the neighbours publish the step in between, which they do after
+ * moving the slot's lanes into their end lanes (program order, release
+ * and acquire). */
+static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr, uint64_t step, lgca_flag *flag)
+{
+    int par = (int)(step & 1u), e = end_lanes(L, j0, j1);
+    uint64_t out = 0;
+    if (T > 1) {
+        out += collide_block(L, j0, j0 + e, scr, step, 1);
+        out += collide_block(L, j1 - e, j1, scr, step, 1);
+    } else
+        out += collide_block(L, j0, j1, scr, step, 1);
+    for (int q = 0; q < 4; q++)
+        out += save_edge(L, q, across[q], t, T, j0, j1, par);
+    if (T > 1) {
+        atomic_store_explicit(&flag[t].saved, step + 1, memory_order_release);
+        out += collide_block(L, j0 + e, j1 - e, scr, step, 1);
+    }
+    for (int q = 0; q < 4; q++)
+        out += propagate_inner(L, across[q], j0, j1);
+    if (T > 1)
+        wait_neighbours(flag, t, T, step + 1);
+    for (int q = 0; q < 4; q++)
+        out += propagate_edge(L, q, across[q], t, T, j0, j1, par);
+    return out;
+}
+
+/* With serial work (rest collision, walls, exits, gates) four team
+ * synchronisations a step. */
+static uint64_t step_serial(lgca *L, int t, int T, int j0, int j1, uint64_t *scr, uint64_t step)
+{
+    int par = (int)(step & 1u);
+    uint64_t out = collide_block(L, j0, j1, scr, step, 0);
+#pragma omp barrier
+#pragma omp single
+    {
+        if (L->thr_stop)
+            lgca_stop_pass(L, L->stop_mask);
+        reflect(L);
+    }
+    for (int q = 0; q < 4; q++)
+        out += save_edge(L, q, across[q], t, T, j0, j1, par);
+    for (int j = j0; j < j1; j++) {
+        out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
+        out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
+    }
+#pragma omp barrier
+    for (int q = 0; q < 4; q++)
+        out += propagate_inner(L, across[q], j0, j1) + propagate_edge(L, q, across[q], t, T, j0, j1, par);
+#pragma omp barrier
+#pragma omp single
+    {
+        if (L->exits)
+            lgca_exits(L);
+        L->step++;
+        open_gates(L);
+    }
+    return out;
+}
+
+/* n steps by thread t of a team of T on lanes [j0, j1); the particles that
+ * left the lattice go to lost[t]. */
 static void run_block(lgca *L, int t, int T, uint64_t n, uint64_t *lost, lgca_flag *flag)
 {
     int j0 = (int)((long)L->nj * t / T), j1 = (int)((long)L->nj * (t + 1) / T);
     uint64_t *scr = L->scratch + (size_t)t * LGCA_SCRATCH * (size_t)L->chunk * (size_t)L->nw;
-    static const int across[4] = {1, 2, 4, 5};
     int serial = L->thr_stop || L->nwalls || L->exits || L->has_gates;
     uint64_t step0 = L->step, mine = 0;
-    for (uint64_t k = 0; k < n; k++) {
-        uint64_t out = 0;
-        int par = (int)((step0 + k) & 1u);
-        out += collide_block(L, j0, j1, scr, step0 + k, !serial);
-        if (serial) {
-#pragma omp barrier
-#pragma omp single
-            {
-                if (L->thr_stop)
-                    lgca_stop_pass(L, L->stop_mask);
-                reflect(L);
-            }
-        }
-        for (int q = 0; q < 4; q++)
-            out += save_edge(L, q, across[q], t, T, j0, j1, par);
-        for (int j = j0; serial && j < j1; j++) {
-            out += shift_up(L, plane(L, j, 0), plane(L, j, 0));
-            out += shift_down(L, plane(L, j, 3), plane(L, j, 3));
-        }
-        if (serial) {
-#pragma omp barrier
-        } else if (T > 1) {
-            atomic_store_explicit(&flag[t].saved, step0 + k + 1, memory_order_release);
-            wait_neighbours(flag, t, T, step0 + k + 1);
-        }
-        for (int q = 0; q < 4; q++)
-            out += propagate_across(L, q, across[q], t, T, j0, j1, par);
-        mine += out;
-        if (serial) {
-#pragma omp barrier
-#pragma omp single
-            {
-                if (L->exits)
-                    lgca_exits(L);
-                L->step++;
-                open_gates(L);
-            }
-        }
-    }
+    for (uint64_t k = 0; k < n; k++)
+        mine += serial ? step_serial(L, t, T, j0, j1, scr, step0 + k)
+                       : step_alone(L, t, T, j0, j1, scr, step0 + k, flag);
     lost[t] = mine;
     if (!serial) {
 #pragma omp barrier
