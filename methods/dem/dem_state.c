@@ -16,6 +16,7 @@ void gr_dem_free(gr_dem *d)
         return;
     gr_dem_cv_free(d);
     gr_dem_eval_free(d->ev);
+    gr_dem_team_free(d->team);
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 3; p++)
             free(d->f[f][p]);
