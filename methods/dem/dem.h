@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdatomic.h>
 #include <stdint.h>
+#include <time.h>
 
 #include "ckpt.h"
 #include "contacts.h"
@@ -199,6 +200,26 @@ static inline double gr_dem_top2_sum(const double *v, size_t n)
     return sqrt(m1) + sqrt(m2);
 }
 
+/* Wait until *f reaches epoch (a flag another thread of the step sets):
+ * spinning, then, after some 50 us (a thread that lost its core to
+ * another job on the machine), in 20 us naps so that the scheduler can
+ * give it ours. */
+static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
+{
+    unsigned spins = 0;
+    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+        if (spins < (1u << 11)) {
+            spins++;
+        } else {
+            struct timespec ts = {0, 20000};
+            nanosleep(&ts, NULL);
+        }
+    }
+}
+
 /* Parameters: defaults, then the scene's [dem] section; checks the time
  * step against the contact time (GR_EINPUT naming the key). */
 void gr_dem_params_default(gr_dem_params *p);
@@ -328,6 +349,9 @@ void gr_dem_eval_colour(gr_dem *d, int col);
 /* All colours: on the threads of the scene when called outside a parallel
  * region with more than one. */
 void gr_dem_eval_run(gr_dem *d);
+/* Cut each colour's strips into one run per thread (one thread, before
+ * the colours run on the threads of a region: gr_dem_eval_run does it). */
+void gr_dem_eval_split(gr_dem *d);
 /* One strip's pushes (Verlet lists), and the kicks that fall after it. */
 void gr_dem_eval_strip(gr_dem *d, int s);
 int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);

@@ -2,7 +2,6 @@
  * colours of the force evaluation, and the one-barrier step
  * (gr_dem_eval_flow). Above the evaluation, below the step. */
 #include <math.h>
-#include <time.h>
 #include <string.h>
 
 #include "dem.h"
@@ -97,25 +96,6 @@ double gr_dem_eval_vmax2(const gr_dem *d)
  * the strips beside its run. The order in which each grain receives its
  * pushes is that of the colours, as with barriers: the same bits. */
 
-static inline void wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
-{
-    unsigned spins = 0;
-    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-        /* a neighbour that lost its core (another job on the machine):
-         * after some 50 us sleep rather than spin, so that the scheduler
-         * can give it ours */
-        if (spins < (1u << 11)) {
-            spins++;
-        } else {
-            struct timespec ts = {0, 20000};
-            nanosleep(&ts, NULL);
-        }
-    }
-}
-
 int gr_dem_eval_flow_begin(gr_dem *d)
 {
     struct gr_dem_eval *ev = d->ev;
@@ -167,11 +147,11 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
         for (int k = 0; k < m; k++) {
             int s = scratch[k];
             if (s + 1 < ns)
-                wait_epoch(&ev->dflag[s + 1], ep);
+                gr_dem_wait_epoch(&ev->dflag[s + 1], ep);
             if (col == 1) {
-                wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
+                gr_dem_wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
                 if (s + 1 < ns)
-                    wait_epoch(&ev->cflag[s + 1], ep);
+                    gr_dem_wait_epoch(&ev->cflag[s + 1], ep);
             }
             double t0 = timed ? omp_get_wtime() : 0.0;
             gr_dem_eval_strip(d, s);

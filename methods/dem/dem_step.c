@@ -9,6 +9,10 @@
 #include "dem.h"
 #include "geom.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 /* Rebuild the list or re-sort the cells when the step's rule says so. */
 static int maybe_rebuild(gr_dem *d, int p, int q, int mode, double moved, gr_err *err)
 {
@@ -179,6 +183,8 @@ static int vt_setup(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
         v->fused = gr_dem_eval_fuse_kick(d, v->p);
         v->flow = v->early && v->fused && gr_dem_eval_flow_begin(d);
         v->ahead = gr_dem_eval_pre(d, v->early && v->fused && another(d, v->done, v->tn, t_end, max_steps));
+        if (!v->flow)
+            gr_dem_eval_split(d);
     }
     return GR_OK;
 }
@@ -207,7 +213,7 @@ static int vt_colours(gr_dem *d, vt_step *v, int *rc, int *stop, gr_err *err)
                 gr_dem_eval_begin(d, q, v->tn, v->E, d->par.dt, mode, err))
                 *rc = err->code, *stop = 1;
             else
-                v->fused = gr_dem_eval_fuse_kick(d, p);
+                v->fused = gr_dem_eval_fuse_kick(d, p), gr_dem_eval_split(d);
         }
         if (*stop)
             return 1;
@@ -249,6 +255,28 @@ static void vt_end(gr_dem *d, vt_step *v, int *rc, double t_end, uint64_t max_st
     }
 }
 
+/* The end of the one-barrier step: the last thread to finish its strips
+ * runs the serial end while the others wait for the next generation; one
+ * meeting per step instead of a barrier and a single. */
+typedef struct {
+    _Alignas(64) _Atomic int arrived;
+    _Alignas(64) _Atomic uint64_t gen;
+} vt_meet;
+
+static void vt_flow_end(gr_dem *d, vt_step *v, vt_meet *m, int *rc, double t_end, uint64_t max_steps, gr_err *err)
+{
+    const int nth = omp_get_num_threads();
+    /* no generation passes before this thread arrives */
+    uint64_t g = atomic_load_explicit(&m->gen, memory_order_relaxed);
+    if (atomic_fetch_add_explicit(&m->arrived, 1, memory_order_acq_rel) == nth - 1) {
+        atomic_store_explicit(&m->arrived, 0, memory_order_relaxed);
+        vt_end(d, v, rc, t_end, max_steps, err);
+        atomic_store_explicit(&m->gen, g + 1, memory_order_release);
+    } else {
+        gr_dem_wait_epoch(&m->gen, g + 1);
+    }
+}
+
 /* Velocity Verlet on several threads, many steps in one parallel region.
  * With Verlet lists and two colours a step is the one-barrier step of
  * dem_flow.c, else that of vt_colours; then the serial end, which also
@@ -259,6 +287,9 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
     const int nth = gr_dem_threads(d);
     int rc = GR_OK, stop_b = 0;
     vt_step v = {0};
+    vt_meet meet;
+    atomic_init(&meet.arrived, 0);
+    atomic_init(&meet.gen, 0);
     size_t per = (size_t)d->strips.n + 1;
     int *order = malloc((size_t)nth * per * sizeof *order);
     if (!order)
@@ -283,10 +314,11 @@ static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, g
             }
             if (v.flow) {
                 gr_dem_eval_flow(d, v.p, v.q, order, per);
-#pragma omp barrier
-            } else if (vt_colours(d, &v, &rc, &stop_b, err)) {
-                break;
+                vt_flow_end(d, &v, &meet, &rc, t_end, max_steps, err);
+                continue;
             }
+            if (vt_colours(d, &v, &rc, &stop_b, err))
+                break;
 #pragma omp single
             vt_end(d, &v, &rc, t_end, max_steps, err);
         }
