@@ -7,7 +7,6 @@
 #include <math.h>
 #include <stdatomic.h>
 #include <stdint.h>
-#include <time.h>
 
 #include "ckpt.h"
 #include "contacts.h"
@@ -200,26 +199,6 @@ static inline double gr_dem_top2_sum(const double *v, size_t n)
     return sqrt(m1) + sqrt(m2);
 }
 
-/* Wait until *f reaches epoch (a flag another thread of the step sets):
- * spinning, then, after some 50 us (a thread that lost its core to
- * another job on the machine), in 20 us naps so that the scheduler can
- * give it ours. */
-static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
-{
-    unsigned spins = 0;
-    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-        if (spins < (1u << 11)) {
-            spins++;
-        } else {
-            struct timespec ts = {0, 20000};
-            nanosleep(&ts, NULL);
-        }
-    }
-}
-
 /* Parameters: defaults, then the scene's [dem] section; checks the time
  * step against the contact time (GR_EINPUT naming the key). */
 void gr_dem_params_default(gr_dem_params *p);
@@ -327,10 +306,12 @@ int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
  * drifts every grain (the other buffer's positions and velocities are left
  * unsorted: the drift writes them). _team: called by every thread of the
  * enclosing parallel region (or by one thread outside any), which share
- * the work and all return the same status; gr_dem_rebuild: by one thread
- * (outside a parallel region, on the scene's threads). The same list as
- * gr_dem_sort and gr_dem_build_list. */
-int gr_dem_rebuild_team(gr_dem *d, gr_err *err);
+ * the work, meeting at m, and all return the same status; the list is
+ * complete once they have met once more (the caller's meeting).
+ * gr_dem_rebuild: by one thread (outside a parallel region, on the
+ * scene's threads). The same list as gr_dem_sort and gr_dem_build_list. */
+struct gr_dem_meet;
+int gr_dem_rebuild_team(gr_dem *d, struct gr_dem_meet *m, gr_err *err);
 int gr_dem_rebuild(gr_dem *d, gr_err *err);
 void gr_dem_team_free(struct gr_dem_team *tm);
 

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "dem_eval.h"
 
 #ifdef _OPENMP

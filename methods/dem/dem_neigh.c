@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "geom.h"
 
 #ifdef _OPENMP
@@ -27,6 +28,7 @@ typedef struct {
 
 struct gr_dem_team {
     int cap;
+    _Atomic int next; /* the sort's next array to reorder */
     team_buf *b;
 };
 
@@ -324,11 +326,16 @@ int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
  * to its place): each grain's row is the one a single thread builds. */
 
 /* One thread of the team: the bins, the scratch for T threads. */
-static int team_prepare(gr_dem *d, int T, size_t tmp_bytes, gr_err *err)
+static int team_prepare(gr_dem *d, int T, gr_err *err)
 {
+    perm_arr e[PERM_MAX];
+    size_t emax;
+    perm_table(d, 1, e, &emax);
+    size_t tmp_bytes = d->n * emax + 16;
     struct gr_dem_team *tm = d->team;
     if (!tm && !(tm = d->team = calloc(1, sizeof *tm)))
         return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    atomic_store_explicit(&tm->next, 0, memory_order_relaxed);
     if (tm->cap < T) {
         team_buf *b = realloc(tm->b, (size_t)T * sizeof *b);
         if (!b)
@@ -371,33 +378,33 @@ static int team_join(gr_dem *d, int T, gr_err *err)
     return list_finish(d, cnt, scnt, err);
 }
 
-int gr_dem_rebuild_team(gr_dem *d, gr_err *err)
+int gr_dem_rebuild_team(gr_dem *d, gr_dem_meet_t *mt, gr_err *err)
 {
     const int T = omp_get_num_threads(), t = omp_get_thread_num();
+    const size_t n = d->n;
+    if (gr_dem_meet(mt, T))
+        mt->val = team_prepare(d, T, err), gr_dem_meet_release(mt);
+    if (mt->val)
+        return mt->val;
+    /* after the binning, which may move the cells' arrays */
     perm_arr e[PERM_MAX];
     size_t emax;
     const int m = perm_table(d, 1, e, &emax);
-    const size_t n = d->n;
-    int rc;
-#pragma omp single copyprivate(rc)
-    rc = team_prepare(d, T, n * emax + 16, err);
-    if (rc)
-        return rc;
-    team_buf *b = &d->team->b[t];
-#pragma omp for schedule(dynamic, 1)
-    for (int k = 0; k < m; k++)
+    struct gr_dem_team *tm = d->team;
+    team_buf *b = &tm->b[t];
+    for (int k; (k = atomic_fetch_add_explicit(&tm->next, 1, memory_order_relaxed)) < m;)
         permute_one(&e[k], d->cells.idx, n, b->tmp);
+    gr_dem_meet_all(mt, T);
     /* after the permutation grain k sits in slot k */
     const size_t i0 = n * (size_t)t / (size_t)T, i1 = n * (size_t)(t + 1) / (size_t)T;
     for (size_t i = i0; i < i1; i++)
         d->cells.idx[i] = (int32_t)i;
     const double *x = d->f[F_X][d->cur], *y = d->f[F_Y][d->cur];
     b->fail = list_run(d, x, y, i0, i1, 1, b);
-#pragma omp barrier
-#pragma omp single copyprivate(rc)
-    rc = team_join(d, T, err);
-    if (rc)
-        return rc;
+    if (gr_dem_meet(mt, T))
+        mt->val = team_join(d, T, err), gr_dem_meet_release(mt);
+    if (mt->val)
+        return mt->val;
     memcpy(d->nb_j + b->offj, b->j, b->nj * sizeof *b->j);
     memcpy(d->sg_j + b->offs, b->s, b->ns * sizeof *b->s);
     for (size_t i = i0; i < i1; i++) {
@@ -405,7 +412,6 @@ int gr_dem_rebuild_team(gr_dem *d, gr_err *err)
         d->sg_start[i] += (int32_t)b->offs;
     }
     owners(d, i0, i1, (int32_t)(b->offj + b->nj));
-#pragma omp barrier
     return GR_OK;
 }
 
@@ -417,11 +423,14 @@ int gr_dem_rebuild(gr_dem *d, gr_err *err)
         return GR_OK;
     }
     int nth = gr_dem_threads(d), rc = GR_OK;
+    gr_dem_meet_t mt;
+    gr_dem_meet_init(&mt);
     if (nth == 1)
-        return gr_dem_rebuild_team(d, err);
+        return gr_dem_rebuild_team(d, &mt, err);
 #pragma omp parallel num_threads(nth)
     {
-        int r = gr_dem_rebuild_team(d, err);
+        int r = gr_dem_rebuild_team(d, &mt, err);
+        gr_dem_meet_all(&mt, omp_get_num_threads());
 #pragma omp master
         rc = r;
     }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "geom.h"
 
 #ifdef _OPENMP
@@ -255,66 +256,47 @@ static void vt_end(gr_dem *d, vt_step *v, int *rc, double t_end, uint64_t max_st
     }
 }
 
-/* The end of the one-barrier step: the last thread to finish its strips
- * runs the serial end while the others wait for the next generation; one
- * meeting per step instead of a barrier and a single. */
-typedef struct {
-    _Alignas(64) _Atomic int arrived;
-    _Alignas(64) _Atomic uint64_t gen;
-} vt_meet;
-
-static void vt_flow_end(gr_dem *d, vt_step *v, vt_meet *m, int *rc, double t_end, uint64_t max_steps, gr_err *err)
-{
-    const int nth = omp_get_num_threads();
-    /* no generation passes before this thread arrives */
-    uint64_t g = atomic_load_explicit(&m->gen, memory_order_relaxed);
-    if (atomic_fetch_add_explicit(&m->arrived, 1, memory_order_acq_rel) == nth - 1) {
-        atomic_store_explicit(&m->arrived, 0, memory_order_relaxed);
-        vt_end(d, v, rc, t_end, max_steps, err);
-        atomic_store_explicit(&m->gen, g + 1, memory_order_release);
-    } else {
-        gr_dem_wait_epoch(&m->gen, g + 1);
-    }
-}
-
 /* Velocity Verlet on several threads, many steps in one parallel region.
  * With Verlet lists and two colours a step is the one-barrier step of
- * dem_flow.c, else that of vt_colours; then the serial end, which also
- * starts the next step. The work and every sum are split exactly as in
- * gr_dem_step, so the runs are the same bits. */
+ * dem_flow.c, at whose end the last thread to finish its strips runs the
+ * serial end while the others wait (one meeting per step); else that of
+ * vt_colours, then the serial end in a single. The serial end also starts
+ * the next step; a list rebuild runs on all threads, then the last to
+ * finish its share sets the step up. The work and every sum are split
+ * exactly as in gr_dem_step, so the runs are the same bits. */
 static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
     const int nth = gr_dem_threads(d);
     int rc = GR_OK, stop_b = 0;
     vt_step v = {0};
-    vt_meet meet;
-    atomic_init(&meet.arrived, 0);
-    atomic_init(&meet.gen, 0);
+    gr_dem_meet_t mt;
+    gr_dem_meet_init(&mt);
     size_t per = (size_t)d->strips.n + 1;
     int *order = malloc((size_t)nth * per * sizeof *order);
     if (!order)
         return gr_fail(err, GR_ERUN, "out of memory");
 #pragma omp parallel num_threads(nth)
     {
-#pragma omp single
-        rc = vt_start(d, &v, t_end, max_steps, err);
+        const int T = omp_get_num_threads();
+        if (gr_dem_meet(&mt, T))
+            rc = vt_start(d, &v, t_end, max_steps, err), gr_dem_meet_release(&mt);
         while (!v.stop) {
             if (v.rebuild) {
-                /* on every thread, then the set-up it held back */
-                int r = gr_dem_rebuild_team(d, err);
-#pragma omp single
-                {
+                int r = gr_dem_rebuild_team(d, &mt, err);
+                if (gr_dem_meet(&mt, T)) {
                     if (r)
                         rc = r, v.stop = 1;
                     else
                         rc = vt_setup(d, &v, t_end, max_steps, err);
+                    gr_dem_meet_release(&mt);
                 }
                 if (v.stop)
                     break;
             }
             if (v.flow) {
                 gr_dem_eval_flow(d, v.p, v.q, order, per);
-                vt_flow_end(d, &v, &meet, &rc, t_end, max_steps, err);
+                if (gr_dem_meet(&mt, T))
+                    vt_end(d, &v, &rc, t_end, max_steps, err), gr_dem_meet_release(&mt);
                 continue;
             }
             if (vt_colours(d, &v, &rc, &stop_b, err))
