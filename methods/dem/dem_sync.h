@@ -10,9 +10,11 @@
 #include <time.h>
 
 /* Wait until *f reaches epoch (a flag another thread of the step sets):
- * spinning, then, after some 50 us (a thread that lost its core to
- * another job on the machine), in 20 us naps so that the scheduler can
- * give it ours. */
+ * spinning, then, after 2^14 pauses (0.15-0.4 ms on the test machine: a
+ * thread that lost its core to another job on the machine), in 20 us naps
+ * so that the scheduler can give it ours. A shorter spin (2^11) napped at
+ * the rare long serial parts of an idle run (list rebuild, reinsertion),
+ * each nap some 0.1 ms: two threads lost 5 % of their speed to it. */
 static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
 {
     unsigned spins = 0;
@@ -20,7 +22,7 @@ static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
 #if defined(__x86_64__) || defined(__i386__)
         __builtin_ia32_pause();
 #endif
-        if (spins < (1u << 11)) {
+        if (spins < (1u << 14)) {
             spins++;
         } else {
             struct timespec ts = {0, 20000};
