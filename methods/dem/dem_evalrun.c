@@ -46,7 +46,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
             atomic_init(&ev->cflag[k], ev->epoch);
         }
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
-        ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
+        ev->kicker = calloc((size_t)ns, sizeof *ev->kicker);
         ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
         ev->smax = malloc((size_t)ns * sizeof *ev->smax);
         ev->sel = malloc((size_t)ns * sizeof *ev->sel);
@@ -62,7 +62,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     size_t nsp = (size_t)4 * ((size_t)nth + 1); /* three colours, then the one cut */
     if (nsp > ev->cap_split) {
         free(ev->split);
-        ev->split = malloc(nsp * sizeof *ev->split);
+        ev->split = calloc(nsp, sizeof *ev->split);
         ev->cap_split = nsp;
     }
     if ((size_t)nseg + 1 > ev->cap_seg) {

@@ -23,14 +23,16 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
         return 0;
     /* a strip's pushes come from itself, the strip below, and (periodic in
      * y) strip 0 for the last one: the last of these colours kicks it */
+    /* written only when it changes, and kin, svmax not cleared (every
+     * strip is kicked once, which writes both): the worker threads keep
+     * these lines in their caches from step to step */
     for (int r = 0; r < ns; r++) {
         int k = r;
         if (r >= 1 && (r - 1) % ncol > k % ncol)
             k = r - 1;
-        ev->kicker[r] = k;
+        if (ev->kicker[r] != k)
+            ev->kicker[r] = k;
     }
-    for (int r = 0; r < ns; r++)
-        ev->kin[r] = ev->svmax[r] = 0.0;
     ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
     ev->c.kick = 1, ev->c.kick_p = p;
     return 1;
@@ -106,7 +108,14 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     ev->epoch++;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
-    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, ev->split + 3 * (nth + 1));
+    int cut[64], *S = ev->split + 3 * (nth + 1);
+    if (nth >= 64) {
+        gr_dem_cut_runs(d, ev, 0, 1, ns, nth, S);
+        return 1;
+    }
+    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, cut);
+    if (memcmp(cut, S, (size_t)(nth + 1) * sizeof *S)) /* as kicker above */
+        memcpy(S, cut, (size_t)(nth + 1) * sizeof *S);
     return 1;
 }
 
