@@ -37,4 +37,16 @@ static inline double gr_min_image(double d, double L)
     return d;
 }
 
+/* A coordinate moved by less than L back into [0, L) (L <= 0: none). */
+static inline double gr_wrap(double x, double L)
+{
+    if (L > 0) {
+        if (x >= L)
+            x -= L;
+        else if (x < 0)
+            x += L;
+    }
+    return x;
+}
+
 #endif

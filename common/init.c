@@ -244,6 +244,17 @@ static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
         if (grain_line(p, x0, s->hopper_top, c - h, s->hopper_bottom, d, m, GR_PF_FIXED, err) ||
             grain_line(p, c + h, s->hopper_bottom, x1, s->hopper_top, d, m, GR_PF_FIXED, err))
             return err->code;
+        /* A grain sliding down a domain side came to rest exactly on top
+         * of an end grain, balanced, pressed to the side by nothing; it
+         * rolled off only when round-off had grown, about 38 tau later
+         * (every filling of the silo commands waited for it). One more
+         * fixed grain on each slope's extension, past the side, turns that
+         * perch into slope. */
+        double dx = x0 - (c - h), dy = s->hopper_top - s->hopper_bottom, len = hypot(dx, dy);
+        double lx = 2 * r * dx / len, ly = s->hopper_top + 2 * r * dy / len;
+        if (gr_particles_push(p, x0 + lx, ly, r, m, GR_PF_FIXED, 0, err) < 0 ||
+            gr_particles_push(p, x1 - lx, ly, r, m, GR_PF_FIXED, 0, err) < 0)
+            return err->code;
     }
     return GR_OK;
 }

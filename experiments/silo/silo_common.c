@@ -305,28 +305,6 @@ static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int ke
     return rc;
 }
 
-/* The hopper's top ends sit over the container's walls, against the
- * domain's sides (common/init.c). A grain that slides down a side comes
- * to rest exactly on top of the end grain, pressed to the side by nothing
- * and balanced; it rolls off only when round-off has grown, about 38 tau
- * later, and takes another 10 tau to roll down the slope: the last grains
- * of every filling (seeds 1 and 2, docs/experiments.md). One more fixed
- * grain on each slope's extension, past the domain's side, turns that
- * perch into slope. */
-static int hopper_lips(const gr_scene *sc, gr_particles *p, gr_err *err)
-{
-    const gr_silo *s = &sc->silo;
-    size_t n = p->n;
-    double r = p->radius[n - 1], m = p->mass[n - 1], ytop = s->hopper_top;
-    double xl = s->x0 - r, xr = s->x0 + s->width + r, c = s->orifice_center, h = 0.5 * s->hopper_outlet + r;
-    double dx = xl - (c - h), dy = ytop - s->hopper_bottom, len = hypot(dx, dy);
-    if (gr_particles_push(p, xl + 2 * r * dx / len, ytop + 2 * r * dy / len, r, m, GR_PF_FIXED, 0, err) < 0 ||
-        gr_particles_push(p, xr - 2 * r * dx / len, ytop + 2 * r * dy / len, r, m, GR_PF_FIXED, 0, err) < 0)
-        return err->code;
-    p->id[n] = (int64_t)n, p->id[n + 1] = (int64_t)n + 1;
-    return GR_OK;
-}
-
 int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, gr_err *err)
 {
     *out = (silo_settled){0};
@@ -337,8 +315,6 @@ int silo_fill(const silo_cfg *c, silo_settled *out, volatile double *progress, g
         return err->code;
     gr_particles *p = gr_particles_create(0, err);
     int rc = !p ? GR_ERUN : gr_init_particles(sc, p, err);
-    if (!rc && sc->silo.hopper && sc->silo.walls == GR_WALLS_GRAINS)
-        rc = hopper_lips(sc, p, err);
     if (!rc)
         rc = settle(c, sc, p, 1, 0, out, progress, err);
     if (rc || out->p != p)

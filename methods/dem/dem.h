@@ -180,6 +180,13 @@ typedef struct gr_dem {
 #else
 #define DEM_NOTRAP
 #endif
+/* Short copies and zeroings stay loops: GCC makes them calls to memcpy or
+ * memset, each costing more than the loop at these sizes. */
+#if defined(__GNUC__) && !defined(__clang__)
+#define DEM_NODIST __attribute__((optimize("no-tree-loop-distribute-patterns")))
+#else
+#define DEM_NODIST
+#endif
 
 /* Grains per block of the per-grain loops (fixed: sums do not depend on
  * the number of threads). */
@@ -277,6 +284,10 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
  * Returns 0 when every bound is infinite. */
 int gr_dem_exit_box(const gr_dem *d, double box[4]);
 double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max);
+/* The kick of [i0, i1) (old buffer p, new q) and their drift from q into
+ * r in one pass: the two calls' results (gr_dem_drift's with track). */
+double gr_dem_kick_drift(gr_dem *d, int p, int q, int r, size_t i0, size_t i1, double *v2max, double top2[2],
+                         _Atomic long *exits);
 /* The same over block b of DEM_BLOCK grains, results in d->blk. */
 void gr_dem_predict_block(gr_dem *d, int p, int q, int track, size_t b);
 void gr_dem_kick_block(gr_dem *d, int p, int q, size_t b);

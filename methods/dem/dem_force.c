@@ -23,7 +23,7 @@
 /* The batched strip in a function of its own per law: inlined beside the
  * one-pair loop it made that loop slower too (register pressure). */
 #define DEM_SB(NL, TL)                                                                 \
-    static __attribute__((noinline)) DEM_CLONES void sb_##NL##_##TL(dem_ctx *c, int s) \
+    static __attribute__((noinline)) DEM_CLONES DEM_NODIST void sb_##NL##_##TL(dem_ctx *c, int s) \
     {                                                                                  \
         strip_batched(c, NL, TL, s);                                                   \
     }
@@ -174,9 +174,11 @@ static inline void kick_after(dem_ctx *c, int s)
         if (c->kicker[r] != s)
             continue;
         size_t a = (size_t)d->strips.i0[r], b = (size_t)d->strips.i0[r + 1];
-        c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
         if (c->pre)
-            gr_dem_drift(d, 1 - c->kick_p, 2, 1, a, b, c->spre + 2 * r, &d->exits_pre);
+            c->kin[r] = gr_dem_kick_drift(d, c->kick_p, 1 - c->kick_p, 2, a, b, c->svmax + r, c->spre + 2 * r,
+                                          &d->exits_pre);
+        else
+            c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
     }
 }
 

@@ -1,10 +1,11 @@
-/* The integrators' per-grain passes: velocity Verlet's drift and kick
- * (2.17-2.21), Gear's 6-value predictor and corrector, explicit Euler,
- * each written into the other buffer so that a refused step leaves the
- * last good state in place. They read and write grains only: below the
- * force evaluation (which fuses the kick) and the step. */
+/* Velocity Verlet's per-grain passes, drift and kick (2.17-2.21; Gear's
+ * and Euler's are in dem_gear.c), each written into the other buffer so
+ * that a refused step leaves the last good state in place. They read and
+ * write grains only: below the force evaluation (which fuses the kick)
+ * and the step. */
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "dem.h"
 #include "geom.h"
@@ -13,17 +14,6 @@
  * block results are combined in block order, so sums do not depend on the
  * number of threads. gr_dem_grow keeps d->blk at two results per block of
  * the capacity. */
-
-static inline double wrap(double x, double L)
-{
-    if (L > 0) {
-        if (x >= L)
-            x -= L;
-        else if (x < 0)
-            x += L;
-    }
-    return x;
-}
 
 int gr_dem_exit_box(const gr_dem *d, double box[4])
 {
@@ -37,76 +27,205 @@ int gr_dem_exit_box(const gr_dem *d, double box[4])
     return isfinite(box[0]) || isfinite(box[1]) || isfinite(box[2]) || isfinite(box[3]);
 }
 
-/* Chunk of the branch-free drift: its squared moves wait in a buffer on
- * the stack for the two largest to be picked. */
-enum { DRIFT_CHUNK = 256 };
+/* Four lanes of doubles (GCC's vector extension: one AVX2 register, two
+ * SSE2 ones in the baseline clone) for the per-lane maxima and sums that
+ * the vectoriser does not make of scalar code; each lane rounds as the
+ * scalar operation would. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
 
-/* gr_dem_drift without periodic sides and with tracking, the same
- * operations per grain in one loop without branches that the compiler
- * vectorises (AVX2: four grains per instruction); the squared moves go to
- * s2 and the two largest are picked after, a branch rarely taken. */
-static DEM_CLONES DEM_NOTRAP void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1, double top2[2],
-                                  _Atomic long *exits_out)
+/* (macros: a function taking or returning a 32-byte vector changes the
+ * ABI between the clones) */
+#define V4_LOAD(v, p) memcpy(&(v), (p), sizeof(v))
+/* r = a < b ? a : b, or > for max, per lane (b where a is NaN, as the
+ * scalar select) */
+#define V4_SEL(r, a, op, b)                                                   \
+    do {                                                                       \
+        v4l m_ = (a)op(b);                                                     \
+        (r) = (v4d)((m_ & (v4l)(a)) | (~m_ & (v4l)(b)));                       \
+    } while (0)
+
+/* The Verlet kick and drift without periodic sides, the same operations
+ * per grain as gr_dem_drift and the scalar kick, four grains at a time in
+ * GCC's vector extension (one AVX2 register, two SSE2 ones in the
+ * baseline clone; each lane rounds as the scalar operation, nothing is
+ * fused). KICK: the second kick of velocity Verlet, v(t+dt) = u + (dt/2)
+ * (a(t+dt) - a(t)) in buffer pc from the old forces of po, where u is the
+ * predicted velocity (gravity cancels); its kinetic energy (m v^2 / 2 as
+ * v^2 / (2 im): no mass array to stream) is returned, and in *v2max the
+ * largest squared speed of the next drift's half kick. DRIFT: drift and
+ * first kick from pc into pn, the two largest squared moves since the
+ * list build in top2, the mobile grains put outside the exit box added to
+ * *exits_out. Both (the kick of a strip and its drift done ahead): one
+ * pass, the kicked velocities drifted from registers. Grain i0 + k adds
+ * its energy to lane k mod 4 (one chain of additions over the grains made
+ * the loop wait on it), the lanes summed at the end: the order is the
+ * code's, the same for any thread count and either clone. */
+typedef struct {
+    double *vx, *vy, *w;                          /* pc, kicked in place */
+    const double *fx, *fy, *tq, *fxo, *fyo, *tqo; /* pc, po */
+    const double *x, *y, *im, *iI, *xr, *yr;
+    double *xn, *yn, *vxn, *vyn, *wn, *fxn, *fyn, *tqn; /* pn */
+} kd_arr;
+
+typedef struct {
+    v4d ek, vm, t1, t2; /* energy, largest speed, two largest moves per lane */
+    v4l out;            /* minus the grains put outside the exit box */
+} kd_acc;
+
+#define V4_STORE(p, v) memcpy((p), &(v), sizeof(v))
+#define V4_SPLAT(s) ((v4d){(s), (s), (s), (s)})
+
+/* Grains i .. i + 3 of A into lanes 0 .. 3 of s. */
+static inline __attribute__((always_inline)) void kd_four(const kd_arr *A, size_t i, const int KICK, const int DRIFT,
+                                                          int rot, double h, double dt, double g,
+                                                          const double box[4], kd_acc *s)
+{
+    const v4d zero = V4_SPLAT(0.0), hv = V4_SPLAT(h), dtv = V4_SPLAT(dt), half = V4_SPLAT(0.5);
+    v4d im, fx, fy, ux, uy, e = zero;
+    V4_LOAD(im, A->im + i);
+    V4_LOAD(fx, A->fx + i);
+    V4_LOAD(fy, A->fy + i);
+    V4_LOAD(ux, A->vx + i);
+    V4_LOAD(uy, A->vy + i);
+    v4l mobile = im != zero;
+    v4d mob = (v4d)(mobile & (v4l)V4_SPLAT(1.0)); /* as the bool in gr_dem_drift */
+    if (KICK) {
+        v4d fxo, fyo;
+        V4_LOAD(fxo, A->fxo + i);
+        V4_LOAD(fyo, A->fyo + i);
+        ux = ux + hv * (fx - fxo) * im;
+        uy = uy + hv * (fy - fyo) * im;
+        V4_STORE(A->vx + i, ux);
+        V4_STORE(A->vy + i, uy);
+        v4d hx = ux + hv * fx * im, hy = uy + hv * (fy * im - V4_SPLAT(g) * mob);
+        v4d v2 = hx * hx + hy * hy;
+        V4_SEL(s->vm, v2, >, s->vm); /* not fmax: a libm call */
+        v4d et = half * (ux * ux + uy * uy) / im; /* selected away when im = 0 */
+        e = (v4d)(mobile & (v4l)et);
+    }
+    if (DRIFT) {
+        v4d x, y, xr, yr;
+        V4_LOAD(x, A->x + i);
+        V4_LOAD(y, A->y + i);
+        V4_LOAD(xr, A->xr + i);
+        V4_LOAD(yr, A->yr + i);
+        v4d ax = fx * im, ay = fy * im - V4_SPLAT(g) * mob;
+        v4d hx = ux + hv * ax, hy = uy + hv * ay;
+        v4d nx = x + dtv * hx, ny = y + dtv * hy;
+        V4_STORE(A->fxn + i, zero);
+        V4_STORE(A->fyn + i, zero);
+        V4_STORE(A->xn + i, nx);
+        V4_STORE(A->yn + i, ny);
+        s->out += ((nx < V4_SPLAT(box[0])) | (nx > V4_SPLAT(box[1])) | (ny < V4_SPLAT(box[2])) |
+                   (ny > V4_SPLAT(box[3]))) & mobile;
+        v4d vxn = hx + hv * ax, vyn = hy + hv * ay;
+        V4_STORE(A->vxn + i, vxn);
+        V4_STORE(A->vyn + i, vyn);
+        v4d dx = nx - xr, dy = ny - yr, s2 = dx * dx + dy * dy, lo;
+        /* t2 = max(t2, min(t1, s2)), t1 = max(t1, s2) */
+        V4_SEL(lo, s->t1, <, s2);
+        V4_SEL(s->t2, lo, >, s->t2);
+        V4_SEL(s->t1, s2, >, s->t1);
+    }
+    if (rot) {
+        v4d ww, tq, iI;
+        V4_LOAD(ww, A->w + i);
+        V4_LOAD(tq, A->tq + i);
+        V4_LOAD(iI, A->iI + i);
+        if (KICK) {
+            v4d tqo;
+            V4_LOAD(tqo, A->tqo + i);
+            ww = ww + hv * (tq - tqo) * iI;
+            V4_STORE(A->w + i, ww);
+            v4d er = half * ww * ww / iI;
+            e += (v4d)((iI != zero) & (v4l)er);
+        }
+        if (DRIFT) {
+            v4d wn = ww + dtv * tq * iI;
+            V4_STORE(A->wn + i, wn);
+            V4_STORE(A->tqn + i, zero);
+        }
+    }
+    s->ek += e;
+}
+
+static inline __attribute__((always_inline)) double
+kick_drift(gr_dem *d, const int KICK, const int DRIFT, int po, int pc, int pn, size_t i0, size_t i1,
+           double *v2max, double top2[2], _Atomic long *exits_out)
 {
     const double dt = d->par.dt, h = 0.5 * dt, g = d->g;
-    const double *restrict x = d->f[F_X][p], *restrict y = d->f[F_Y][p];
-    const double *restrict vx = d->f[F_VX][p], *restrict vy = d->f[F_VY][p];
-    const double *restrict fx = d->f[F_FX][p], *restrict fy = d->f[F_FY][p];
-    double *restrict xn = d->f[F_X][q], *restrict yn = d->f[F_Y][q];
-    double *restrict vxn = d->f[F_VX][q], *restrict vyn = d->f[F_VY][q];
-    double *restrict fxn = d->f[F_FX][q], *restrict fyn = d->f[F_FY][q], *restrict tqn = d->f[F_TQ][q];
-    const double *restrict w = d->f[F_W][p], *restrict tq = d->f[F_TQ][p];
-    double *restrict wn = d->f[F_W][q];
-    const double *restrict im = d->im, *restrict iI = d->iI, *restrict xr = d->xref, *restrict yr = d->yref;
-    double box[4];
-    gr_dem_exit_box(d, box);
-    const double bx0 = box[0], bx1 = box[1], by0 = box[2], by1 = box[3];
     const int rot = d->rot;
-    double m1 = 0, m2 = 0, s2[DRIFT_CHUNK];
-    int64_t out = 0;
-    for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
-        size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
-        /* GCC does not take restrict from pointers set inside a function:
-         * the arrays are distinct (a grain's own fields) */
-#pragma GCC ivdep
-        for (size_t k = 0; k < m; k++) {
-            size_t i = c0 + k;
-            double mob = im[i] != 0 ? 1.0 : 0.0; /* as the bool in gr_dem_drift */
-            double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * mob;
-            double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
-            double nx = x[i] + dt * hx, ny = y[i] + dt * hy;
-            fxn[i] = 0.0;
-            fyn[i] = 0.0;
-            xn[i] = nx;
-            yn[i] = ny;
-            out += ((nx < bx0) | (nx > bx1) | (ny < by0) | (ny > by1)) & (im[i] != 0);
-            vxn[i] = hx + h * ax;
-            vyn[i] = hy + h * ay;
-            double dx = nx - xr[i], dy = ny - yr[i];
-            s2[k] = dx * dx + dy * dy;
+    kd_arr A = {d->f[F_VX][pc], d->f[F_VY][pc], d->f[F_W][pc],
+                d->f[F_FX][pc], d->f[F_FY][pc], d->f[F_TQ][pc], d->f[F_FX][po], d->f[F_FY][po], d->f[F_TQ][po],
+                d->f[F_X][pc], d->f[F_Y][pc], d->im, d->iI, d->xref, d->yref,
+                d->f[F_X][pn], d->f[F_Y][pn], d->f[F_VX][pn], d->f[F_VY][pn], d->f[F_W][pn],
+                d->f[F_FX][pn], d->f[F_FY][pn], d->f[F_TQ][pn]};
+    double box[4] = {0, 0, 0, 0};
+    if (DRIFT)
+        gr_dem_exit_box(d, box);
+    kd_acc s = {{0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
+    size_t i = i0;
+    for (; i + 4 <= i1; i += 4)
+        kd_four(&A, i, KICK, DRIFT, rot, h, dt, g, box, &s);
+    if (i < i1) {
+        /* the last one to three grains: through copies padded with fixed
+         * grains at rest (im = iI = 0), which add nothing to any lane */
+        enum { NIN = 15, NOUT = 11 };
+        double in[NIN][4] = {{0}}, o[NOUT][4] = {{0}};
+        const double *src[NIN] = {A.vx, A.vy, A.w, A.fx, A.fy, A.tq, A.fxo, A.fyo, A.tqo,
+                                  A.x, A.y, A.im, A.iI, A.xr, A.yr};
+        size_t r = i1 - i;
+        for (int f = 0; f < NIN; f++)
+            for (size_t l = 0; src[f] && l < r; l++) /* (absent: a field the scene does not need) */
+                in[f][l] = src[f][i + l];
+        for (int f = 0; f < 3; f++)
+            for (int l = 0; l < 4; l++)
+                o[f][l] = in[f][l];
+        kd_arr B = {o[0], o[1], o[2], in[3], in[4], in[5], in[6], in[7], in[8], in[9], in[10], in[11], in[12],
+                    in[13], in[14], o[3], o[4], o[5], o[6], o[7], o[8], o[9], o[10]};
+        kd_four(&B, 0, KICK, DRIFT, rot, h, dt, g, box, &s);
+        double *dst[NOUT] = {A.vx, A.vy, A.w, A.xn, A.yn, A.vxn, A.vyn, A.wn, A.fxn, A.fyn, A.tqn};
+        for (int f = 0; f < NOUT; f++) {
+            int kicked = f < 3 && f != 2, drifted = f >= 3 && f != 7 && f != 10;
+            if ((KICK && (kicked || (f == 2 && rot))) || (DRIFT && (drifted || ((f == 7 || f == 10) && rot))))
+                for (size_t l = 0; l < r; l++)
+                    dst[f][i + l] = o[f][l];
         }
-        if (rot) {
-#pragma GCC ivdep
-            for (size_t i = c0; i < c0 + m; i++) {
-                wn[i] = w[i] + dt * tq[i] * iI[i];
-                tqn[i] = 0.0;
-            }
-        }
-        for (size_t k = 0; k < m; k++) {
-            if (s2[k] > m2) {
-                if (s2[k] > m1) {
+    }
+    if (DRIFT) {
+        /* the two largest of the lanes' two largest: those of all grains */
+        double m1 = 0, m2 = 0;
+        for (int l = 0; l < 8; l++) {
+            double sv = l < 4 ? s.t1[l] : s.t2[l - 4];
+            if (sv > m2) {
+                if (sv > m1) {
                     m2 = m1;
-                    m1 = s2[k];
+                    m1 = sv;
                 } else {
-                    m2 = s2[k];
+                    m2 = sv;
                 }
             }
         }
+        top2[0] = m1;
+        top2[1] = m2;
+        long out = -(long)(s.out[0] + s.out[1] + s.out[2] + s.out[3]);
+        if (out)
+            atomic_fetch_add_explicit(exits_out, out, memory_order_relaxed);
     }
-    top2[0] = m1;
-    top2[1] = m2;
-    if (out)
-        atomic_fetch_add_explicit(exits_out, out, memory_order_relaxed);
+    if (!KICK)
+        return 0.0;
+    if (v2max) {
+        double a = s.vm[0] > s.vm[1] ? s.vm[0] : s.vm[1], b = s.vm[2] > s.vm[3] ? s.vm[2] : s.vm[3];
+        *v2max = a > b ? a : b;
+    }
+    return (s.ek[0] + s.ek[1]) + (s.ek[2] + s.ek[3]);
+}
+
+static DEM_CLONES DEM_NOTRAP DEM_NODIST void drift_flat(gr_dem *d, int p, int q, size_t i0, size_t i1,
+                                                        double top2[2], _Atomic long *exits_out)
+{
+    kick_drift(d, 0, 1, p, p, q, i0, i1, NULL, top2, exits_out);
 }
 
 /* Drift and first kick of grains [i0, i1) from buffer p into q (2: the
@@ -141,7 +260,7 @@ void gr_dem_drift(gr_dem *d, int p, int q, int track, size_t i0, size_t i1, doub
         /* fixed grains (im = 0) feel no gravity */
         double ax = fx[i] * im[i], ay = fy[i] * im[i] - g * (im[i] != 0);
         double hx = vx[i] + h * ax, hy = vy[i] + h * ay;
-        double nx = wrap(x[i] + dt * hx, Lx), ny = wrap(y[i] + dt * hy, Ly);
+        double nx = gr_wrap(x[i] + dt * hx, Lx), ny = gr_wrap(y[i] + dt * hy, Ly);
         /* the new forces start from zero here, saving a pass */
         fxn[i] = 0.0;
         fyn[i] = 0.0;
@@ -210,59 +329,20 @@ double gr_dem_predict_verlet(gr_dem *d, int p, int q, int track)
     return track ? gr_dem_moved_blocks(d) : 0.0;
 }
 
-/* Second kick of grains [i0, i1): v(t+dt) = u + (dt/2) (a(t+dt) - a(t)),
- * where u is the predicted velocity (gravity cancels); returns their
- * kinetic energy (m v^2 / 2 as v^2 / (2 im): no mass array to stream)
- * and in *v2max the largest squared speed of the next drift's half kick.
- * In chunks: a loop without branches that the compiler vectorises leaves
- * each grain's energy and speed in e and v2; grain k of a chunk then adds
- * to lane k mod 4, the lanes summed at the end (one chain of additions
- * over the grains made the loop wait on it). The order is the code's, the
- * same for any thread count and either clone. */
-DEM_CLONES DEM_NOTRAP double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
+DEM_CLONES DEM_NOTRAP DEM_NODIST double gr_dem_kick(gr_dem *d, int p, int q, size_t i0, size_t i1, double *v2max)
 {
-    const double h = 0.5 * d->par.dt, g = d->g;
-    double *restrict vx = d->f[F_VX][q], *restrict vy = d->f[F_VY][q], *restrict w = d->f[F_W][q];
-    const double *restrict fx = d->f[F_FX][q], *restrict fy = d->f[F_FY][q];
-    const double *restrict fxo = d->f[F_FX][p], *restrict fyo = d->f[F_FY][p];
-    const double *restrict tq = d->f[F_TQ][q], *restrict tqo = d->f[F_TQ][p];
-    const double *restrict im = d->im, *restrict iI = d->iI;
-    const int rot = d->rot;
-    double ek[4] = {0, 0, 0, 0}, vm[4] = {0, 0, 0, 0}, e[DRIFT_CHUNK], v2[DRIFT_CHUNK];
-    for (size_t c0 = i0; c0 < i1; c0 += DRIFT_CHUNK) {
-        size_t m = i1 - c0 < DRIFT_CHUNK ? i1 - c0 : DRIFT_CHUNK;
-#pragma GCC ivdep
-        for (size_t k = 0; k < m; k++) {
-            size_t i = c0 + k;
-            double a = vx[i] + h * (fx[i] - fxo[i]) * im[i], c = vy[i] + h * (fy[i] - fyo[i]) * im[i];
-            vx[i] = a;
-            vy[i] = c;
-            double mob = im[i] != 0 ? 1.0 : 0.0; /* as the bool in the drift */
-            double hx = a + h * fx[i] * im[i], hy = c + h * (fy[i] * im[i] - g * mob);
-            v2[k] = hx * hx + hy * hy;
-            double et = 0.5 * (a * a + c * c) / im[i]; /* selected away when im = 0 */
-            e[k] = im[i] != 0 ? et : 0.0;
-        }
-        if (rot) {
-#pragma GCC ivdep
-            for (size_t k = 0; k < m; k++) {
-                size_t i = c0 + k;
-                double ww = w[i] + h * (tq[i] - tqo[i]) * iI[i];
-                w[i] = ww;
-                double er = 0.5 * ww * ww / iI[i];
-                e[k] += iI[i] != 0 ? er : 0.0;
-            }
-        }
-        for (size_t k = 0; k < m; k++) {
-            ek[k & 3] += e[k];
-            vm[k & 3] = v2[k] > vm[k & 3] ? v2[k] : vm[k & 3]; /* not fmax: a libm call */
-        }
+    return kick_drift(d, 1, 0, p, q, q, i0, i1, v2max, NULL, NULL);
+}
+
+DEM_CLONES DEM_NOTRAP DEM_NODIST double gr_dem_kick_drift(gr_dem *d, int p, int q, int r, size_t i0, size_t i1,
+                                                          double *v2max, double top2[2], _Atomic long *exits)
+{
+    if (d->Lx > 0 || d->Ly > 0) {
+        double ek = gr_dem_kick(d, p, q, i0, i1, v2max);
+        gr_dem_drift(d, q, r, 1, i0, i1, top2, exits);
+        return ek;
     }
-    if (v2max) {
-        double a = vm[0] > vm[1] ? vm[0] : vm[1], b = vm[2] > vm[3] ? vm[2] : vm[3];
-        *v2max = a > b ? a : b;
-    }
-    return (ek[0] + ek[1]) + (ek[2] + ek[3]);
+    return kick_drift(d, 1, 1, p, q, r, i0, i1, v2max, top2, exits);
 }
 
 void gr_dem_kick_block(gr_dem *d, int p, int q, size_t b)
@@ -295,86 +375,4 @@ double gr_dem_correct_verlet(gr_dem *d, int p, int q)
             gr_dem_kick_block(d, p, q, b);
     }
     return gr_dem_kinetic_blocks(d, nb);
-}
-
-double gr_dem_kinetic(gr_dem *d, int q)
-{
-    double ek = 0;
-    for (size_t i = 0; i < d->n; i++) {
-        double vx = d->f[F_VX][q][i], vy = d->f[F_VY][q][i];
-        ek += (d->im[i] != 0) * 0.5 * d->mass[i] * (vx * vx + vy * vy);
-        if (d->rot)
-            ek += (d->iI[i] != 0) * 0.5 * d->inertia[i] * d->f[F_W][q][i] * d->f[F_W][q][i];
-    }
-    return ek;
-}
-
-void gr_dem_predict_euler(gr_dem *d, int p, int q)
-{
-    double dt = d->par.dt;
-    for (size_t i = 0; i < d->n; i++) {
-        double ax = d->f[F_FX][p][i] * d->im[i], ay = d->f[F_FY][p][i] * d->im[i] - d->gf[i];
-        d->f[F_X][q][i] = wrap(d->f[F_X][p][i] + dt * d->f[F_VX][p][i], d->Lx);
-        d->f[F_Y][q][i] = wrap(d->f[F_Y][p][i] + dt * d->f[F_VY][p][i], d->Ly);
-        d->f[F_VX][q][i] = d->f[F_VX][p][i] + dt * ax;
-        d->f[F_VY][q][i] = d->f[F_VY][p][i] + dt * ay;
-        if (d->rot)
-            d->f[F_W][q][i] = d->f[F_W][p][i] + dt * d->f[F_TQ][p][i] * d->iI[i];
-    }
-}
-
-/* Gear, 6 values (Allen & Tildesley, app. E), scaled derivatives b_k;
- * c0 = 3/16 because the forces depend on velocities. */
-static const double gear_c[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
-
-void gr_dem_predict_gear(gr_dem *d, int p, int q)
-{
-    double dt = d->par.dt;
-    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
-    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
-                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
-    int ndof = d->rot ? 3 : 2;
-    for (int c = 0; c < ndof; c++) {
-        double *r0 = d->f[q0[c]][p], *v = d->f[qv[c]][p];
-        double *b2 = d->f[qb[c][0]][p], *b3 = d->f[qb[c][1]][p], *b4 = d->f[qb[c][2]][p], *b5 = d->f[qb[c][3]][p];
-        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
-        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
-        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
-        for (size_t i = 0; i < d->n; i++) {
-            double b1 = dt * v[i];
-            R0[i] = wrap(r0[i] + b1 + b2[i] + b3[i] + b4[i] + b5[i], L);
-            double B1 = b1 + 2 * b2[i] + 3 * b3[i] + 4 * b4[i] + 5 * b5[i];
-            B2[i] = b2[i] + 3 * b3[i] + 6 * b4[i] + 10 * b5[i];
-            B3[i] = b3[i] + 4 * b4[i] + 10 * b5[i];
-            B4[i] = b4[i] + 5 * b5[i];
-            B5[i] = b5[i];
-            V[i] = B1 / dt;
-        }
-    }
-}
-
-void gr_dem_correct_gear(gr_dem *d, int q)
-{
-    double dt = d->par.dt, h2 = 0.5 * dt * dt;
-    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
-    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
-                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
-    int ndof = d->rot ? 3 : 2;
-    for (int c = 0; c < ndof; c++) {
-        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
-        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
-        const double *F = d->f[c == 0 ? F_FX : c == 1 ? F_FY : F_TQ][q];
-        const double *inv = c == 2 ? d->iI : d->im;
-        double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
-        for (size_t i = 0; i < d->n; i++) {
-            double a = F[i] * inv[i] - (c == 1 ? d->gf[i] : 0.0);
-            double del = h2 * a - B2[i];
-            R0[i] = wrap(R0[i] + gear_c[0] * del, L);
-            V[i] += gear_c[1] * del / dt;
-            B2[i] += gear_c[2] * del;
-            B3[i] += gear_c[3] * del;
-            B4[i] += gear_c[4] * del;
-            B5[i] += gear_c[5] * del;
-        }
-    }
 }

@@ -22,7 +22,18 @@ typedef struct {
 } gr_dsmc_params;
 
 /* Which validity limits the scene breaks at create (bits). */
-enum { GR_DSMC_BAD_DT = 1, GR_DSMC_BAD_CELL = 2, GR_DSMC_BAD_PPC = 4, GR_DSMC_BAD_ENSKOG_CELL = 8 };
+enum {
+    GR_DSMC_BAD_DT = 1,
+    GR_DSMC_BAD_CELL = 2,
+    GR_DSMC_BAD_PPC = 4,
+    GR_DSMC_BAD_ENSKOG_CELL = 8,
+    GR_DSMC_BAD_RECOLLIDE = 16 /* cell side < GR_DSMC_SIDE_PER_W W sigma */
+};
+
+/* The smallest cell side, in W sigma, for which the collisions of partners
+ * whose velocities are still correlated (they share the cell) slow the
+ * cooling by no more than about 1 % (docs/methods/dsmc.md, validity). */
+#define GR_DSMC_SIDE_PER_W 30.0
 
 /* A particle's rank (the order of its id) with this bit set has left the
  * domain through an open side. */

@@ -39,7 +39,8 @@ static int m_observe(void *s, gr_obs *o, gr_err *err) { return gr_dsmc_observe(s
 static void m_reset_window(void *s) { gr_dsmc_reset_window(s); }
 
 /* validity_warnings: the limits of docs/methods/dsmc.md the scene breaks
- * (bits: 1 dt, 2 cell, 4 particles per cell, 8 Enskog cells under 10 d);
+ * (bits: 1 dt, 2 cell, 4 particles per cell, 8 Enskog cells under 10 d,
+ * 16 cells under 30 W d);
  * how the user sees them without strict = yes. */
 static size_t m_counters(const void *s, gr_counter *out, size_t cap)
 {

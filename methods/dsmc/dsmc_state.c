@@ -132,7 +132,8 @@ static int limit(gr_dsmc *d, int broken, unsigned bit, const char *key, const ch
  * lambda = 1 / (2 sqrt 2 n sigma) but at least a diameter; then the
  * limits: dt <= tau / 2 (tau = 1 / nu, nu = 2 sqrt(pi) n sigma sqrt(T/m)),
  * cell <= lambda (both divided by chi in the Enskog mode), mean particles
- * per cell >= ppc_min, and with enskog = yes cells of at least 10 d. */
+ * per cell >= ppc_min, with enskog = yes cells of at least 10 d, and
+ * cells of at least 30 W d (docs/methods/dsmc.md: correlated partners). */
 static int make_cells(gr_dsmc *d, gr_err *err)
 {
     double n = (double)d->n * d->W / (d->Lx * d->Ly);
@@ -157,7 +158,12 @@ static int make_cells(gr_dsmc *d, gr_err *err)
               d->par.ppc_min, err) ||
         /* the displacement thins the pairs of small cells (Z 3 % low at 5 d) */
         limit(d, d->par.enskog && fmin(d->cw, d->ch) < side_min, GR_DSMC_BAD_ENSKOG_CELL, "cell",
-              "with enskog = yes, the cell side", fmin(d->cw, d->ch), side_min, err))
+              "with enskog = yes, the cell side", fmin(d->cw, d->ch), side_min, err) ||
+        /* the partners of a cell collide again while they share it (their
+         * velocities correlated), with a probability ~ W sigma / side: the
+         * cooling rate at alpha = 0.8 is about 0.33 W sigma / side low */
+        limit(d, fmin(d->cw, d->ch) < GR_DSMC_SIDE_PER_W * d->W * d->sigma, GR_DSMC_BAD_RECOLLIDE, "cell",
+              "the cell side", fmin(d->cw, d->ch), GR_DSMC_SIDE_PER_W * d->W * d->sigma, err))
         return err->code;
     return GR_OK;
 }

@@ -10,6 +10,10 @@
 #include "stress.h"
 
 #define EDMD_INF INFINITY
+/* The depth (in d) a grain that stays in contact below the resolution of
+ * the contact function may reach before its next contact (roots.c): a
+ * tenth of what inside.c tolerates. */
+#define EDMD_SLACK 1e-10
 /* Trees with at least this many leaves (and their grains) outgrow the
  * caches: prefetching pays from there on. */
 #define EDMD_PREFETCH_P 32768

@@ -61,38 +61,61 @@ static double first_root(floor_ctx *c, double a, double ha, double b, double hb,
     return first_root(c, m, hm, b, hb, depth + 1);
 }
 
-/* First contact in [a, b] of a grain with a segment end (ex, ey) under
- * gravity (a quartic): bounded subdivision as for the floor, with the
- * curvature bound of |r - E|^2 over the interval. */
 /* The first root of h in [a, b], starting from a point that may be in
  * contact: a grain in contact and approaching collides at once; one just
  * leaving has h >= ha + dha s - M s^2 / 2 > ha up to s = 2 dha / M, and
  * gets past the contact at s = dha / M unless ha, a round-off depth, is
  * larger than dha^2 / 2M. That happens when a grain chatters on a floor
- * pressing it (a collapse onto the floor, unguarded): it is still in
- * contact at a + s, and answering "no contact" there (as this did) let
- * the floor escape the grain's list, which then fell through the floor
- * (vibrated.ini with collapse = none, seed 5, t = 459.6). The contact
- * goes on: a + s is the next contact time, where the collision rule
- * applies no impulse while the grain still leaves and predicts again, so
- * the chatter ends when the grain gets clear or turns back (a collision),
- * or as an inelastic collapse the engine reports. */
+ * pressing it (a collapse onto the floor, unguarded), or rolls over a
+ * segment's end (the silo's orifice edge) in elastic bounces of the TC
+ * guard that round-off has worn down below the resolution of h. Answering
+ * "no contact" there let the floor escape the grain's list, which then
+ * fell through the floor (vibrated.ini with collapse = none, seed 5,
+ * t = 459.6). Answering a + dha / M (the next contact, with no impulse
+ * while the grain still leaves) is a Zeno sequence: each move is
+ * proportional to the speed left, which gravity takes away in proportion
+ * to the move, so the moves shrink geometrically to the turning point and
+ * time stops (compare silo.ini, tc = 1e-5: grain 338 on the orifice edge
+ * at t = 7.697, 1e5 events without time advancing). So a grain near the
+ * surface moves on by at least the slack time, by which it has turned
+ * back into the wall by at most M s^2 / 2 = hs (EDMD_SLACK in depth):
+ * there it collides at an approach speed the guard's elastic bounces
+ * resolve (their depth stays within hs), or it still leaves (no impulse,
+ * time has advanced), or it got clear and the search goes on. The move
+ * stops at b: the floor's b is a certain contact (the grain below the
+ * floor's lowest point), which must not be lost; beyond a segment end's b
+ * (the next cell crossing) the search starts again anyway. A grain deeper
+ * than 2 hs has sunk through inelastic bounces at the slack time (each
+ * takes less speed back than the wall's pull gives it): it goes on by
+ * dha / M, a collapse the engine reports rather than a grain sinking. */
+static double slack_depth(const floor_ctx *c)
+{
+    return c->point ? 2.0 * c->p->r * EDMD_SLACK : EDMD_SLACK; /* h of a point is |q|^2 - R^2 */
+}
+
 static double root_from(floor_ctx *c, double a, double b)
 {
     double ha = fh(c, a), dha = fdh(c, a);
     if (ha <= 0.0) {
         if (dha <= 0.0)
             return a;
-        a += dha / c->M;
-        if (a >= b)
+        double a1 = a + dha / c->M, hs = slack_depth(c);
+        double h1 = a1 < b ? fh(c, a1) : 0.0;
+        if (h1 <= 0.0 && ha >= -2.0 * hs)
+            a1 = fmin(a + fmax(dha / c->M, sqrt(2.0 * hs / c->M)), b);
+        else if (a1 >= b)
             return EDMD_INF;
-        ha = fh(c, a);
+        a = a1;
+        ha = h1 > 0.0 ? h1 : fh(c, a);
         if (ha <= 0.0)
             return a;
     }
     return first_root(c, a, ha, b, fh(c, b), 0);
 }
 
+/* First contact in [a, b] of a grain with a segment end (ex, ey) under
+ * gravity (a quartic): bounded subdivision as for the floor, with the
+ * curvature bound of |r - E|^2 over the interval. */
 double edmd_point_time(const gr_edmd *s, const edmd_p *p, double ex, double ey, double a, double b)
 {
     double g = s->g;

@@ -134,12 +134,48 @@ static void silo_walls_of_grains(void **s)
     gr_scene_free(sc);
 }
 
+/* The hopper's slopes continue past the domain's sides: the topmost fixed
+ * grains lie outside the container's walls, on the slopes' lines, so that
+ * no grain can come to rest balanced on an end grain against a side. */
+static void hopper_without_perch(void **s)
+{
+    (void)s;
+    gr_scene *sc = parse("[domain]\nwidth = 22\nheight = 60\nbottom = open\n[species]\ncount = 100\n"
+                         "[silo]\nwidth = 20\nheight = 30\nbase = 3\norifice = 3.8\nwalls = grains\n"
+                         "hopper = yes\nhopper_outlet = 6\nhopper_bottom = 36\nhopper_top = 41\n");
+    gr_particles *p = make(sc);
+    const gr_silo *h = &sc->silo;
+    double top = -INFINITY;
+    for (size_t i = 0; i < p->n; i++)
+        if (p->flags[i] & GR_PF_FIXED)
+            top = p->y[i] > top ? p->y[i] : top;
+    assert_true(top > h->hopper_top + 0.1);
+    int ends = 0;
+    for (size_t i = 0; i < p->n; i++) {
+        if (!(p->flags[i] & GR_PF_FIXED) || p->y[i] < top - 1e-12)
+            continue;
+        ends++;
+        int left = p->x[i] < h->orifice_center;
+        /* the slope from the outlet's edge grain to the rim's over the wall */
+        double ax = h->orifice_center + (left ? -1 : 1) * (0.5 * h->hopper_outlet + 0.5), ay = h->hopper_bottom;
+        double bx = left ? h->x0 - 0.5 : h->x0 + h->width + 0.5, by = h->hopper_top;
+        double cross = (bx - ax) * (p->y[i] - ay) - (by - ay) * (p->x[i] - ax);
+        assert_true(fabs(cross) / hypot(bx - ax, by - ay) < 1e-9);
+        assert_true(left ? p->x[i] < bx - 0.5 : p->x[i] > bx + 0.5);
+    }
+    assert_int_equal(ends, 2);
+    assert_true(min_gap(p, 0, 0) >= -1e-12);
+    gr_particles_free(p);
+    gr_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(lattice_and_velocities),
         cmocka_unit_test(random_without_overlap),
         cmocka_unit_test(silo_walls_of_grains),
+        cmocka_unit_test(hopper_without_perch),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
