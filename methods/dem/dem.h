@@ -325,6 +325,8 @@ struct gr_dem_meet;
 int gr_dem_rebuild_team(gr_dem *d, struct gr_dem_meet *m, gr_err *err);
 int gr_dem_rebuild(gr_dem *d, gr_err *err);
 void gr_dem_team_free(struct gr_dem_team *tm);
+/* Bytes the rebuild's per-thread scratch holds (gr_dem_memory). */
+double gr_dem_team_bytes(const struct gr_dem_team *tm);
 
 /* dem_force.c: the force evaluation. */
 /* Forces on the positions and velocities of parity q at time

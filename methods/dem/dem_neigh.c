@@ -42,6 +42,14 @@ void gr_dem_team_free(struct gr_dem_team *tm)
     free(tm);
 }
 
+double gr_dem_team_bytes(const struct gr_dem_team *tm)
+{
+    double b = 0;
+    for (int t = 0; tm && t < tm->cap; t++)
+        b += (double)((tm->b[t].capj + tm->b[t].caps) * sizeof(int32_t) + tm->b[t].captmp);
+    return b;
+}
+
 /* A per-grain array to reorder: esz bytes per grain. */
 typedef struct {
     void *a;

@@ -392,5 +392,5 @@ double gr_dem_memory(const gr_dem *d)
     if (d->hist_on)
         b += (double)d->cap * d->hist.cap * (2 * sizeof(int32_t) + 2 * sizeof(double) + 2 * sizeof(uint64_t));
     b += (double)d->ntag * (sizeof(double) * 8 + sizeof(uint32_t) + sizeof(int64_t) * 2 + sizeof(int32_t));
-    return b;
+    return b + gr_dem_team_bytes(d->team);
 }
