@@ -413,8 +413,10 @@ int gr_dem_rebuild_team(gr_dem *d, gr_dem_meet_t *mt, gr_err *err)
         mt->val = team_join(d, T, err), gr_dem_meet_release(mt);
     if (mt->val)
         return mt->val;
-    memcpy(d->nb_j + b->offj, b->j, b->nj * sizeof *b->j);
-    memcpy(d->sg_j + b->offs, b->s, b->ns * sizeof *b->s);
+    if (b->nj) /* a buffer never grown is NULL, which memcpy may not take */
+        memcpy(d->nb_j + b->offj, b->j, b->nj * sizeof *b->j);
+    if (b->ns)
+        memcpy(d->sg_j + b->offs, b->s, b->ns * sizeof *b->s);
     for (size_t i = i0; i < i1; i++) {
         d->nb_start[i] += (int32_t)b->offj;
         d->sg_start[i] += (int32_t)b->offs;
