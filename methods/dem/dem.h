@@ -159,6 +159,7 @@ typedef struct gr_dem {
     uint64_t pre_E;
     _Atomic long exits_pre;
     struct gr_dem_eval *ev;  /* force evaluation in progress (dem_force.c) */
+    struct gr_dem_team *team; /* the list rebuild's per-thread scratch (dem_neigh.c) */
 } gr_dem;
 
 /* The baseline build is x86-64 (SSE2); the hot loops (pair loop, drift) get an AVX2 clone
@@ -258,12 +259,13 @@ void gr_dem_segment_force(const gr_dem *d, int s, double *fx, double *fy);
 static inline int gr_dem_threads(const gr_dem *d) { return (int)(d->par.threads > 0 ? d->par.threads : 1); }
 static inline int gr_dem_colours(const gr_dem *d) { return d->cells.py ? 3 : 2; }
 
-/* dem_neigh.c: cells, spatial sort, Verlet lists, strips. */
+/* dem_cells.c: cells, binning, strips; the distance from point p to
+ * segment [a, b], and how far a vibrating segment moves either way. */
 int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err);
 int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err);
-int gr_dem_sort(gr_dem *d, gr_err *err);
-int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
 void gr_dem_make_strips(gr_dem *d);
+double gr_dem_seg_dist(double ax, double ay, double bx, double by, double px, double py);
+double gr_dem_seg_margin(const gr_dem *d);
 
 /* dem_grains.c: per-grain arrays (also gr_dem_snapshot, gr_dem_index). */
 int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err);
@@ -308,6 +310,24 @@ void gr_dem_correct_gear(gr_dem *d, int q);
  * them), rows sorted by ids; reads the state only. */
 int gr_dem_contacts(const gr_dem *d, gr_contacts *out, gr_err *err);
 
+/* dem_neigh.c: spatial sort, Verlet lists. */
+int gr_dem_sort(gr_dem *d, gr_err *err);
+int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err);
+/* Sort and build the list on the current positions, for a step that then
+ * drifts every grain (the other buffer's positions and velocities are left
+ * unsorted: the drift writes them). _team: called by every thread of the
+ * enclosing parallel region (or by one thread outside any), which share
+ * the work, meeting at m, and all return the same status; the list is
+ * complete once they have met once more (the caller's meeting).
+ * gr_dem_rebuild: by one thread (outside a parallel region, on the
+ * scene's threads). The same list as gr_dem_sort and gr_dem_build_list. */
+struct gr_dem_meet;
+int gr_dem_rebuild_team(gr_dem *d, struct gr_dem_meet *m, gr_err *err);
+int gr_dem_rebuild(gr_dem *d, gr_err *err);
+void gr_dem_team_free(struct gr_dem_team *tm);
+/* Bytes the rebuild's per-thread scratch holds (gr_dem_memory). */
+double gr_dem_team_bytes(const struct gr_dem_team *tm);
+
 /* dem_force.c: the force evaluation. */
 /* Forces on the positions and velocities of parity q at time
  * t_eval; E numbers the evaluation for the contact history, integ is the
@@ -323,6 +343,9 @@ void gr_dem_eval_colour(gr_dem *d, int col);
 /* All colours: on the threads of the scene when called outside a parallel
  * region with more than one. */
 void gr_dem_eval_run(gr_dem *d);
+/* Cut each colour's strips into one run per thread (one thread, before
+ * the colours run on the threads of a region: gr_dem_eval_run does it). */
+void gr_dem_eval_split(gr_dem *d);
 /* One strip's pushes (Verlet lists), and the kicks that fall after it. */
 void gr_dem_eval_strip(gr_dem *d, int s);
 int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err);

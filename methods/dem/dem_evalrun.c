@@ -46,7 +46,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
             atomic_init(&ev->cflag[k], ev->epoch);
         }
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
-        ev->kicker = malloc((size_t)ns * sizeof *ev->kicker);
+        ev->kicker = calloc((size_t)ns, sizeof *ev->kicker);
         ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
         ev->smax = malloc((size_t)ns * sizeof *ev->smax);
         ev->sel = malloc((size_t)ns * sizeof *ev->sel);
@@ -62,7 +62,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     size_t nsp = (size_t)4 * ((size_t)nth + 1); /* three colours, then the one cut */
     if (nsp > ev->cap_split) {
         free(ev->split);
-        ev->split = malloc(nsp * sizeof *ev->split);
+        ev->split = calloc(nsp, sizeof *ev->split);
         ev->cap_split = nsp;
     }
     if ((size_t)nseg + 1 > ev->cap_seg) {
@@ -87,6 +87,18 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     return GR_OK;
 }
 
+/* Whether strip s may push on a segment: with Verlet lists, if its grains
+ * have candidate segments (the flowing silo's strips have none); any strip
+ * otherwise. A strip that cannot holds zeros in sseg, which add nothing
+ * (+0.0: the sums never hold -0.0), so it is neither cleared nor summed. */
+static int seg_strip(const gr_dem *d, int mode, int s)
+{
+    if (mode != GR_DEM_NB_VERLET || d->nseg == 0)
+        return d->nseg > 0;
+    const int32_t *i0 = d->strips.i0;
+    return d->sg_start[i0[s]] != d->sg_start[i0[s + 1]];
+}
+
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
 {
     if (mode == GR_DEM_NB_CELLS) {
@@ -102,12 +114,11 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     if (eval_scratch(d, ns, nseg, nsf, nth, err))
         return err->code;
     struct gr_dem_eval *ev = d->ev;
-    memset(ev->sseg, 0, nsf * sizeof *ev->sseg);
-    for (int s = 0; s < ns; s++) {
-        ev->smax[s] = -INFINITY;
-        ev->sel[s] = 0.0;
-        ev->si[s] = ev->sj[s] = -1;
-    }
+    /* every strip stores its overlap and energy (dem_pair.h, acc_store);
+     * with lists, only a strip with candidate segments pushes on walls */
+    for (int s = 0; s < ns; s++)
+        if (seg_strip(d, mode, s))
+            memset(ev->sseg + (size_t)s * sstride, 0, sstride * sizeof *ev->sseg);
     for (int k = 0; k < nseg; k++) {
         ev->son[k] = t_eval < d->seg[k].open_time;
         ev->soff[k] = ev->svy[k] = 0.0;
@@ -143,9 +154,10 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
         .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
     };
-    gr_dem_split_strips(d, ev, nth);
     return GR_OK;
 }
+
+void gr_dem_eval_split(gr_dem *d) { gr_dem_split_strips(d, d->ev, d->ev->c.nth); }
 
 int gr_dem_eval_ncolours(const gr_dem *d) { return d->ev ? d->ev->c.ncol : 1; }
 
@@ -175,11 +187,13 @@ static int eval_error(const gr_dem *d, const dem_ctx *c, double best, long bi, l
 }
 
 /* Per segment, the strips' forces summed in strip order. */
-static void segment_sums(const struct gr_dem_eval *ev, double *seg_out)
+static void segment_sums(const gr_dem *d, const struct gr_dem_eval *ev, double *seg_out)
 {
     for (int k = 0; k < ev->nseg; k++) {
         double a = 0, b = 0, cfn = 0;
         for (int s = 0; s < ev->ns; s++) {
+            if (!seg_strip(d, ev->mode, s))
+                continue;
             const double *sf = ev->sseg + (size_t)s * ev->c.sstride + (size_t)k * 3;
             a += sf[0];
             b += sf[1];
@@ -213,7 +227,7 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
         }
     }
     if (seg_out)
-        segment_sums(ev, seg_out);
+        segment_sums(d, ev, seg_out);
     d->max_ovl = best;
     d->eel_eval = eel;
     return eval_error(d, c, best, bi, bj, err);
@@ -223,6 +237,7 @@ void gr_dem_eval_run(gr_dem *d)
 {
     int nth = (int)(d->par.threads > 0 ? d->par.threads : 1), ncol = gr_dem_eval_ncolours(d);
     if (nth > 1 && d->ev->ns > 1 && !omp_in_parallel()) {
+        gr_dem_eval_split(d);
 #pragma omp parallel num_threads(nth)
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);

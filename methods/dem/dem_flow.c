@@ -2,10 +2,10 @@
  * colours of the force evaluation, and the one-barrier step
  * (gr_dem_eval_flow). Above the evaluation, below the step. */
 #include <math.h>
-#include <time.h>
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "dem_eval.h"
 
 #ifdef _OPENMP
@@ -23,14 +23,16 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
         return 0;
     /* a strip's pushes come from itself, the strip below, and (periodic in
      * y) strip 0 for the last one: the last of these colours kicks it */
+    /* written only when it changes, and kin, svmax not cleared (every
+     * strip is kicked once, which writes both): the worker threads keep
+     * these lines in their caches from step to step */
     for (int r = 0; r < ns; r++) {
         int k = r;
         if (r >= 1 && (r - 1) % ncol > k % ncol)
             k = r - 1;
-        ev->kicker[r] = k;
+        if (ev->kicker[r] != k)
+            ev->kicker[r] = k;
     }
-    for (int r = 0; r < ns; r++)
-        ev->kin[r] = ev->svmax[r] = 0.0;
     ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
     ev->c.kick = 1, ev->c.kick_p = p;
     return 1;
@@ -97,25 +99,6 @@ double gr_dem_eval_vmax2(const gr_dem *d)
  * the strips beside its run. The order in which each grain receives its
  * pushes is that of the colours, as with barriers: the same bits. */
 
-static inline void wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
-{
-    unsigned spins = 0;
-    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-        /* a neighbour that lost its core (another job on the machine):
-         * after some 50 us sleep rather than spin, so that the scheduler
-         * can give it ours */
-        if (spins < (1u << 11)) {
-            spins++;
-        } else {
-            struct timespec ts = {0, 20000};
-            nanosleep(&ts, NULL);
-        }
-    }
-}
-
 int gr_dem_eval_flow_begin(gr_dem *d)
 {
     struct gr_dem_eval *ev = d->ev;
@@ -125,7 +108,14 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     ev->epoch++;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
-    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, ev->split + 3 * (nth + 1));
+    int cut[64], *S = ev->split + 3 * (nth + 1);
+    if (nth >= 64) {
+        gr_dem_cut_runs(d, ev, 0, 1, ns, nth, S);
+        return 1;
+    }
+    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, cut);
+    if (memcmp(cut, S, (size_t)(nth + 1) * sizeof *S)) /* as kicker above */
+        memcpy(S, cut, (size_t)(nth + 1) * sizeof *S);
     return 1;
 }
 
@@ -167,11 +157,11 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
         for (int k = 0; k < m; k++) {
             int s = scratch[k];
             if (s + 1 < ns)
-                wait_epoch(&ev->dflag[s + 1], ep);
+                gr_dem_wait_epoch(&ev->dflag[s + 1], ep);
             if (col == 1) {
-                wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
+                gr_dem_wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
                 if (s + 1 < ns)
-                    wait_epoch(&ev->cflag[s + 1], ep);
+                    gr_dem_wait_epoch(&ev->cflag[s + 1], ep);
             }
             double t0 = timed ? omp_get_wtime() : 0.0;
             gr_dem_eval_strip(d, s);

@@ -1,235 +1,108 @@
-/* Neighbour search: cells (CSR by counting sort, row-major so that a sort
- * by cell is also a spatial sort for cache locality), Verlet half lists
- * with a skin, candidate wall segments per grain or per cell, and the
- * strips of rows that the threaded force loop colours. */
+/* Neighbour search: the spatial sort (grains in cell order), Verlet half
+ * lists with a skin and the candidate wall segments per grain, built on
+ * the threads of the step when it has several (the same list as on one).
+ * Above the cells (dem_cells.c). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "geom.h"
 
-static void cells_free(gr_dem_cells *g)
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* One thread's share of a rebuild (gr_dem_rebuild), kept across rebuilds:
+ * the pairs and segments of its run of grains, then copied into the list
+ * at their place, and the sort's scratch array. */
+typedef struct {
+    int32_t *j, *s;
+    size_t capj, caps, nj, ns, offj, offs;
+    void *tmp;
+    size_t captmp;
+    int fail;
+    char pad[64]; /* threads write their own entries: no shared cache line */
+} team_buf;
+
+struct gr_dem_team {
+    int cap;
+    _Atomic int next; /* the sort's next array to reorder */
+    team_buf *b;
+};
+
+void gr_dem_team_free(struct gr_dem_team *tm)
 {
-    free(g->start);
-    free(g->idx);
-    free(g->cell);
-    free(g->cell_seg_start);
-    free(g->cell_seg);
-    memset(g, 0, sizeof *g);
+    if (!tm)
+        return;
+    for (int t = 0; t < tm->cap; t++)
+        free(tm->b[t].j), free(tm->b[t].s), free(tm->b[t].tmp);
+    free(tm->b);
+    free(tm);
 }
 
-/* Distance from point p to segment [a, b]. */
-static double seg_dist(double ax, double ay, double bx, double by, double px, double py)
+double gr_dem_team_bytes(const struct gr_dem_team *tm)
 {
-    double ex = bx - ax, ey = by - ay, l2 = ex * ex + ey * ey;
-    double u = l2 > 0 ? ((px - ax) * ex + (py - ay) * ey) / l2 : 0.0;
-    u = u < 0 ? 0 : u > 1 ? 1 : u;
-    return hypot(px - ax - u * ex, py - ay - u * ey);
+    double b = 0;
+    for (int t = 0; tm && t < tm->cap; t++)
+        b += (double)((tm->b[t].capj + tm->b[t].caps) * sizeof(int32_t) + tm->b[t].captmp);
+    return b;
 }
 
-static double seg_margin(const gr_dem *d)
-{
-    /* a vibrating segment moves by up to the amplitude either way */
-    return 2.0 * fabs(d->sc.floor.amplitude);
-}
+/* A per-grain array to reorder: esz bytes per grain. */
+typedef struct {
+    void *a;
+    size_t esz;
+} perm_arr;
 
-/* The grid's box (grains, walls, a margin; the period when periodic) and
- * cell counts for cells no smaller than cutoff. */
-static int grid_size(gr_dem *d, double cutoff, gr_err *err)
-{
-    gr_dem_cells *g = &d->cells;
-    double xmin = 0, xmax = d->sc.width, ymin = 0, ymax = d->sc.height;
-    double *x = d->f[F_X][d->cur], *y = d->f[F_Y][d->cur];
-    for (size_t i = 0; i < d->n; i++) {
-        xmin = fmin(xmin, x[i]), xmax = fmax(xmax, x[i]);
-        ymin = fmin(ymin, y[i]), ymax = fmax(ymax, y[i]);
-    }
-    for (int k = 0; k < d->nseg; k++) {
-        const gr_dem_seg *s = &d->seg[k];
-        xmin = fmin(xmin, fmin(s->x0, s->x1)), xmax = fmax(xmax, fmax(s->x0, s->x1));
-        ymin = fmin(ymin, fmin(s->y0, s->y1)), ymax = fmax(ymax, fmax(s->y0, s->y1));
-    }
-    double m = d->rmax + seg_margin(d);
-    xmin -= m, xmax += m, ymin -= m, ymax += m;
-    g->px = d->Lx > 0;
-    g->py = d->Ly > 0;
-    if (g->px)
-        xmin = 0, xmax = d->Lx;
-    if (g->py)
-        ymin = 0, ymax = d->Ly;
-    double lx = xmax - xmin, ly = ymax - ymin;
-    long nx = (long)floor(lx / cutoff), ny = (long)floor(ly / cutoff);
-    if (nx < 1) nx = 1;
-    if (ny < 1) ny = 1;
-    if ((g->px && nx < 3) || (g->py && ny < 3))
-        return gr_fail(err, GR_EINPUT,
-                       "periodic domain %g x %g is narrower than 3 neighbour cells of %g (largest diameter plus skin)",
-                       d->sc.width, d->sc.height, cutoff);
-    /* Keep the grid a few cells per grain at most; a periodic direction
-     * keeps its cells (they tile the period), so stop once nothing can
-     * shrink: a long periodic strip looped here for ever. */
-    while ((double)nx * (double)ny > 4.0 * (double)(d->ntag + 64)) {
-        long nx2 = nx > 3 && !g->px ? (nx + 1) / 2 : nx, ny2 = ny > 3 && !g->py ? (ny + 1) / 2 : ny;
-        if (nx2 == nx && ny2 == ny)
-            break;
-        nx = nx2, ny = ny2;
-    }
-    if ((double)nx * (double)ny > 1e8) {
-        char where[1200];
-        gr_scene_where(&d->sc, "domain", "width", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: domain %g x %g needs %ld x %ld neighbour cells of %g, more than 1e8",
-                       where, d->sc.width, d->sc.height, nx, ny, cutoff);
-    }
-    g->nx = (int)nx;
-    g->ny = (int)ny;
-    g->x0 = xmin;
-    g->y0 = ymin;
-    g->cx = lx / (double)nx;
-    g->cy = ly / (double)ny;
-    g->icx = 1.0 / g->cx;
-    g->icy = 1.0 / g->cy;
-    return GR_OK;
-}
+enum { PERM_MAX = 2 * F_NFIELDS + 20 };
 
-/* Segments near each cell (CSR): centre distance below half the diagonal
- * plus the reach of a grain. Counts on the first pass, fills on the
- * second. */
-static int cell_segments(gr_dem *d, gr_err *err)
+/* The per-grain arrays a sort reorders, and the bytes of the largest
+ * grain's entry. live: for a step about to drift every grain, whose
+ * other buffer's basic fields and list reference positions are about to
+ * be written over: those are left as they are. The cells of the grains
+ * move with them. */
+static int perm_table(gr_dem *d, int live, perm_arr *e, size_t *emax)
 {
-    gr_dem_cells *g = &d->cells;
-    size_t nc = (size_t)g->nx * (size_t)g->ny;
-    double reach = 0.5 * hypot(g->cx, g->cy) + d->rmax + d->par.skin + seg_margin(d);
-    size_t cnt = 0;
-    for (int pass = 0; pass < 2; pass++) {
-        cnt = 0;
-        for (size_t c = 0; c < nc; c++) {
-            double ccx = g->x0 + ((double)(c % (size_t)g->nx) + 0.5) * g->cx;
-            double ccy = g->y0 + ((double)(c / (size_t)g->nx) + 0.5) * g->cy;
-            if (pass)
-                g->cell_seg_start[c] = (int32_t)cnt;
-            for (int k = 0; k < d->nseg; k++) {
-                const gr_dem_seg *s = &d->seg[k];
-                if (seg_dist(s->x0, s->y0, s->x1, s->y1, ccx, ccy) < reach) {
-                    if (pass)
-                        g->cell_seg[cnt] = k;
-                    cnt++;
-                }
-            }
-        }
-        if (!pass) {
-            g->cell_seg = malloc((cnt + 1) * sizeof *g->cell_seg);
-            if (!g->cell_seg)
-                return gr_fail(err, GR_ERUN, "out of memory for wall cells");
-        }
-    }
-    g->cell_seg_start[nc] = (int32_t)cnt;
-    return GR_OK;
-}
-
-int gr_dem_cells_setup(gr_dem *d, double cutoff, gr_err *err)
-{
-    gr_dem_cells *g = &d->cells;
-    cells_free(g);
-    if (grid_size(d, cutoff, err))
-        return err->code;
-    size_t nc = (size_t)g->nx * (size_t)g->ny;
-    g->start = calloc(nc + 1, sizeof *g->start);
-    g->cell_seg_start = calloc(nc + 1, sizeof *g->cell_seg_start);
-    if (!g->start || !g->cell_seg_start)
-        return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
-    if (cell_segments(d, err))
-        return err->code;
-    gr_dem_make_strips(d);
-    return GR_OK;
-}
-
-static int cells_reserve(gr_dem_cells *g, size_t n, gr_err *err)
-{
-    if (n <= g->cap)
-        return GR_OK;
-    size_t cap = n + n / 2 + 16;
-    int32_t *a = realloc(g->idx, cap * sizeof *a);
-    if (!a)
-        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
-    g->idx = a;
-    a = realloc(g->cell, cap * sizeof *a);
-    if (!a)
-        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
-    g->cell = a;
-    g->cap = cap;
-    return GR_OK;
-}
-
-int gr_dem_bin(gr_dem *d, const double *x, const double *y, gr_err *err)
-{
-    gr_dem_cells *g = &d->cells;
-    size_t n = d->n, nc = (size_t)g->nx * (size_t)g->ny;
-    if (cells_reserve(g, n, err))
-        return err->code;
-    memset(g->start, 0, (nc + 1) * sizeof *g->start);
-    for (size_t i = 0; i < n; i++) {
-        double fx = floor((x[i] - g->x0) * g->icx), fy = floor((y[i] - g->y0) * g->icy);
-        long cx = fx < 0 ? 0 : fx >= g->nx ? g->nx - 1 : (long)fx;
-        long cy = fy < 0 ? 0 : fy >= g->ny ? g->ny - 1 : (long)fy;
-        int32_t c = (int32_t)(cy * g->nx + cx);
-        g->cell[i] = c;
-        g->start[c + 1]++;
-    }
-    for (size_t c = 0; c < nc; c++)
-        g->start[c + 1] += g->start[c];
-    /* stable placement: grains keep their relative order within a cell */
-    int32_t *fill = malloc((nc + 1) * sizeof *fill);
-    if (!fill)
-        return gr_fail(err, GR_ERUN, "out of memory for the cell lists");
-    memcpy(fill, g->start, (nc + 1) * sizeof *fill);
-    for (size_t i = 0; i < n; i++)
-        g->idx[fill[g->cell[i]]++] = (int32_t)i;
-    free(fill);
-    return GR_OK;
-}
-
-/* Reorder every per-grain array by perm (new slot k holds old perm[k]). */
-static int permute(gr_dem *d, const int32_t *perm, gr_err *err)
-{
-    size_t n = d->n;
+    int m = 0;
     size_t hc = d->hist_on ? (size_t)d->hist.cap : 0;
-    size_t wsz = n * (hc > 1 ? hc : 1);
-    void *tmp = malloc(wsz * sizeof(double) + 16);
-    if (!tmp)
-        return gr_fail(err, GR_ERUN, "out of memory for the spatial sort");
-#define PERM(T, a)                                                                 \
-    if (a) {                                                                       \
-        T *t_ = tmp;                                                               \
-        for (size_t k = 0; k < n; k++)                                             \
-            t_[k] = (a)[perm[k]];                                                  \
-        memcpy((a), t_, n * sizeof(T));                                            \
-    }
+#define ADD(a, sz) if (a) e[m++] = (perm_arr){(a), (sz)};
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 2; p++)
-            PERM(double, d->f[f][p]);
-    PERM(double, d->rad) PERM(double, d->im) PERM(double, d->iI) PERM(double, d->gf)
-    PERM(double, d->mass) PERM(double, d->inertia)
-    PERM(double, d->xref) PERM(double, d->yref)
-    PERM(double, d->ext_fx) PERM(double, d->ext_fy)
-    PERM(int32_t, d->tag) PERM(uint32_t, d->flags) PERM(int32_t, d->species)
-#undef PERM
+            if (!(live && f < F_NBASIC && p != d->cur))
+                ADD(d->f[f][p], sizeof(double))
+    ADD(d->rad, 8) ADD(d->im, 8) ADD(d->iI, 8) ADD(d->gf, 8) ADD(d->mass, 8) ADD(d->inertia, 8)
+    if (!live) {
+        ADD(d->xref, 8) ADD(d->yref, 8)
+    }
+    ADD(d->ext_fx, 8) ADD(d->ext_fy, 8)
+    ADD(d->tag, 4) ADD(d->flags, 4) ADD(d->species, 4) ADD(d->cells.cell, 4)
     if (hc) {
-#define PERMROW(T, a)                                                              \
-    {                                                                              \
-        T *t_ = tmp;                                                               \
-        for (size_t k = 0; k < n; k++)                                             \
-            memcpy(t_ + k * hc, (a) + (size_t)perm[k] * hc, hc * sizeof(T));       \
-        memcpy((a), t_, n * hc * sizeof(T));                                       \
-    }
         gr_dem_hist *h = &d->hist;
-        PERMROW(int32_t, h->partner) PERMROW(int32_t, h->partner_old)
-        PERMROW(double, h->z) PERMROW(double, h->z_old)
-        PERMROW(uint64_t, h->stamp) PERMROW(uint64_t, h->stamp_old)
-#undef PERMROW
+        ADD(h->partner, 4 * hc) ADD(h->partner_old, 4 * hc) ADD(h->z, 8 * hc) ADD(h->z_old, 8 * hc)
+        ADD(h->stamp, 8 * hc) ADD(h->stamp_old, 8 * hc)
     }
-    free(tmp);
-    return GR_OK;
+#undef ADD
+    *emax = hc > 1 ? 8 * hc : 8;
+    return m;
+}
+
+/* Reorder one array by perm (new slot k holds old perm[k]), through tmp. */
+static void permute_one(const perm_arr *e, const int32_t *perm, size_t n, void *tmp)
+{
+    char *a = e->a, *t = tmp;
+    if (e->esz == 8) {
+        for (size_t k = 0; k < n; k++)
+            memcpy(t + 8 * k, a + 8 * (size_t)perm[k], 8);
+    } else if (e->esz == 4) {
+        for (size_t k = 0; k < n; k++)
+            memcpy(t + 4 * k, a + 4 * (size_t)perm[k], 4);
+    } else {
+        for (size_t k = 0; k < n; k++)
+            memcpy(t + e->esz * k, a + e->esz * (size_t)perm[k], e->esz);
+    }
+    memcpy(a, t, n * e->esz);
 }
 
 int gr_dem_sort(gr_dem *d, gr_err *err)
@@ -237,40 +110,21 @@ int gr_dem_sort(gr_dem *d, gr_err *err)
     int q = d->cur;
     if (gr_dem_bin(d, d->f[F_X][q], d->f[F_Y][q], err))
         return err->code;
-    if (permute(d, d->cells.idx, err))
-        return err->code;
+    perm_arr e[PERM_MAX];
+    size_t emax;
+    int m = perm_table(d, 0, e, &emax);
+    void *tmp = malloc(d->n * emax + 16);
+    if (!tmp)
+        return gr_fail(err, GR_ERUN, "out of memory for the spatial sort");
+    for (int k = 0; k < m; k++)
+        permute_one(&e[k], d->cells.idx, d->n, tmp);
+    free(tmp);
     /* after the permutation grain k sits in slot k */
-    gr_dem_cells *g = &d->cells;
-    size_t nc = (size_t)g->nx * (size_t)g->ny;
-    for (size_t c = 0; c < nc; c++)
-        for (int32_t a = g->start[c]; a < g->start[c + 1]; a++)
-            g->cell[a] = (int32_t)c;
     for (size_t i = 0; i < d->n; i++)
-        g->idx[i] = (int32_t)i;
+        d->cells.idx[i] = (int32_t)i;
     d->since_sort = 0;
     d->pre_E = 0; /* a drift done ahead was not permuted */
     return GR_OK;
-}
-
-void gr_dem_make_strips(gr_dem *d)
-{
-    gr_dem_cells *g = &d->cells;
-    gr_dem_strips *s = &d->strips;
-    int ny = g->ny;
-    /* a fixed rule in the grid only: the strips (and so the sums) do not
-     * depend on the number of threads */
-    int rps = ny / 48 > 1 ? ny / 48 : 1;
-    int ns = ny / rps, ncol = gr_dem_colours(d);
-    ns -= ns % ncol;
-    if (ns < ncol)
-        ns = 1;
-    free(s->row0);
-    free(s->i0);
-    s->row0 = malloc((size_t)(ns + 1) * sizeof *s->row0);
-    s->i0 = calloc((size_t)(ns + 1), sizeof *s->i0);
-    s->n = ns;
-    for (int k = 0; k <= ns; k++)
-        s->row0[k] = (int32_t)((long)k * ny / ns);
 }
 
 static void strips_index(gr_dem *d)
@@ -280,28 +134,31 @@ static void strips_index(gr_dem *d)
         s->i0[k] = d->cells.start[(size_t)s->row0[k] * (size_t)d->cells.nx];
 }
 
-static int grow_i32(int32_t **a, size_t *cap, size_t need, gr_err *err)
+static int grow_i32(int32_t **a, size_t *cap, size_t need)
 {
     if (need <= *cap)
-        return GR_OK;
+        return 0;
     size_t c = need + need / 2 + 64;
     int32_t *p = realloc(*a, c * sizeof *p);
     if (!p)
-        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list (%zu entries)", c);
+        return 1;
     *a = p;
     *cap = c;
-    return GR_OK;
+    return 0;
 }
 
 /* Grain i's partners j > i within reach (radii plus skin) in the 3 x 3
- * cells around its own, appended to nb_j at *cnt and sorted by index. */
-static int list_pairs(gr_dem *d, const double *x, const double *y, size_t i, size_t *cnt, gr_err *err)
+ * cells around its own, appended to b->j and sorted by index; sorted: the
+ * grains are in cell order (cells.idx, the identity, may still be being
+ * written). */
+static int list_pairs(const gr_dem *d, const double *x, const double *y, size_t i, int sorted, team_buf *b)
 {
     const gr_dem_cells *g = &d->cells;
     int32_t c = g->cell[i];
     int cx = c % g->nx, cy = c / g->nx;
     int fi = (d->flags[i] & GR_PF_FIXED) != 0;
     double xi = x[i], yi = y[i], ri = d->rad[i], skin = d->par.skin;
+    size_t row = b->nj;
     for (int oy = -1; oy <= 1; oy++) {
         int yy = cy + oy;
         if (yy < 0 || yy >= g->ny) {
@@ -318,47 +175,139 @@ static int list_pairs(gr_dem *d, const double *x, const double *y, size_t i, siz
             }
             int32_t cc = yy * g->nx + xx;
             for (int32_t a = g->start[cc]; a < g->start[cc + 1]; a++) {
-                int32_t j = g->idx[a];
+                int32_t j = sorted ? a : g->idx[a];
                 if ((size_t)j <= i || (fi && (d->flags[j] & GR_PF_FIXED)))
                     continue;
                 double dx = gr_min_image(x[j] - xi, d->Lx), dy = gr_min_image(y[j] - yi, d->Ly);
                 double rc = ri + d->rad[j] + skin;
                 if (dx * dx + dy * dy < rc * rc) {
-                    if (grow_i32(&d->nb_j, &d->nb_cap, *cnt + 1, err))
-                        return err->code;
-                    d->nb_j[(*cnt)++] = j;
+                    if (grow_i32(&b->j, &b->capj, b->nj + 1))
+                        return 1;
+                    b->j[b->nj++] = j;
                 }
             }
         }
     }
     /* neighbours in cell order are not sorted by index: sort the row so
      * that the list does not depend on how cells were scanned */
-    for (size_t a = d->nb_start[i] + 1; a < *cnt; a++) {
-        int32_t v = d->nb_j[a];
-        size_t b = a;
-        while (b > (size_t)d->nb_start[i] && d->nb_j[b - 1] > v) {
-            d->nb_j[b] = d->nb_j[b - 1];
-            b--;
+    for (size_t a = row + 1; a < b->nj; a++) {
+        int32_t v = b->j[a];
+        size_t k = a;
+        while (k > row && b->j[k - 1] > v) {
+            b->j[k] = b->j[k - 1];
+            k--;
         }
-        d->nb_j[b] = v;
+        b->j[k] = v;
     }
-    return GR_OK;
+    return 0;
 }
 
-/* Mobile grain i's candidate segments, appended to sg_j at *scnt. */
-static int list_segments(gr_dem *d, const double *x, const double *y, size_t i, size_t *scnt, gr_err *err)
+/* The same partners when the grains are in cell order (just sorted) and
+ * no side is periodic: the partners j > i are the grains after i in its
+ * cell and the cell to its right, then those of the three cells above —
+ * two runs of consecutive indices, already in order. Every candidate is
+ * written, and kept when within reach: no branch to mispredict. */
+static int pairs_forward(const gr_dem *d, const double *x, const double *y, size_t i, team_buf *b)
+{
+    const gr_dem_cells *g = &d->cells;
+    const int32_t *st = g->start;
+    int32_t c = g->cell[i];
+    int nx = g->nx, cx = c % nx, cy = c / nx;
+    size_t r[2][2] = {{i + 1, (size_t)st[c + 1 + (cx + 1 < nx)]}, {0, 0}};
+    if (cy + 1 < g->ny)
+        r[1][0] = (size_t)st[c + nx - (cx > 0)], r[1][1] = (size_t)st[c + nx + 1 + (cx + 1 < nx)];
+    if (grow_i32(&b->j, &b->capj, b->nj + (r[0][1] - r[0][0]) + (r[1][1] - r[1][0])))
+        return 1;
+    const double *restrict rad = d->rad;
+    const uint32_t *restrict fl = d->flags;
+    int32_t *restrict out = b->j;
+    const int fi = (fl[i] & GR_PF_FIXED) != 0;
+    const double xi = x[i], yi = y[i], ri = rad[i], skin = d->par.skin;
+    size_t m = b->nj;
+    for (int k = 0; k < 2; k++) {
+        for (size_t j = r[k][0]; j < r[k][1]; j++) {
+            double dx = x[j] - xi, dy = y[j] - yi;
+            double rc = ri + rad[j] + skin;
+            out[m] = (int32_t)j;
+            m += (dx * dx + dy * dy < rc * rc) & !(fi & ((fl[j] & GR_PF_FIXED) != 0));
+        }
+    }
+    b->nj = m;
+    return 0;
+}
+
+/* Mobile grain i's candidate segments, appended to b->s. */
+static int list_segments(const gr_dem *d, const double *x, const double *y, size_t i, team_buf *b)
 {
     const gr_dem_cells *g = &d->cells;
     int32_t c = g->cell[i];
-    double reach = d->rad[i] + d->par.skin + seg_margin(d);
+    double reach = d->rad[i] + d->par.skin + gr_dem_seg_margin(d);
     for (int32_t k = g->cell_seg_start[c]; k < g->cell_seg_start[c + 1]; k++) {
         const gr_dem_seg *s = &d->seg[g->cell_seg[k]];
-        if (seg_dist(s->x0, s->y0, s->x1, s->y1, x[i], y[i]) < reach) {
-            if (grow_i32(&d->sg_j, &d->sg_cap, *scnt + 1, err))
-                return err->code;
-            d->sg_j[(*scnt)++] = g->cell_seg[k];
+        if (gr_dem_seg_dist(s->x0, s->y0, s->x1, s->y1, x[i], y[i]) < reach) {
+            if (grow_i32(&b->s, &b->caps, b->ns + 1))
+                return 1;
+            b->s[b->ns++] = g->cell_seg[k];
         }
     }
+    return 0;
+}
+
+/* Grains [i0, i1): pairs and segments appended to b, their starts (in b)
+ * in nb_start and sg_start, positions at the build in xref, yref; sorted:
+ * as in list_pairs. */
+static int list_run(gr_dem *d, const double *x, const double *y, size_t i0, size_t i1, int sorted, team_buf *b)
+{
+    const int forward = sorted && !d->cells.px && !d->cells.py;
+    for (size_t i = i0; i < i1; i++) {
+        d->nb_start[i] = (int32_t)b->nj;
+        d->sg_start[i] = (int32_t)b->ns;
+        if (forward ? pairs_forward(d, x, y, i, b) : list_pairs(d, x, y, i, sorted, b))
+            return 1;
+        if (!(d->flags[i] & GR_PF_FIXED) && list_segments(d, x, y, i, b))
+            return 1;
+        d->xref[i] = x[i];
+        d->yref[i] = y[i];
+    }
+    return 0;
+}
+
+/* The grain of each list pair in [i0, i1), whose pairs end at end. */
+static void owners(gr_dem *d, size_t i0, size_t i1, int32_t end)
+{
+    for (size_t i = i0; i < i1; i++) {
+        int32_t e = i + 1 < i1 ? d->nb_start[i + 1] : end;
+        for (int32_t k = d->nb_start[i]; k < e; k++)
+            d->nb_i[k] = (int32_t)i;
+    }
+}
+
+static int starts(gr_dem *d, gr_err *err)
+{
+    size_t n = d->n;
+    int32_t *ns = realloc(d->nb_start, (n + 1) * sizeof *ns);
+    if (ns)
+        d->nb_start = ns;
+    int32_t *ss = realloc(d->sg_start, (n + 1) * sizeof *ss);
+    if (ss)
+        d->sg_start = ss;
+    return ns && ss ? GR_OK : gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+}
+
+/* The list's ends (cnt pairs, scnt segments) and the owners' array. */
+static int list_finish(gr_dem *d, size_t cnt, size_t scnt, gr_err *err)
+{
+    d->nb_start[d->n] = (int32_t)cnt;
+    d->sg_start[d->n] = (int32_t)scnt;
+    if (cnt > INT32_MAX / 2)
+        return gr_fail(err, GR_ERUN, "neighbour list too long (%zu pairs)", cnt);
+    int32_t *owner = realloc(d->nb_i, (d->nb_cap + 1) * sizeof *owner);
+    if (!owner)
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    d->nb_i = owner;
+    strips_index(d);
+    d->need_build = 0;
+    d->builds++;
     return GR_OK;
 }
 
@@ -366,41 +315,134 @@ static int list_segments(gr_dem *d, const double *x, const double *y, size_t i, 
  * caller sorted them first, or restored a saved order). */
 int gr_dem_build_list(gr_dem *d, const double *x, const double *y, gr_err *err)
 {
-    if (gr_dem_bin(d, x, y, err))
+    if (gr_dem_bin(d, x, y, err) || starts(d, err))
         return err->code;
-    size_t n = d->n;
-    int32_t *ns = realloc(d->nb_start, (n + 1) * sizeof *ns);
-    if (!ns)
+    team_buf b = {.j = d->nb_j, .s = d->sg_j, .capj = d->nb_cap, .caps = d->sg_cap};
+    int fail = list_run(d, x, y, 0, d->n, 0, &b);
+    d->nb_j = b.j, d->nb_cap = b.capj, d->sg_j = b.s, d->sg_cap = b.caps;
+    if (fail)
         return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
-    d->nb_start = ns;
-    ns = realloc(d->sg_start, (n + 1) * sizeof *ns);
-    if (!ns)
-        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
-    d->sg_start = ns;
-    size_t cnt = 0, scnt = 0;
-    for (size_t i = 0; i < n; i++) {
-        d->nb_start[i] = (int32_t)cnt;
-        d->sg_start[i] = (int32_t)scnt;
-        if (list_pairs(d, x, y, i, &cnt, err))
-            return err->code;
-        if (!(d->flags[i] & GR_PF_FIXED) && list_segments(d, x, y, i, &scnt, err))
-            return err->code;
-        d->xref[i] = x[i];
-        d->yref[i] = y[i];
-    }
-    d->nb_start[n] = (int32_t)cnt;
-    d->sg_start[n] = (int32_t)scnt;
-    if (cnt > INT32_MAX / 2)
-        return gr_fail(err, GR_ERUN, "neighbour list too long (%zu pairs)", cnt);
-    int32_t *owner = realloc(d->nb_i, (d->nb_cap + 1) * sizeof *owner);
-    if (!owner)
-        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
-    d->nb_i = owner;
-    for (size_t i = 0; i < n; i++)
-        for (int32_t k = d->nb_start[i]; k < d->nb_start[i + 1]; k++)
-            owner[k] = (int32_t)i;
-    strips_index(d);
-    d->need_build = 0;
-    d->builds++;
+    if (list_finish(d, b.nj, b.ns, err))
+        return err->code;
+    owners(d, 0, d->n, (int32_t)b.nj);
     return GR_OK;
+}
+
+/* ---- the rebuild on the threads of a team -----------------------------
+ * The sort's arrays are shared out whole among the threads, the list by
+ * runs of grains (each thread its run, into its own buffer, then copied
+ * to its place): each grain's row is the one a single thread builds. */
+
+/* One thread of the team: the bins, the scratch for T threads. */
+static int team_prepare(gr_dem *d, int T, gr_err *err)
+{
+    perm_arr e[PERM_MAX];
+    size_t emax;
+    perm_table(d, 1, e, &emax);
+    size_t tmp_bytes = d->n * emax + 16;
+    struct gr_dem_team *tm = d->team;
+    if (!tm && !(tm = d->team = calloc(1, sizeof *tm)))
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    atomic_store_explicit(&tm->next, 0, memory_order_relaxed);
+    if (tm->cap < T) {
+        team_buf *b = realloc(tm->b, (size_t)T * sizeof *b);
+        if (!b)
+            return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+        memset(b + tm->cap, 0, (size_t)(T - tm->cap) * sizeof *b);
+        tm->b = b, tm->cap = T;
+    }
+    for (int t = 0; t < T; t++) {
+        team_buf *b = &tm->b[t];
+        b->nj = b->ns = 0, b->fail = 0;
+        if (b->captmp < tmp_bytes) {
+            free(b->tmp);
+            if (!(b->tmp = malloc(tmp_bytes)))
+                return b->captmp = 0, gr_fail(err, GR_ERUN, "out of memory for the spatial sort");
+            b->captmp = tmp_bytes;
+        }
+    }
+    int p = d->cur;
+    if (gr_dem_bin(d, d->f[F_X][p], d->f[F_Y][p], err) || starts(d, err))
+        return err->code;
+    return GR_OK;
+}
+
+/* One thread of the team, after every run is built: where each goes. */
+static int team_join(gr_dem *d, int T, gr_err *err)
+{
+    struct gr_dem_team *tm = d->team;
+    size_t cnt = 0, scnt = 0;
+    int fail = 0;
+    for (int t = 0; t < T; t++) {
+        team_buf *b = &tm->b[t];
+        b->offj = cnt, b->offs = scnt;
+        cnt += b->nj, scnt += b->ns;
+        fail |= b->fail;
+    }
+    if (fail || grow_i32(&d->nb_j, &d->nb_cap, cnt) || grow_i32(&d->sg_j, &d->sg_cap, scnt))
+        return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
+    d->since_sort = 0;
+    d->pre_E = 0; /* a drift done ahead was not permuted */
+    return list_finish(d, cnt, scnt, err);
+}
+
+int gr_dem_rebuild_team(gr_dem *d, gr_dem_meet_t *mt, gr_err *err)
+{
+    const int T = omp_get_num_threads(), t = omp_get_thread_num();
+    const size_t n = d->n;
+    if (gr_dem_meet(mt, T))
+        mt->val = team_prepare(d, T, err), gr_dem_meet_release(mt);
+    if (mt->val)
+        return mt->val;
+    /* after the binning, which may move the cells' arrays */
+    perm_arr e[PERM_MAX];
+    size_t emax;
+    const int m = perm_table(d, 1, e, &emax);
+    struct gr_dem_team *tm = d->team;
+    team_buf *b = &tm->b[t];
+    for (int k; (k = atomic_fetch_add_explicit(&tm->next, 1, memory_order_relaxed)) < m;)
+        permute_one(&e[k], d->cells.idx, n, b->tmp);
+    gr_dem_meet_all(mt, T);
+    /* after the permutation grain k sits in slot k */
+    const size_t i0 = n * (size_t)t / (size_t)T, i1 = n * (size_t)(t + 1) / (size_t)T;
+    for (size_t i = i0; i < i1; i++)
+        d->cells.idx[i] = (int32_t)i;
+    const double *x = d->f[F_X][d->cur], *y = d->f[F_Y][d->cur];
+    b->fail = list_run(d, x, y, i0, i1, 1, b);
+    if (gr_dem_meet(mt, T))
+        mt->val = team_join(d, T, err), gr_dem_meet_release(mt);
+    if (mt->val)
+        return mt->val;
+    if (b->nj) /* a buffer never grown is NULL, which memcpy may not take */
+        memcpy(d->nb_j + b->offj, b->j, b->nj * sizeof *b->j);
+    if (b->ns)
+        memcpy(d->sg_j + b->offs, b->s, b->ns * sizeof *b->s);
+    for (size_t i = i0; i < i1; i++) {
+        d->nb_start[i] += (int32_t)b->offj;
+        d->sg_start[i] += (int32_t)b->offs;
+    }
+    owners(d, i0, i1, (int32_t)(b->offj + b->nj));
+    return GR_OK;
+}
+
+int gr_dem_rebuild(gr_dem *d, gr_err *err)
+{
+    if (omp_in_parallel()) { /* one thread of a team that is not calling it */
+        if (gr_dem_sort(d, err) || gr_dem_build_list(d, d->f[F_X][d->cur], d->f[F_Y][d->cur], err))
+            return err->code;
+        return GR_OK;
+    }
+    int nth = gr_dem_threads(d), rc = GR_OK;
+    gr_dem_meet_t mt;
+    gr_dem_meet_init(&mt);
+    if (nth == 1)
+        return gr_dem_rebuild_team(d, &mt, err);
+#pragma omp parallel num_threads(nth)
+    {
+        int r = gr_dem_rebuild_team(d, &mt, err);
+        gr_dem_meet_all(&mt, omp_get_num_threads());
+#pragma omp master
+        rc = r;
+    }
+    return rc;
 }

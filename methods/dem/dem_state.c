@@ -16,6 +16,7 @@ void gr_dem_free(gr_dem *d)
         return;
     gr_dem_cv_free(d);
     gr_dem_eval_free(d->ev);
+    gr_dem_team_free(d->team);
     for (int f = 0; f < F_NFIELDS; f++)
         for (int p = 0; p < 3; p++)
             free(d->f[f][p]);
@@ -391,5 +392,5 @@ double gr_dem_memory(const gr_dem *d)
     if (d->hist_on)
         b += (double)d->cap * d->hist.cap * (2 * sizeof(int32_t) + 2 * sizeof(double) + 2 * sizeof(uint64_t));
     b += (double)d->ntag * (sizeof(double) * 8 + sizeof(uint32_t) + sizeof(int64_t) * 2 + sizeof(int32_t));
-    return b;
+    return b + gr_dem_team_bytes(d->team);
 }

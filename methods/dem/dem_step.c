@@ -7,7 +7,12 @@
 #include <string.h>
 
 #include "dem.h"
+#include "dem_sync.h"
 #include "geom.h"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 /* Rebuild the list or re-sort the cells when the step's rule says so. */
 static int maybe_rebuild(gr_dem *d, int p, int q, int mode, double moved, gr_err *err)
@@ -42,13 +47,6 @@ static int early(const gr_dem *d)
     return d->par.integrator == GR_DEM_VERLET && d->par.neighbour == GR_DEM_NB_VERLET && !d->ext_fx;
 }
 
-static int rebuild_now(gr_dem *d, gr_err *err)
-{
-    if (gr_dem_sort(d, err) || gr_dem_build_list(d, d->f[F_X][d->cur], d->f[F_Y][d->cur], err))
-        return err->code;
-    return GR_OK;
-}
-
 /* After a committed early-mode step: whether the next one starts with a
  * rebuild (an unfused step knows no drift bound: it always does). */
 static void plan_rebuild(gr_dem *d, int fused, double moved)
@@ -72,7 +70,7 @@ static int step(gr_dem *d, int next, gr_err *err)
     const int ahead = early(d);
     d->exits_known = 0; /* the Verlet drift counts the grains that leave */
     if (ahead) {
-        if (d->need_build && rebuild_now(d, err))
+        if (d->need_build && gr_dem_rebuild(d, err))
             return err->code;
         if (!gr_dem_pre_use(d, E, &moved))
             moved = gr_dem_predict_verlet(d, p, q, 1);
@@ -140,7 +138,7 @@ static int another(const gr_dem *d, uint64_t done, double t1, double t_end, uint
 
 /* What the threaded Verlet loop carries from one step to the next. */
 typedef struct {
-    int stop, p, q, track, fused, early, flow;
+    int stop, rebuild, p, q, track, fused, early, flow;
     int pre, ahead; /* this step's drift was done ahead; this one drifts ahead */
     uint64_t done, E;
     double tn, moved_pre;
@@ -148,12 +146,14 @@ typedef struct {
 } vt_step;
 
 /* The start of a step, run by one thread: stop test, gates, buffers, and
- * (with Verlet lists) the force evaluation's set-up, which needs neither
- * the new positions nor a barrier of its own unless the list is rebuilt. */
+ * (with Verlet lists) the force evaluation's set-up (vt_setup), which needs
+ * neither the new positions nor a barrier of its own. When the step starts
+ * with a list rebuild, v->rebuild says so and the set-up waits for it. */
+static int vt_setup(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err);
 static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err)
 {
     const double eps = 1e-6 * d->par.dt;
-    v->fused = v->flow = v->pre = v->ahead = 0;
+    v->fused = v->flow = v->pre = v->ahead = v->rebuild = 0;
     v->stop = !(d->t < t_end - eps && (max_steps == 0 || v->done < max_steps));
     if (v->stop)
         return GR_OK;
@@ -163,8 +163,14 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
     v->E = d->step + 1;
     v->tn = d->t0 + (double)v->E * d->par.dt;
     v->early = early(d);
-    if (v->early && d->need_build && rebuild_now(d, err))
-        return v->stop = 1, err->code;
+    if (v->early && d->need_build)
+        return v->rebuild = 1, GR_OK;
+    return vt_setup(d, v, t_end, max_steps, err);
+}
+
+static int vt_setup(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_err *err)
+{
+    v->rebuild = 0;
     /* every grain drifts in this step (per block or per strip), counting exits */
     atomic_store_explicit(&d->exits, 0, memory_order_relaxed);
     d->exits_known = 1;
@@ -178,6 +184,8 @@ static int vt_start(gr_dem *d, vt_step *v, double t_end, uint64_t max_steps, gr_
         v->fused = gr_dem_eval_fuse_kick(d, v->p);
         v->flow = v->early && v->fused && gr_dem_eval_flow_begin(d);
         v->ahead = gr_dem_eval_pre(d, v->early && v->fused && another(d, v->done, v->tn, t_end, max_steps));
+        if (!v->flow)
+            gr_dem_eval_split(d);
     }
     return GR_OK;
 }
@@ -206,7 +214,7 @@ static int vt_colours(gr_dem *d, vt_step *v, int *rc, int *stop, gr_err *err)
                 gr_dem_eval_begin(d, q, v->tn, v->E, d->par.dt, mode, err))
                 *rc = err->code, *stop = 1;
             else
-                v->fused = gr_dem_eval_fuse_kick(d, p);
+                v->fused = gr_dem_eval_fuse_kick(d, p), gr_dem_eval_split(d);
         }
         if (*stop)
             return 1;
@@ -250,29 +258,49 @@ static void vt_end(gr_dem *d, vt_step *v, int *rc, double t_end, uint64_t max_st
 
 /* Velocity Verlet on several threads, many steps in one parallel region.
  * With Verlet lists and two colours a step is the one-barrier step of
- * dem_flow.c, else that of vt_colours; then the serial end, which also
- * starts the next step. The work and every sum are split exactly as in
- * gr_dem_step, so the runs are the same bits. */
+ * dem_flow.c, at whose end the last thread to finish its strips runs the
+ * serial end while the others wait (one meeting per step); else that of
+ * vt_colours, then the serial end in a single. The serial end also starts
+ * the next step; a list rebuild runs on all threads, then the last to
+ * finish its share sets the step up. The work and every sum are split
+ * exactly as in gr_dem_step, so the runs are the same bits. */
 static int advance_verlet_threads(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err)
 {
     const int nth = gr_dem_threads(d);
     int rc = GR_OK, stop_b = 0;
     vt_step v = {0};
+    gr_dem_meet_t mt;
+    gr_dem_meet_init(&mt);
     size_t per = (size_t)d->strips.n + 1;
     int *order = malloc((size_t)nth * per * sizeof *order);
     if (!order)
         return gr_fail(err, GR_ERUN, "out of memory");
 #pragma omp parallel num_threads(nth)
     {
-#pragma omp single
-        rc = vt_start(d, &v, t_end, max_steps, err);
+        const int T = omp_get_num_threads();
+        if (gr_dem_meet(&mt, T))
+            rc = vt_start(d, &v, t_end, max_steps, err), gr_dem_meet_release(&mt);
         while (!v.stop) {
+            if (v.rebuild) {
+                int r = gr_dem_rebuild_team(d, &mt, err);
+                if (gr_dem_meet(&mt, T)) {
+                    if (r)
+                        rc = r, v.stop = 1;
+                    else
+                        rc = vt_setup(d, &v, t_end, max_steps, err);
+                    gr_dem_meet_release(&mt);
+                }
+                if (v.stop)
+                    break;
+            }
             if (v.flow) {
                 gr_dem_eval_flow(d, v.p, v.q, order, per);
-#pragma omp barrier
-            } else if (vt_colours(d, &v, &rc, &stop_b, err)) {
-                break;
+                if (gr_dem_meet(&mt, T))
+                    vt_end(d, &v, &rc, t_end, max_steps, err), gr_dem_meet_release(&mt);
+                continue;
             }
+            if (vt_colours(d, &v, &rc, &stop_b, err))
+                break;
 #pragma omp single
             vt_end(d, &v, &rc, t_end, max_steps, err);
         }
