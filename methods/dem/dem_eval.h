@@ -51,6 +51,20 @@ typedef struct {
     long full_i;
 } dem_ctx;
 
+/* One thread's strips in the one-barrier step, reduced by that thread at
+ * the end of its run, so that the serial end of the step reads a line or
+ * two per thread instead of every strip's results (dem_flow.c). Maxima
+ * and the two largest moves do not depend on the order they are taken
+ * in; the sums do, so only thread 0, whose strips come first, sums its
+ * own (the serial end goes on from there in strip order). */
+typedef struct {
+    _Alignas(64) double best; /* largest overlap of its strips, the first strip's on a tie */
+    long bi, bj;
+    double vmax2;             /* of the strips it kicked */
+    double move[2], pre[2];   /* two largest squared moves: drift, drift done ahead */
+    double eel0, kin0;        /* thread 0: strips [0, its end), summed in order */
+} gr_dem_tred;
+
 /* The evaluation in progress: its context and per-strip scratch, kept
  * across steps so that a step allocates nothing. */
 struct gr_dem_eval {
@@ -77,6 +91,9 @@ struct gr_dem_eval {
      * colour's pushes were done */
     _Atomic uint64_t *dflag, *cflag;
     uint64_t epoch;
+    gr_dem_tred *tred; /* per thread, valid when tred_on: the last evaluation was */
+    int tred_on, cap_tred; /* a one-barrier step (set by gr_dem_eval_flow_begin) */
+    unsigned char *sstr; /* per strip: seg_strip (dem_evalrun.c) at this evaluation */
 };
 
 /* dem_balance.c: cut the m strips first, first + step, ... into nth runs

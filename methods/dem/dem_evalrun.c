@@ -22,7 +22,7 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
     free(ev->si), free(ev->sj), free(ev->son);
     free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
     free(ev->smove), free(ev->svmax), free(ev->tdrift), free(ev->spre);
-    free((void *)ev->dflag), free((void *)ev->cflag);
+    free((void *)ev->dflag), free((void *)ev->cflag), free(ev->tred), free(ev->sstr);
     free(ev);
 }
 
@@ -36,6 +36,8 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         free(ev->strial), free(ev->sway);
         free(ev->kin), free(ev->kicker), free(ev->smove);
         free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag), free(ev->spre);
+        free(ev->sstr);
+        ev->sstr = malloc((size_t)ns);
         ev->spre = calloc((size_t)ns * 2, sizeof *ev->spre);
         ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
         ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
@@ -65,6 +67,11 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->split = calloc(nsp, sizeof *ev->split);
         ev->cap_split = nsp;
     }
+    if (nth > ev->cap_tred) {
+        free(ev->tred);
+        ev->tred = aligned_alloc(64, (size_t)nth * sizeof *ev->tred);
+        ev->cap_tred = nth;
+    }
     if ((size_t)nseg + 1 > ev->cap_seg) {
         free(ev->soff), free(ev->svy), free(ev->son);
         ev->soff = malloc(((size_t)nseg + 1) * sizeof *ev->soff);
@@ -79,7 +86,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
         !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
-        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag) {
+        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag || !ev->tred || !ev->sstr) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
@@ -117,8 +124,9 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     /* every strip stores its overlap and energy (dem_pair.h, acc_store);
      * with lists, only a strip with candidate segments pushes on walls */
     for (int s = 0; s < ns; s++)
-        if (seg_strip(d, mode, s))
+        if ((ev->sstr[s] = (unsigned char)seg_strip(d, mode, s)))
             memset(ev->sseg + (size_t)s * sstride, 0, sstride * sizeof *ev->sseg);
+    ev->tred_on = 0;
     for (int k = 0; k < nseg; k++) {
         ev->son[k] = t_eval < d->seg[k].open_time;
         ev->soff[k] = ev->svy[k] = 0.0;
@@ -186,22 +194,18 @@ static int eval_error(const gr_dem *d, const dem_ctx *c, double best, long bi, l
                    ev->t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
 }
 
-/* Per segment, the strips' forces summed in strip order. */
-static void segment_sums(const gr_dem *d, const struct gr_dem_eval *ev, double *seg_out)
+/* Per segment, the strips' forces summed in strip order (from +0.0, over
+ * the strips that may push on a segment, found at the set-up). */
+static void segment_sums(const struct gr_dem_eval *ev, double *seg_out)
 {
-    for (int k = 0; k < ev->nseg; k++) {
-        double a = 0, b = 0, cfn = 0;
-        for (int s = 0; s < ev->ns; s++) {
-            if (!seg_strip(d, ev->mode, s))
-                continue;
-            const double *sf = ev->sseg + (size_t)s * ev->c.sstride + (size_t)k * 3;
-            a += sf[0];
-            b += sf[1];
-            cfn += sf[2];
-        }
-        seg_out[3 * k] = a;
-        seg_out[3 * k + 1] = b;
-        seg_out[3 * k + 2] = cfn;
+    for (int k = 0; k < 3 * ev->nseg; k++)
+        seg_out[k] = 0.0;
+    for (int s = 0; s < ev->ns; s++) {
+        if (!ev->sstr[s])
+            continue;
+        const double *sf = ev->sseg + (size_t)s * ev->c.sstride;
+        for (int k = 0; k < 3 * ev->nseg; k++)
+            seg_out[k] += sf[k];
     }
 }
 
@@ -218,16 +222,27 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
     }
     double best = 0.0, eel = 0.0;
     long bi = -1, bj = -1;
-    for (int s = 0; s < ev->ns; s++) {
-        eel += ev->sel[s];
-        if (ev->smax[s] > best) {
-            best = ev->smax[s];
-            bi = ev->si[s];
-            bj = ev->sj[s];
+    if (ev->tred_on) {
+        /* the threads' runs of strips in order: the same first maximum */
+        const gr_dem_tred *r = ev->tred;
+        eel = r[0].eel0;
+        for (int s = ev->split[3 * (c->nth + 1) + 1]; s < ev->ns; s++)
+            eel += ev->sel[s];
+        for (int t = 0; t < c->nth; t++)
+            if (r[t].best > best)
+                best = r[t].best, bi = r[t].bi, bj = r[t].bj;
+    } else {
+        for (int s = 0; s < ev->ns; s++) {
+            eel += ev->sel[s];
+            if (ev->smax[s] > best) {
+                best = ev->smax[s];
+                bi = ev->si[s];
+                bj = ev->sj[s];
+            }
         }
     }
     if (seg_out)
-        segment_sums(d, ev, seg_out);
+        segment_sums(ev, seg_out);
     d->max_ovl = best;
     d->eel_eval = eel;
     return eval_error(d, c, best, bi, bj, err);
