@@ -128,6 +128,7 @@ typedef struct gr_dem {
     size_t sg_cap;
     int need_build;
     uint64_t builds;
+    uint64_t list_gen;       /* list builds in this object (not checkpointed): caches key on it */
 
     gr_dem_hist hist;
 

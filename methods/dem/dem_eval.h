@@ -14,16 +14,24 @@
  * grain with more list pairs than DEM_BATCH goes one pair at a time. */
 enum { DEM_BATCH = 128, DEM_BATCH_GRAINS = 64 };
 
+/* What changes from step to step comes first, in two cache lines: the set-up
+ * (gr_dem_eval_begin) stores only the words that changed, so the other
+ * threads keep the rest cached. */
 typedef struct {
-    gr_dem *d;
     double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
-    const double *restrict ux, *restrict uy, *restrict uw, *restrict rad;
+    const double *restrict ux, *restrict uy, *restrict uw;
+    uint64_t E;
+    double integ;
+    int kick, kick_p;   /* fused kick on, and its old buffer */
+    int pre;            /* the kick also drifts the strip for the next step (buffer 2) */
+    int hist_full;      /* set when a grain ran out of history slots */
+    long full_i;
+    gr_dem *d;
+    const double *restrict rad;
     const int32_t *restrict tag;
     const uint32_t *restrict flags;
     dem_law law;
     dem_law law_w;      /* walls: their own damping (dem_damping.c) */
-    uint64_t E;
-    double integ;
     double Lx, Ly;
     /* active segments at this evaluation: offset and velocity */
     const double *seg_off;
@@ -41,14 +49,10 @@ typedef struct {
     unsigned char *sway; /* per strip: 1 when the batches were the faster */
     double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
-    int kick, kick_p;   /* fused kick on, and its old buffer */
-    int pre;            /* the kick also drifts the strip for the next step (buffer 2) */
     double *spre;       /* per strip: that drift's two largest squared moves */
     double *svmax;      /* per strip: see struct gr_dem_eval */
     const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
     int nth;            /* threads the split is for */
-    int hist_full;      /* set when a grain ran out of history slots */
-    long full_i;
 } dem_ctx;
 
 /* One thread's strips in the one-barrier step, reduced by that thread at
@@ -68,7 +72,7 @@ typedef struct {
 /* The evaluation in progress: its context and per-strip scratch, kept
  * across steps so that a step allocates nothing. */
 struct gr_dem_eval {
-    dem_ctx c;
+    _Alignas(64) dem_ctx c;
     int mode, ns, nseg;
     double t_eval;
     uint64_t E;
@@ -94,6 +98,13 @@ struct gr_dem_eval {
     gr_dem_tred *tred; /* per thread, valid when tred_on: the last evaluation was */
     int tred_on, cap_tred; /* a one-barrier step (set by gr_dem_eval_flow_begin) */
     unsigned char *sstr; /* per strip: seg_strip (dem_evalrun.c) at this evaluation */
+    uint64_t sstr_key;   /* list_gen + 1 that sstr is for (0: none), */
+    int sstr_mode, sstr_ns, sstr_nseg; /* and for which mode, strips and segments */
+    /* the one-barrier step's cut depends only on the strips' times and
+     * sizes: a step right after an untimed one-barrier step on the same
+     * list keeps it (flow_E, flow_gen: the last such step and its list) */
+    uint64_t flow_E, flow_gen;
+    int cut_keep;
 };
 
 /* dem_balance.c: cut the m strips first, first + step, ... into nth runs

@@ -29,8 +29,12 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
 static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err *err)
 {
     struct gr_dem_eval *ev = d->ev;
-    if (!ev && !(ev = d->ev = calloc(1, sizeof *ev)))
-        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    if (!ev) {
+        size_t sz = (sizeof *ev + 63) & ~(size_t)63;
+        if (!(ev = d->ev = aligned_alloc(64, sz)))
+            return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+        memset(ev, 0, sz);
+    }
     if ((size_t)ns > ev->cap_ns) {
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
         free(ev->strial), free(ev->sway);
@@ -106,6 +110,24 @@ static int seg_strip(const gr_dem *d, int mode, int s)
     return d->sg_start[i0[s]] != d->sg_start[i0[s + 1]];
 }
 
+/* dst = src, storing only the words that differ: a line left alone stays
+ * in the other cores' caches. */
+static void store_changed(void *dst, const void *src, size_t bytes)
+{
+    unsigned char *a = dst;
+    const unsigned char *b = src;
+    size_t k = 0;
+    for (; k + 8 <= bytes; k += 8) {
+        uint64_t u, v;
+        memcpy(&u, a + k, 8), memcpy(&v, b + k, 8);
+        if (u != v)
+            memcpy(a + k, &v, 8);
+    }
+    for (; k < bytes; k++)
+        if (a[k] != b[k])
+            a[k] = b[k];
+}
+
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
 {
     if (mode == GR_DEM_NB_CELLS) {
@@ -123,10 +145,18 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     struct gr_dem_eval *ev = d->ev;
     /* every strip stores its overlap and energy (dem_pair.h, acc_store);
      * with lists, only a strip with candidate segments pushes on walls */
+    /* sstr changes only with the list (Verlet) or not at all */
+    if (ev->sstr_key != d->list_gen + 1 || ev->sstr_mode != mode || ev->sstr_ns != ns || ev->sstr_nseg != nseg) {
+        for (int s = 0; s < ns; s++)
+            ev->sstr[s] = (unsigned char)seg_strip(d, mode, s);
+        ev->sstr_key = d->list_gen + 1, ev->sstr_mode = mode, ev->sstr_ns = ns, ev->sstr_nseg = nseg;
+    }
     for (int s = 0; s < ns; s++)
-        if ((ev->sstr[s] = (unsigned char)seg_strip(d, mode, s)))
+        if (ev->sstr[s])
             memset(ev->sseg + (size_t)s * sstride, 0, sstride * sizeof *ev->sseg);
     ev->tred_on = 0;
+    ev->cut_keep = ev->flow_E + 1 == E && (ev->flow_E & 15) != 0 && ev->flow_gen == d->list_gen && ev->ns == ns && ev->c.nth == nth;
+    ev->flow_E = 0; /* set again by gr_dem_eval_flow_begin */
     for (int k = 0; k < nseg; k++) {
         ev->son[k] = t_eval < d->seg[k].open_time;
         ev->soff[k] = ev->svy[k] = 0.0;
@@ -148,7 +178,7 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     ev->nseg = nseg;
     ev->t_eval = t_eval;
     ev->E = E;
-    ev->c = (dem_ctx){
+    dem_ctx c = {
         .d = d,
         .x = d->f[F_X][q], .y = d->f[F_Y][q],
         .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
@@ -161,7 +191,9 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
         .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
+        .kin = ev->kin, .kicker = ev->kicker, .svmax = ev->svmax, .spre = ev->spre,
     };
+    store_changed(&ev->c, &c, sizeof c);
     return GR_OK;
 }
 

@@ -33,8 +33,7 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
         if (ev->kicker[r] != k)
             ev->kicker[r] = k;
     }
-    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
-    ev->c.kick = 1, ev->c.kick_p = p;
+    ev->c.kick = 1, ev->c.kick_p = p; /* the pointers: gr_dem_eval_begin */
     return 1;
 }
 
@@ -42,7 +41,6 @@ int gr_dem_eval_pre(gr_dem *d, int on)
 {
     struct gr_dem_eval *ev = d->ev;
     ev->c.pre = on && ev->c.kick;
-    ev->c.spre = ev->spre;
     atomic_store_explicit(&d->exits_pre, 0, memory_order_relaxed);
     return ev->c.pre;
 }
@@ -138,6 +136,9 @@ int gr_dem_eval_flow_begin(gr_dem *d)
         return 0;
     ev->epoch++;
     ev->tred_on = 1;
+    ev->flow_E = ev->c.E, ev->flow_gen = d->list_gen;
+    if (ev->cut_keep)
+        return 1;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
     int cut[65], *S = ev->split + 3 * (nth + 1);
