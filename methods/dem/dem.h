@@ -128,6 +128,7 @@ typedef struct gr_dem {
     size_t sg_cap;
     int need_build;
     uint64_t builds;
+    uint64_t list_gen;       /* list builds in this object (not checkpointed): caches key on it */
 
     gr_dem_hist hist;
 
@@ -192,9 +193,10 @@ typedef struct gr_dem {
  * the number of threads). */
 #define DEM_BLOCK 512
 
-/* sqrt of the two largest of v[0..n) (squared displacements) summed: the
- * Verlet-list test, the same whatever grouping produced v (maxima). */
-static inline double gr_dem_top2_sum(const double *v, size_t n)
+/* The two largest of v[0..n) (squared displacements), and their square
+ * roots summed: the Verlet-list test, the same whatever grouping produced
+ * v (maxima). */
+static inline void gr_dem_top2(const double *v, size_t n, double m[2])
 {
     double m1 = 0, m2 = 0;
     for (size_t k = 0; k < n; k++) {
@@ -203,7 +205,14 @@ static inline double gr_dem_top2_sum(const double *v, size_t n)
         else if (v[k] > m2)
             m2 = v[k];
     }
-    return sqrt(m1) + sqrt(m2);
+    m[0] = m1, m[1] = m2;
+}
+
+static inline double gr_dem_top2_sum(const double *v, size_t n)
+{
+    double m[2];
+    gr_dem_top2(v, n, m);
+    return sqrt(m[0]) + sqrt(m[1]);
 }
 
 /* Parameters: defaults, then the scene's [dem] section; checks the time

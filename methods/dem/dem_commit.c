@@ -81,20 +81,20 @@ static int handle_exits(gr_dem *d, gr_err *err)
         return GR_OK;
     double xlo = box[0], xhi = box[1], ylo = box[2], yhi = box[3];
     const double *x = d->f[F_X][p], *y = d->f[F_Y][p];
-    size_t nout = 0;
-    for (size_t i = 0; i < d->n; i++)
-        nout += d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi);
-    if (!nout)
-        return GR_OK;
-    d->pre_E = 0; /* the drift done ahead has the grains where they were */
+    if (!known) {
+        size_t nout = 0;
+        for (size_t i = 0; i < d->n; i++)
+            nout += d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi);
+        if (!nout)
+            return GR_OK;
+    }
     int reinsert = sc->silo.present && sc->silo.reinsert;
-    unsigned char *gone = calloc(d->n + 1, 1);
-    if (!gone)
-        return gr_fail(err, GR_ERUN, "out of memory");
+    unsigned char *gone = NULL; /* grains lost (no spot to reinsert them) */
     int any_gone = 0, band = 0;
     for (size_t i = 0; i < d->n; i++) {
         if (!(d->im[i] != 0 && (x[i] < xlo || x[i] > xhi || y[i] < ylo || y[i] > yhi)))
             continue;
+        d->pre_E = 0; /* the drift done ahead has the grains where they were */
         d->outflow++;
         double nx, ny;
         if (reinsert) {
@@ -119,6 +119,8 @@ static int handle_exits(gr_dem *d, gr_err *err)
             }
             /* no free spot: the grain is lost, and says so in its flags */
         }
+        if (!gone && !(gone = calloc(d->n + 1, 1)))
+            return gr_fail(err, GR_ERUN, "out of memory");
         gone[i] = 1;
         any_gone = 1;
     }

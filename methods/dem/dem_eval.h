@@ -14,16 +14,24 @@
  * grain with more list pairs than DEM_BATCH goes one pair at a time. */
 enum { DEM_BATCH = 128, DEM_BATCH_GRAINS = 64 };
 
+/* What changes from step to step comes first, in two cache lines: the set-up
+ * (gr_dem_eval_begin) stores only the words that changed, so the other
+ * threads keep the rest cached. */
 typedef struct {
-    gr_dem *d;
     double *restrict x, *restrict y, *restrict fx, *restrict fy, *restrict tq;
-    const double *restrict ux, *restrict uy, *restrict uw, *restrict rad;
+    const double *restrict ux, *restrict uy, *restrict uw;
+    uint64_t E;
+    double integ;
+    int kick, kick_p;   /* fused kick on, and its old buffer */
+    int pre;            /* the kick also drifts the strip for the next step (buffer 2) */
+    int hist_full;      /* set when a grain ran out of history slots */
+    long full_i;
+    gr_dem *d;
+    const double *restrict rad;
     const int32_t *restrict tag;
     const uint32_t *restrict flags;
     dem_law law;
     dem_law law_w;      /* walls: their own damping (dem_damping.c) */
-    uint64_t E;
-    double integ;
     double Lx, Ly;
     /* active segments at this evaluation: offset and velocity */
     const double *seg_off;
@@ -41,20 +49,30 @@ typedef struct {
     unsigned char *sway; /* per strip: 1 when the batches were the faster */
     double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
-    int kick, kick_p;   /* fused kick on, and its old buffer */
-    int pre;            /* the kick also drifts the strip for the next step (buffer 2) */
     double *spre;       /* per strip: that drift's two largest squared moves */
     double *svmax;      /* per strip: see struct gr_dem_eval */
     const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
     int nth;            /* threads the split is for */
-    int hist_full;      /* set when a grain ran out of history slots */
-    long full_i;
 } dem_ctx;
+
+/* One thread's strips in the one-barrier step, reduced by that thread at
+ * the end of its run, so that the serial end of the step reads a line or
+ * two per thread instead of every strip's results (dem_flow.c). Maxima
+ * and the two largest moves do not depend on the order they are taken
+ * in; the sums do, so only thread 0, whose strips come first, sums its
+ * own (the serial end goes on from there in strip order). */
+typedef struct {
+    _Alignas(64) double best; /* largest overlap of its strips, the first strip's on a tie */
+    long bi, bj;
+    double vmax2;             /* of the strips it kicked */
+    double move[2], pre[2];   /* two largest squared moves: drift, drift done ahead */
+    double eel0, kin0;        /* thread 0: strips [0, its end), summed in order */
+} gr_dem_tred;
 
 /* The evaluation in progress: its context and per-strip scratch, kept
  * across steps so that a step allocates nothing. */
 struct gr_dem_eval {
-    dem_ctx c;
+    _Alignas(64) dem_ctx c;
     int mode, ns, nseg;
     double t_eval;
     uint64_t E;
@@ -77,6 +95,16 @@ struct gr_dem_eval {
      * colour's pushes were done */
     _Atomic uint64_t *dflag, *cflag;
     uint64_t epoch;
+    gr_dem_tred *tred; /* per thread, valid when tred_on: the last evaluation was */
+    int tred_on, cap_tred; /* a one-barrier step (set by gr_dem_eval_flow_begin) */
+    unsigned char *sstr; /* per strip: seg_strip (dem_evalrun.c) at this evaluation */
+    uint64_t sstr_key;   /* list_gen + 1 that sstr is for (0: none), */
+    int sstr_mode, sstr_ns, sstr_nseg; /* and for which mode, strips and segments */
+    /* the one-barrier step's cut depends only on the strips' times and
+     * sizes: a step right after an untimed one-barrier step on the same
+     * list keeps it (flow_E, flow_gen: the last such step and its list) */
+    uint64_t flow_E, flow_gen;
+    int cut_keep;
 };
 
 /* dem_balance.c: cut the m strips first, first + step, ... into nth runs

@@ -22,20 +22,26 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
     free(ev->si), free(ev->sj), free(ev->son);
     free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
     free(ev->smove), free(ev->svmax), free(ev->tdrift), free(ev->spre);
-    free((void *)ev->dflag), free((void *)ev->cflag);
+    free((void *)ev->dflag), free((void *)ev->cflag), free(ev->tred), free(ev->sstr);
     free(ev);
 }
 
 static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err *err)
 {
     struct gr_dem_eval *ev = d->ev;
-    if (!ev && !(ev = d->ev = calloc(1, sizeof *ev)))
-        return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+    if (!ev) {
+        size_t sz = (sizeof *ev + 63) & ~(size_t)63;
+        if (!(ev = d->ev = aligned_alloc(64, sz)))
+            return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
+        memset(ev, 0, sz);
+    }
     if ((size_t)ns > ev->cap_ns) {
         free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
         free(ev->strial), free(ev->sway);
         free(ev->kin), free(ev->kicker), free(ev->smove);
         free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag), free(ev->spre);
+        free(ev->sstr);
+        ev->sstr = malloc((size_t)ns);
         ev->spre = calloc((size_t)ns * 2, sizeof *ev->spre);
         ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
         ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
@@ -65,6 +71,11 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->split = calloc(nsp, sizeof *ev->split);
         ev->cap_split = nsp;
     }
+    if (nth > ev->cap_tred) {
+        free(ev->tred);
+        ev->tred = aligned_alloc(64, (size_t)nth * sizeof *ev->tred);
+        ev->cap_tred = nth;
+    }
     if ((size_t)nseg + 1 > ev->cap_seg) {
         free(ev->soff), free(ev->svy), free(ev->son);
         ev->soff = malloc(((size_t)nseg + 1) * sizeof *ev->soff);
@@ -79,7 +90,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     }
     if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
         !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
-        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag) {
+        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag || !ev->tred || !ev->sstr) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
@@ -99,6 +110,24 @@ static int seg_strip(const gr_dem *d, int mode, int s)
     return d->sg_start[i0[s]] != d->sg_start[i0[s + 1]];
 }
 
+/* dst = src, storing only the words that differ: a line left alone stays
+ * in the other cores' caches. */
+static void store_changed(void *dst, const void *src, size_t bytes)
+{
+    unsigned char *a = dst;
+    const unsigned char *b = src;
+    size_t k = 0;
+    for (; k + 8 <= bytes; k += 8) {
+        uint64_t u, v;
+        memcpy(&u, a + k, 8), memcpy(&v, b + k, 8);
+        if (u != v)
+            memcpy(a + k, &v, 8);
+    }
+    for (; k < bytes; k++)
+        if (a[k] != b[k])
+            a[k] = b[k];
+}
+
 int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ, int mode, gr_err *err)
 {
     if (mode == GR_DEM_NB_CELLS) {
@@ -116,9 +145,18 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     struct gr_dem_eval *ev = d->ev;
     /* every strip stores its overlap and energy (dem_pair.h, acc_store);
      * with lists, only a strip with candidate segments pushes on walls */
+    /* sstr changes only with the list (Verlet) or not at all */
+    if (ev->sstr_key != d->list_gen + 1 || ev->sstr_mode != mode || ev->sstr_ns != ns || ev->sstr_nseg != nseg) {
+        for (int s = 0; s < ns; s++)
+            ev->sstr[s] = (unsigned char)seg_strip(d, mode, s);
+        ev->sstr_key = d->list_gen + 1, ev->sstr_mode = mode, ev->sstr_ns = ns, ev->sstr_nseg = nseg;
+    }
     for (int s = 0; s < ns; s++)
-        if (seg_strip(d, mode, s))
+        if (ev->sstr[s])
             memset(ev->sseg + (size_t)s * sstride, 0, sstride * sizeof *ev->sseg);
+    ev->tred_on = 0;
+    ev->cut_keep = ev->flow_E + 1 == E && (ev->flow_E & 15) != 0 && ev->flow_gen == d->list_gen && ev->ns == ns && ev->c.nth == nth;
+    ev->flow_E = 0; /* set again by gr_dem_eval_flow_begin */
     for (int k = 0; k < nseg; k++) {
         ev->son[k] = t_eval < d->seg[k].open_time;
         ev->soff[k] = ev->svy[k] = 0.0;
@@ -140,7 +178,7 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
     ev->nseg = nseg;
     ev->t_eval = t_eval;
     ev->E = E;
-    ev->c = (dem_ctx){
+    dem_ctx c = {
         .d = d,
         .x = d->f[F_X][q], .y = d->f[F_Y][q],
         .fx = d->f[F_FX][q], .fy = d->f[F_FY][q], .tq = d->f[F_TQ][q],
@@ -153,7 +191,9 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
         .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
         .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
+        .kin = ev->kin, .kicker = ev->kicker, .svmax = ev->svmax, .spre = ev->spre,
     };
+    store_changed(&ev->c, &c, sizeof c);
     return GR_OK;
 }
 
@@ -186,22 +226,18 @@ static int eval_error(const gr_dem *d, const dem_ctx *c, double best, long bi, l
                    ev->t_eval, (long long)d->tag_id[d->tag[bi]], other, best, d->par.max_overlap);
 }
 
-/* Per segment, the strips' forces summed in strip order. */
-static void segment_sums(const gr_dem *d, const struct gr_dem_eval *ev, double *seg_out)
+/* Per segment, the strips' forces summed in strip order (from +0.0, over
+ * the strips that may push on a segment, found at the set-up). */
+static void segment_sums(const struct gr_dem_eval *ev, double *seg_out)
 {
-    for (int k = 0; k < ev->nseg; k++) {
-        double a = 0, b = 0, cfn = 0;
-        for (int s = 0; s < ev->ns; s++) {
-            if (!seg_strip(d, ev->mode, s))
-                continue;
-            const double *sf = ev->sseg + (size_t)s * ev->c.sstride + (size_t)k * 3;
-            a += sf[0];
-            b += sf[1];
-            cfn += sf[2];
-        }
-        seg_out[3 * k] = a;
-        seg_out[3 * k + 1] = b;
-        seg_out[3 * k + 2] = cfn;
+    for (int k = 0; k < 3 * ev->nseg; k++)
+        seg_out[k] = 0.0;
+    for (int s = 0; s < ev->ns; s++) {
+        if (!ev->sstr[s])
+            continue;
+        const double *sf = ev->sseg + (size_t)s * ev->c.sstride;
+        for (int k = 0; k < 3 * ev->nseg; k++)
+            seg_out[k] += sf[k];
     }
 }
 
@@ -218,16 +254,27 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
     }
     double best = 0.0, eel = 0.0;
     long bi = -1, bj = -1;
-    for (int s = 0; s < ev->ns; s++) {
-        eel += ev->sel[s];
-        if (ev->smax[s] > best) {
-            best = ev->smax[s];
-            bi = ev->si[s];
-            bj = ev->sj[s];
+    if (ev->tred_on) {
+        /* the threads' runs of strips in order: the same first maximum */
+        const gr_dem_tred *r = ev->tred;
+        eel = r[0].eel0;
+        for (int s = ev->split[3 * (c->nth + 1) + 1]; s < ev->ns; s++)
+            eel += ev->sel[s];
+        for (int t = 0; t < c->nth; t++)
+            if (r[t].best > best)
+                best = r[t].best, bi = r[t].bi, bj = r[t].bj;
+    } else {
+        for (int s = 0; s < ev->ns; s++) {
+            eel += ev->sel[s];
+            if (ev->smax[s] > best) {
+                best = ev->smax[s];
+                bi = ev->si[s];
+                bj = ev->sj[s];
+            }
         }
     }
     if (seg_out)
-        segment_sums(d, ev, seg_out);
+        segment_sums(ev, seg_out);
     d->max_ovl = best;
     d->eel_eval = eel;
     return eval_error(d, c, best, bi, bj, err);

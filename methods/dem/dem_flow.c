@@ -33,8 +33,7 @@ int gr_dem_eval_fuse_kick(gr_dem *d, int p)
         if (ev->kicker[r] != k)
             ev->kicker[r] = k;
     }
-    ev->c.kin = ev->kin, ev->c.kicker = ev->kicker, ev->c.svmax = ev->svmax;
-    ev->c.kick = 1, ev->c.kick_p = p;
+    ev->c.kick = 1, ev->c.kick_p = p; /* the pointers: gr_dem_eval_begin */
     return 1;
 }
 
@@ -42,10 +41,26 @@ int gr_dem_eval_pre(gr_dem *d, int on)
 {
     struct gr_dem_eval *ev = d->ev;
     ev->c.pre = on && ev->c.kick;
-    ev->c.spre = ev->spre;
     atomic_store_explicit(&d->exits_pre, 0, memory_order_relaxed);
     return ev->c.pre;
 }
+
+/* The two largest squared moves over the threads' own (pre: of the drift
+ * done ahead): the same two as over every strip's. */
+static double tred_top2(const struct gr_dem_eval *ev, int pre)
+{
+    double v[128];
+    int T = ev->c.nth < 64 ? ev->c.nth : 64;
+    for (int t = 0; t < T; t++) {
+        const double *m = pre ? ev->tred[t].pre : ev->tred[t].move;
+        v[2 * t] = m[0], v[2 * t + 1] = m[1];
+    }
+    return gr_dem_top2_sum(v, 2 * (size_t)T);
+}
+
+/* The first strip of thread 1's run in the one-barrier step: the serial
+ * sums go on from there after thread 0's. */
+static int tred_from(const struct gr_dem_eval *ev) { return ev->split[3 * (ev->c.nth + 1) + 1]; }
 
 int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)
 {
@@ -64,28 +79,42 @@ int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)
         d->f[f][q] = d->f[f][2];
         d->f[f][2] = t;
     }
-    *moved = gr_dem_top2_sum(ev->spre, 2 * (size_t)ev->ns);
+    *moved = ev->tred_on ? tred_top2(ev, 1) : gr_dem_top2_sum(ev->spre, 2 * (size_t)ev->ns);
     atomic_store_explicit(&d->exits, atomic_load_explicit(&d->exits_pre, memory_order_relaxed),
                           memory_order_relaxed);
     d->exits_known = 1;
     return 1;
 }
 
-double gr_dem_eval_moved(const gr_dem *d) { return gr_dem_top2_sum(d->ev->smove, 2 * (size_t)d->ev->ns); }
+double gr_dem_eval_moved(const gr_dem *d)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    return ev->tred_on ? tred_top2(ev, 0) : gr_dem_top2_sum(ev->smove, 2 * (size_t)ev->ns);
+}
 
 double gr_dem_eval_kinetic(const gr_dem *d)
 {
+    const struct gr_dem_eval *ev = d->ev;
     double ek = 0.0;
-    for (int s = 0; s < d->ev->ns; s++)
-        ek += d->ev->kin[s];
+    int s = 0;
+    if (ev->tred_on)
+        ek = ev->tred[0].kin0, s = tred_from(ev);
+    for (; s < ev->ns; s++)
+        ek += ev->kin[s];
     return ek;
 }
 
 double gr_dem_eval_vmax2(const gr_dem *d)
 {
+    const struct gr_dem_eval *ev = d->ev;
     double m = 0.0;
-    for (int s = 0; s < d->ev->ns; s++)
-        m = fmax(m, d->ev->svmax[s]);
+    if (ev->tred_on) {
+        for (int t = 0; t < ev->c.nth; t++)
+            m = fmax(m, ev->tred[t].vmax2);
+        return m;
+    }
+    for (int s = 0; s < ev->ns; s++)
+        m = fmax(m, ev->svmax[s]);
     return m;
 }
 
@@ -103,16 +132,16 @@ int gr_dem_eval_flow_begin(gr_dem *d)
 {
     struct gr_dem_eval *ev = d->ev;
     int nth = ev->c.nth, ns = ev->ns;
-    if (!ev->c.kick || ev->c.ncol != 2 || ns < 2 || nth < 2)
+    if (!ev->c.kick || ev->c.ncol != 2 || ns < 2 || nth < 2 || nth > 64)
         return 0;
     ev->epoch++;
+    ev->tred_on = 1;
+    ev->flow_E = ev->c.E, ev->flow_gen = d->list_gen;
+    if (ev->cut_keep)
+        return 1;
     /* one cut for the whole step: a thread's run of strips is drifted,
      * pushed and kicked by it, so the time to balance is their sum */
-    int cut[64], *S = ev->split + 3 * (nth + 1);
-    if (nth >= 64) {
-        gr_dem_cut_runs(d, ev, 0, 1, ns, nth, S);
-        return 1;
-    }
+    int cut[65], *S = ev->split + 3 * (nth + 1);
     gr_dem_cut_runs(d, ev, 0, 1, ns, nth, cut);
     if (memcmp(cut, S, (size_t)(nth + 1) * sizeof *S)) /* as kicker above */
         memcpy(S, cut, (size_t)(nth + 1) * sizeof *S);
@@ -132,6 +161,35 @@ static int colour_order(int s0, int s1, int col, int *out)
     for (int s = first + 2; s < last; s += 2)
         out[m++] = s;
     return m;
+}
+
+/* Thread t's results over its run [s0, s1): the overlap and the drift's
+ * moves of the strips it pushed, the speeds and the moves ahead of those
+ * it kicked (strip r is kicked after the pushes of kicker[r], r or r - 1). */
+static void reduce_run(struct gr_dem_eval *ev, int t, int s0, int s1)
+{
+    gr_dem_tred r = {.best = 0.0, .bi = -1, .bj = -1};
+    for (int s = s0; s < s1; s++) {
+        if (ev->smax[s] > r.best)
+            r.best = ev->smax[s], r.bi = ev->si[s], r.bj = ev->sj[s];
+    }
+    if (!ev->drifted)
+        gr_dem_top2(ev->smove + 2 * s0, 2 * (size_t)(s1 - s0), r.move);
+    int r0 = s0, r1 = s1 < ev->ns ? s1 + 1 : s1;
+    if (r0 < r1 && ev->kicker[r0] < s0)
+        r0++;
+    if (r1 > s1 && ev->kicker[s1] >= s1)
+        r1--;
+    for (int s = r0; s < r1; s++)
+        r.vmax2 = fmax(r.vmax2, ev->svmax[s]);
+    if (ev->c.pre)
+        gr_dem_top2(ev->spre + 2 * r0, 2 * (size_t)(r1 - r0), r.pre);
+    if (t == 0) {
+        /* strips [0, s1) are all pushed and kicked by this thread */
+        for (int s = 0; s < s1; s++)
+            r.eel0 += ev->sel[s], r.kin0 += ev->kin[s];
+    }
+    ev->tred[t] = r;
 }
 
 void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
@@ -172,4 +230,5 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
             atomic_store_explicit(&ev->cflag[s], ep, memory_order_release);
         }
     }
+    reduce_run(ev, t, s0, s1);
 }

@@ -308,6 +308,7 @@ static int list_finish(gr_dem *d, size_t cnt, size_t scnt, gr_err *err)
     strips_index(d);
     d->need_build = 0;
     d->builds++;
+    d->list_gen++;
     return GR_OK;
 }
 
