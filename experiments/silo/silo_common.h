@@ -112,7 +112,7 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n);
  * "Measured cost"); the cost of a thesis-size filling and of a branch to
  * another orifice in steps at that speed (measured means): the estimates
  * printed before a full run. */
-#define SILO_DEM_RATE 3.5e7
+#define SILO_DEM_RATE 4.1e7
 #define SILO_FILL_STEPS 3.0e5
 #define SILO_BRANCH_STEPS 1.9e4
 /* a branch to the filling's own orifice: its packing is lifted only off
