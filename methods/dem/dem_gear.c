@@ -37,18 +37,22 @@ void gr_dem_predict_euler(gr_dem *d, int p, int q)
  * c0 = 3/16 because the forces depend on velocities. */
 static const double gear_c[6] = {3.0 / 16.0, 251.0 / 360.0, 1.0, 11.0 / 18.0, 1.0 / 6.0, 1.0 / 60.0};
 
+/* Per degree of freedom (x, y, angle): the position, velocity and b_2..b_5
+ * fields, shared by the predictor and the corrector. */
+static const int gear_q0[3] = {F_X, F_Y, F_TH}, gear_qv[3] = {F_VX, F_VY, F_W};
+static const int gear_qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
+                                  {F_B2T, F_B3T, F_B4T, F_B5T}};
+
 void gr_dem_predict_gear(gr_dem *d, int p, int q)
 {
     double dt = d->par.dt;
-    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
-    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
-                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
     int ndof = d->rot ? 3 : 2;
     for (int c = 0; c < ndof; c++) {
-        double *r0 = d->f[q0[c]][p], *v = d->f[qv[c]][p];
-        double *b2 = d->f[qb[c][0]][p], *b3 = d->f[qb[c][1]][p], *b4 = d->f[qb[c][2]][p], *b5 = d->f[qb[c][3]][p];
-        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
-        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        double *r0 = d->f[gear_q0[c]][p], *v = d->f[gear_qv[c]][p];
+        const int *k = gear_qb[c];
+        double *b2 = d->f[k[0]][p], *b3 = d->f[k[1]][p], *b4 = d->f[k[2]][p], *b5 = d->f[k[3]][p];
+        double *R0 = d->f[gear_q0[c]][q], *V = d->f[gear_qv[c]][q];
+        double *B2 = d->f[k[0]][q], *B3 = d->f[k[1]][q], *B4 = d->f[k[2]][q], *B5 = d->f[k[3]][q];
         double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
         for (size_t i = 0; i < d->n; i++) {
             double b1 = dt * v[i];
@@ -66,13 +70,11 @@ void gr_dem_predict_gear(gr_dem *d, int p, int q)
 void gr_dem_correct_gear(gr_dem *d, int q)
 {
     double dt = d->par.dt, h2 = 0.5 * dt * dt;
-    static const int q0[3] = {F_X, F_Y, F_TH}, qv[3] = {F_VX, F_VY, F_W};
-    static const int qb[3][4] = {{F_B2X, F_B3X, F_B4X, F_B5X}, {F_B2Y, F_B3Y, F_B4Y, F_B5Y},
-                                 {F_B2T, F_B3T, F_B4T, F_B5T}};
     int ndof = d->rot ? 3 : 2;
     for (int c = 0; c < ndof; c++) {
-        double *R0 = d->f[q0[c]][q], *V = d->f[qv[c]][q];
-        double *B2 = d->f[qb[c][0]][q], *B3 = d->f[qb[c][1]][q], *B4 = d->f[qb[c][2]][q], *B5 = d->f[qb[c][3]][q];
+        const int *k = gear_qb[c];
+        double *R0 = d->f[gear_q0[c]][q], *V = d->f[gear_qv[c]][q];
+        double *B2 = d->f[k[0]][q], *B3 = d->f[k[1]][q], *B4 = d->f[k[2]][q], *B5 = d->f[k[3]][q];
         const double *F = d->f[c == 0 ? F_FX : c == 1 ? F_FY : F_TQ][q];
         const double *inv = c == 2 ? d->iI : d->im;
         double L = c == 0 ? d->Lx : c == 1 ? d->Ly : 0.0;
