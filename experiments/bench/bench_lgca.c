@@ -58,7 +58,7 @@ static gr_sim *make(long n, int threads, const char *rules, double p, gr_scene *
         for (size_t c = 0; c < LGCA_CH; c++)
             for (size_t w = 0; w < nw; w++) {
                 uint64_t k = (j * LGCA_CH + c) * nw + w;
-                L->s[k] = lgca_rand_word(L->key, k, 60, 0) & lgca_rand_word(L->key, k, 61, 0) & L->valid[w];
+                L->lane[j][c * nw + w] = lgca_rand_word(L->key, k, 60, 0) & lgca_rand_word(L->key, k, 61, 0) & L->valid[w];
             }
     *scp = sc;
     return s;

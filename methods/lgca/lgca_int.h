@@ -124,7 +124,9 @@ typedef struct lgca {
     double a, h, mass;      /* spacing, lane spacing, particle mass */
     int per_i, per_j;       /* periodic along the axis (y) and across (x) */
     int open[4];            /* GR_LEFT.. side open (particles leaving vanish) */
-    uint64_t *s;            /* [(j * 7 + c) * nw + w] */
+    uint64_t **lane;        /* [j]: lane j, 7 planes of nw words ([c * nw + w]) */
+    uint64_t **seg;         /* where the lanes live: one allocation per thread's block (lgca_geom.c) */
+    int nseg, *seg_j;       /* segment k holds lanes seg_j[k] .. seg_j[k + 1] - 1, in order */
     uint64_t *solid;        /* [j * nw + w] wall nodes */
     uint64_t *valid;        /* [w] nodes that exist in a lane */
     lgca_wall *walls;
@@ -167,11 +169,11 @@ static inline void lgca_node_xy(const lgca *L, int i, int j, double *x, double *
 }
 static inline int lgca_get(const lgca *L, int i, int j, int c)
 {
-    return (int)(L->s[((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw + (size_t)(i >> 6)] >> (i & 63) & 1u);
+    return (int)(L->lane[j][(size_t)c * (size_t)L->nw + (size_t)(i >> 6)] >> (i & 63) & 1u);
 }
 static inline void lgca_put(lgca *L, int i, int j, int c, int v)
 {
-    uint64_t *w = &L->s[((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw + (size_t)(i >> 6)];
+    uint64_t *w = &L->lane[j][(size_t)c * (size_t)L->nw + (size_t)(i >> 6)];
     uint64_t m = (uint64_t)1 << (i & 63);
     *w = v ? *w | m : *w & ~m;
 }

@@ -2,6 +2,7 @@
  * snapshot; fields and observables from the node occupations. */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "lgca_int.h"
 #include "method.h"
@@ -94,10 +95,15 @@ static int m_save(const void *s, gr_ckpt *ck, gr_err *err)
 {
     const lgca *L = s;
     uint64_t misc[6] = {L->step, L->outflow, L->reinserted, L->lost, (uint64_t)L->ni, (uint64_t)L->nj};
-    size_t n = (size_t)L->nj * LGCA_CH * (size_t)L->nw;
-    if (gr_ckpt_put_u64(ck, "lgca_misc", misc, 6, err) || gr_ckpt_put_u64(ck, "lgca_state", L->s, n, err))
-        return err->code;
-    return GR_OK;
+    size_t n = (size_t)L->nj * LGCA_CH * (size_t)L->nw, lw = LGCA_CH * (size_t)L->nw;
+    uint64_t *all = malloc(n * sizeof *all);
+    if (!all)
+        return gr_fail(err, GR_ERUN, "out of memory for a checkpoint of %zu words", n);
+    for (int j = 0; j < L->nj; j++)
+        memcpy(all + (size_t)j * lw, L->lane[j], lw * sizeof *all);
+    int rc = gr_ckpt_put_u64(ck, "lgca_misc", misc, 6, err) || gr_ckpt_put_u64(ck, "lgca_state", all, n, err);
+    free(all);
+    return rc ? err->code : GR_OK;
 }
 
 /* The gates are recomputed from the step by the next lgca_step. */
@@ -115,8 +121,16 @@ static int m_load(void *s, gr_ckpt *ck, gr_err *err)
         return err->code;
     if (len != n)
         return gr_fail(err, GR_EINPUT, "checkpoint: lattice state of %zu words, expected %zu", len, n);
-    if (gr_ckpt_get_u64(ck, "lgca_state", L->s, n, err))
+    uint64_t *all = malloc(n * sizeof *all);
+    if (!all)
+        return gr_fail(err, GR_ERUN, "out of memory for a checkpoint of %zu words", n);
+    if (gr_ckpt_get_u64(ck, "lgca_state", all, n, err)) {
+        free(all);
         return err->code;
+    }
+    for (int j = 0; j < L->nj; j++)
+        memcpy(L->lane[j], all + (size_t)j * LGCA_CH * (size_t)L->nw, LGCA_CH * (size_t)L->nw * sizeof *all);
+    free(all);
     L->step = misc[0], L->outflow = misc[1], L->reinserted = misc[2], L->lost = misc[3];
     return GR_OK;
 }

@@ -15,7 +15,7 @@ void lgca_populations(const lgca *L, uint64_t *moving, uint64_t *resting)
     *moving = *resting = 0;
     for (size_t j = 0; j < (size_t)L->nj; j++)
         for (size_t c = 0; c < LGCA_CH; c++) {
-            const uint64_t *x = L->s + (j * LGCA_CH + c) * nw;
+            const uint64_t *x = L->lane[j] + c * nw;
             uint64_t n = 0;
             for (size_t w = 0; w < nw; w++)
                 n += (uint64_t)__builtin_popcountll(x[w]);
@@ -32,7 +32,7 @@ void lgca_observe(const lgca *L, gr_obs *o)
     double ysum = 0;
     for (size_t j = 0; j < (size_t)L->nj; j++)
         for (size_t k = 0; k < LGCA_CH; k++) {
-            const uint64_t *x = L->s + (j * LGCA_CH + k) * nw;
+            const uint64_t *x = L->lane[j] + k * nw;
             for (size_t w = 0; w < nw; w++)
                 for (uint64_t b = x[w]; b; b &= b - 1) {
                     int i = (int)(w * 64) + __builtin_ctzll(b);
@@ -95,7 +95,7 @@ int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err)
     for (int j = 0; j < L->nj; j++)
         for (size_t wd = 0; wd < nw; wd++) {
             uint64_t any = 0;
-            const uint64_t *lane = L->s + (size_t)j * LGCA_CH * nw;
+            const uint64_t *lane = L->lane[j];
             for (int k = 0; k < LGCA_CH; k++)
                 any |= lane[(size_t)k * nw + wd];
             for (; any; any &= any - 1) {

@@ -92,11 +92,15 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
     size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
     uint64_t *fluid = scr, *ch = scr + cw, *pb = scr + 2 * cw, *need = scr + 3 * cw, *dense = scr + 4 * cw;
     int granular = L->par.rules == LGCA_RULES_GRANULAR;
-    for (int ja = j0; ja < j1; ja += L->chunk) {
-        int jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
+    for (int ja = j0, jb; ja < j1; ja = jb) {
+        int k = 0;
+        while (L->seg_j[k + 1] <= ja)
+            k++;
+        jb = ja + L->chunk < j1 ? ja + L->chunk : j1;
+        jb = jb < L->seg_j[k + 1] ? jb : L->seg_j[k + 1]; /* a chunk's lanes lie in one allocation */
         size_t n = (size_t)(jb - ja) * nw;
         uint64_t base = (uint64_t)ja * nw;
-        uint64_t *lanes = L->s + (size_t)ja * LGCA_CH * nw;
+        uint64_t *lanes = L->lane[ja];
         for (size_t o = 0; o < n; o += nw)
             for (size_t w = 0; w < nw; w++)
                 fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
@@ -153,7 +157,7 @@ static void reflect(lgca *L)
 
 static uint64_t *plane(lgca *L, int j, int c)
 {
-    return L->s + ((size_t)j * LGCA_CH + (size_t)c) * (size_t)L->nw;
+    return L->lane[j] + (size_t)c * (size_t)L->nw;
 }
 
 static uint64_t count(const uint64_t *x, size_t nw)

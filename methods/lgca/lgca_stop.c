@@ -72,7 +72,7 @@ void lgca_stop_pass(lgca *L, uint64_t *mask)
     lgca_access a = {plane_get, plane_set, L};
     size_t nw = (size_t)L->nw;
     for (int j = 0; j < L->nj; j++) {
-        const uint64_t *s = L->s + (size_t)j * LGCA_CH * nw;
+        const uint64_t *s = L->lane[j];
         for (size_t w = 0; w < nw; w++)
             mask[(size_t)j * nw + w] = s[LGCA_REST * nw + w] & L->valid[w] & ~L->solid[(size_t)j * nw + w] &
                                        ((s[w] & s[3 * nw + w]) | (s[nw + w] & s[4 * nw + w]) |

@@ -29,7 +29,7 @@ static inline void lgca_pipe_rows(const lgca *L, double *r)
     for (int j = 1; j < L->nj - 1; j++)
         for (int c = 0; c < LGCA_CH; c++)
             for (size_t w = 0; w < nw; w++)
-                for (uint64_t x = L->s[((size_t)j * LGCA_CH + (size_t)c) * nw + w]; x; x &= x - 1)
+                for (uint64_t x = L->lane[j][(size_t)c * nw + w]; x; x &= x - 1)
                     r[w * 64 + (size_t)__builtin_ctzll(x)] += 1;
 }
 

@@ -34,7 +34,7 @@ static inline double lgca_mode_shear(const lgca *L, double k, long *acc)
     memset(acc, 0, 2 * (size_t)L->ni * sizeof *acc);
     size_t nw = (size_t)L->nw;
     for (int j = 0; j < L->nj; j++) {
-        const uint64_t *p = &L->s[(size_t)j * LGCA_CH * nw];
+        const uint64_t *p = L->lane[j];
         long *a = acc + (size_t)(j & 1) * (size_t)L->ni;
         for (size_t w = 0; w < nw; w++) {
             uint64_t r1 = p[nw + w], r2 = p[2 * nw + w], l1 = p[4 * nw + w], l2 = p[5 * nw + w];

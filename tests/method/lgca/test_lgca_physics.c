@@ -109,7 +109,7 @@ static void fermi_dirac_equilibrium(void **unused)
         for (int c = 0; c < LGCA_CH; c++)
             for (int j = 0; j < L->nj; j++)
                 for (int w = 0; w < L->nw; w++)
-                    occ[c] += __builtin_popcountll(L->s[((size_t)j * LGCA_CH + c) * L->nw + w]) / (50 * nodes);
+                    occ[c] += __builtin_popcountll(L->lane[j][(size_t)c * L->nw + w]) / (50 * nodes);
     }
     for (int c = 0; c < LGCA_CH; c++) {
         printf("# channel %d: occupation %.5f, Fermi-Dirac at zero flow %.5f\n", c, occ[c], want);
