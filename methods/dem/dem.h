@@ -390,6 +390,8 @@ int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved);
  * the caller's barrier ends the step. */
 int gr_dem_eval_flow_begin(gr_dem *d);
 void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride);
+/* dem_force.c: the fused kick of strip r, whatever its kicker. */
+void gr_dem_eval_kick_strip(gr_dem *d, int r);
 /* Largest squared half-kick speed v + (dt/2) a of the next drift, from the
  * fused kick: with the displacements so far it bounds the next step's. */
 double gr_dem_eval_vmax2(const gr_dem *d);

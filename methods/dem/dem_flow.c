@@ -137,14 +137,24 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     ev->epoch++;
     ev->tred_on = 1;
     ev->flow_E = ev->c.E, ev->flow_gen = d->list_gen;
-    if (ev->cut_keep)
-        return 1;
-    /* one cut for the whole step: a thread's run of strips is drifted,
-     * pushed and kicked by it, so the time to balance is their sum */
     int cut[65], *S = ev->split + 3 * (nth + 1);
-    gr_dem_cut_runs(d, ev, 0, 1, ns, nth, cut);
-    if (memcmp(cut, S, (size_t)(nth + 1) * sizeof *S)) /* as kicker above */
-        memcpy(S, cut, (size_t)(nth + 1) * sizeof *S);
+    if (!ev->cut_keep) {
+        /* one cut for the whole step: a thread's run of strips is drifted,
+         * pushed and kicked by it, so the time to balance is their sum */
+        gr_dem_cut_runs(d, ev, 0, 1, ns, nth, cut);
+        if (memcmp(cut, S, (size_t)(nth + 1) * sizeof *S)) /* as kicker above */
+            memcpy(S, cut, (size_t)(nth + 1) * sizeof *S);
+    }
+    /* A run that starts at an even strip: the last push on that strip is
+     * the previous run's (its strip below, colour 1), whose thread would
+     * kick it and drift it ahead, so that the strip's lines moved to the
+     * other core and back every step (thread 0 took 2-3 us longer than
+     * thread 1 when the cut was even, under 1 us when odd). Its own thread
+     * kicks it instead, after its run (kicker -1; gr_dem_eval_fuse_kick
+     * restores the table at the next step). */
+    for (int t = 1; t < nth; t++)
+        if (S[t] > 0 && S[t] < ns && S[t] % 2 == 0)
+            ev->kicker[S[t]] = -1;
     return 1;
 }
 
@@ -165,7 +175,8 @@ static int colour_order(int s0, int s1, int col, int *out)
 
 /* Thread t's results over its run [s0, s1): the overlap and the drift's
  * moves of the strips it pushed, the speeds and the moves ahead of those
- * it kicked (strip r is kicked after the pushes of kicker[r], r or r - 1). */
+ * it kicked (strip r is kicked after the pushes of kicker[r], r or r - 1,
+ * or, kicker -1, by its own thread after its run). */
 static void reduce_run(struct gr_dem_eval *ev, int t, int s0, int s1)
 {
     gr_dem_tred r = {.best = 0.0, .bi = -1, .bj = -1};
@@ -176,9 +187,9 @@ static void reduce_run(struct gr_dem_eval *ev, int t, int s0, int s1)
     if (!ev->drifted)
         gr_dem_top2(ev->smove + 2 * s0, 2 * (size_t)(s1 - s0), r.move);
     int r0 = s0, r1 = s1 < ev->ns ? s1 + 1 : s1;
-    if (r0 < r1 && ev->kicker[r0] < s0)
+    if (r0 < r1 && ev->kicker[r0] >= 0 && ev->kicker[r0] < s0)
         r0++;
-    if (r1 > s1 && ev->kicker[s1] >= s1)
+    if (r1 > s1 && (ev->kicker[s1] >= s1 || ev->kicker[s1] < 0))
         r1--;
     for (int s = r0; s < r1; s++)
         r.vmax2 = fmax(r.vmax2, ev->svmax[s]);
@@ -229,6 +240,13 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
             }
             atomic_store_explicit(&ev->cflag[s], ep, memory_order_release);
         }
+    }
+    if (s0 < s1 && ev->kicker[s0] < 0) { /* see gr_dem_eval_flow_begin */
+        gr_dem_wait_epoch(&ev->cflag[s0 - 1], ep);
+        double t0 = timed ? omp_get_wtime() : 0.0;
+        gr_dem_eval_kick_strip(d, s0);
+        if (timed) /* counted with the strip's own time of this step */
+            ev->stime[s0] += 0.25 * (omp_get_wtime() - t0);
     }
     reduce_run(ev, t, s0, s1);
 }

@@ -166,21 +166,26 @@ DEM_INLINE void all_brute(dem_ctx *c, const int NL, const int TL)
  * this core's cache. Their velocities are read only by the strips that
  * push them, all done by then; and nothing of the strip changes before
  * the next step, so its drift can follow at once (into buffer 2). */
-static inline void kick_after(dem_ctx *c, int s)
+static inline void kick_one(dem_ctx *c, int r)
 {
     gr_dem *d = c->d;
-    int ns = d->strips.n;
-    for (int r = s; r <= s + 1 && r < ns; r++) {
-        if (c->kicker[r] != s)
-            continue;
-        size_t a = (size_t)d->strips.i0[r], b = (size_t)d->strips.i0[r + 1];
-        if (c->pre)
-            c->kin[r] = gr_dem_kick_drift(d, c->kick_p, 1 - c->kick_p, 2, a, b, c->svmax + r, c->spre + 2 * r,
-                                          &d->exits_pre);
-        else
-            c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
-    }
+    size_t a = (size_t)d->strips.i0[r], b = (size_t)d->strips.i0[r + 1];
+    if (c->pre)
+        c->kin[r] = gr_dem_kick_drift(d, c->kick_p, 1 - c->kick_p, 2, a, b, c->svmax + r, c->spre + 2 * r,
+                                      &d->exits_pre);
+    else
+        c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
 }
+
+static inline void kick_after(dem_ctx *c, int s)
+{
+    int ns = c->d->strips.n;
+    for (int r = s; r <= s + 1 && r < ns; r++)
+        if (c->kicker[r] == s)
+            kick_one(c, r);
+}
+
+void gr_dem_eval_kick_strip(gr_dem *d, int r) { kick_one(&d->ev->c, r); }
 
 /* One colour's strips, shared among the threads of the enclosing parallel
  * region (run by one thread outside any region, in the same order). Each

@@ -3,8 +3,12 @@
  * by gr_dem_advance (which drifts ahead) and by gr_dem_step one step at a
  * time (which never does), ends in the same state, bit for bit, after
  * grains left, were reinserted and the lists were rebuilt. (Two threads
- * against one: test_dem_restart.c; the threaded step drifts ahead too.) */
+ * against one: test_dem_restart.c; the threaded step drifts ahead too.)
+ * And on 2 and 3 threads, where a run of strips that starts at an even
+ * strip kicks that strip itself (dem_flow.c), the same bits as one
+ * thread's steps, with such runs met. */
 #include "dem_test.h"
+#include "dem/dem_eval.h"
 
 #include <string.h>
 
@@ -66,10 +70,61 @@ static void same_bits_as_steps(void **state)
     free(a), free(b);
 }
 
+/* The silo advanced one step at a time on T threads (each call one
+ * one-barrier step): its state as run() gives it, and in how many steps a
+ * run of strips started at an even strip. */
+static void run_threads(int T, long steps, double *out, long *even)
+{
+    gr_scene *sc = dt_scene(silo());
+    gr_dem *d = dt_create(sc, NULL);
+    gr_err e = {0};
+    d->par.threads = T;
+    *even = 0;
+    for (long k = 0; k < steps && e.code == GR_OK; k++) {
+        gr_dem_advance(d, INFINITY, 1, &e);
+        const struct gr_dem_eval *ev = d->ev;
+        const int *S = ev->split + 3 * (T + 1);
+        int hit = 0;
+        for (int t = 1; ev->tred_on && t < T; t++)
+            hit |= S[t] > 0 && S[t] < ev->ns && S[t] % 2 == 0;
+        *even += hit;
+    }
+    assert_int_equal(e.code, GR_OK);
+    for (size_t k = 0; k < 5 * d->ntag; k++)
+        out[k] = NAN;
+    for (size_t i = 0; i < d->n; i++) {
+        double v[5] = {d->f[F_X][d->cur][i], d->f[F_Y][d->cur][i], d->f[F_VX][d->cur][i],
+                       d->f[F_VY][d->cur][i], d->f[F_W][d->cur][i]};
+        memcpy(out + 5 * (size_t)d->tag[i], v, sizeof v);
+    }
+    gr_dem_free(d);
+    gr_scene_free(sc);
+}
+
+static void threads_kick_their_first_strip(void **state)
+{
+    (void)state;
+    const long steps = 2000;
+    size_t cap = 5 * 4096;
+    double *a = malloc(cap * sizeof *a), *b = malloc(cap * sizeof *b);
+    assert_true(a && b);
+    uint64_t oa, ba;
+    run(1, steps, a, &oa, &ba);
+    for (int T = 2; T <= 3; T++) {
+        long even;
+        run_threads(T, steps, b, &even);
+        printf("# %d threads: %ld of %ld steps with a run starting at an even strip\n", T, even, steps);
+        assert_true(even >= 100);
+        assert_memory_equal(a, b, cap * sizeof *a);
+    }
+    free(a), free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(same_bits_as_steps),
+        cmocka_unit_test(threads_kick_their_first_strip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
