@@ -1,34 +1,17 @@
 /* How the threads of the DEM step wait for one another without the
- * OpenMP runtime's barriers: on a flag, spinning a while, then yielding, so
- * that a thread whose core another job took gets it back soon. Included
- * by the files that run a step on several threads. */
+ * OpenMP runtime's barriers (common/spin.h). Included by the files that
+ * run a step on several threads. */
 #ifndef GR_DEM_SYNC_H
 #define GR_DEM_SYNC_H
 
 #include <stdatomic.h>
 #include <stdint.h>
-#include <sched.h>
+
+#include "spin.h"
 
 /* Wait until *f reaches epoch (a flag another thread of the step sets):
- * spinning, then, after 2^14 pauses (0.15 ms on the test machine), giving
- * the core away with sched_yield between checks, so that a thread whose
- * core another job took gets it back. Not napping: on the test machine
- * (a VM) a 20 us nanosleep returns after 90-190 us, and an idle run of the
- * flowing silo napped 500-2600 times in 32 000 steps (88-520 ms), at
- * waits a pre-empted core or a reinsertion made longer than the spin. */
-static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch)
-{
-    unsigned spins = 0;
-    while (atomic_load_explicit(f, memory_order_acquire) < epoch) {
-#if defined(__x86_64__) || defined(__i386__)
-        __builtin_ia32_pause();
-#endif
-        if (spins < (1u << 14))
-            spins++;
-        else
-            sched_yield();
-    }
-}
+ * 2^14 pauses (0.15 ms on the test machine), then yields (common/spin.h). */
+static inline void gr_dem_wait_epoch(_Atomic uint64_t *f, uint64_t epoch) { gr_spin_until(f, epoch, 1u << 14); }
 
 /* Where the threads of a parallel region meet (a barrier that waits as
  * gr_dem_wait_epoch does): gr_dem_meet returns 1 to the last thread to

@@ -5,12 +5,12 @@
  * every random bit is a function of (key, word, purpose, step), so the
  * result does not depend on the split. */
 #include <omp.h>
-#include <sched.h>
 #include <stdatomic.h>
 #include <string.h>
 
 #include "lgca_int.h"
 #include "lgca_philox.h"
+#include "spin.h"
 
 /* Gravity: at a fluid node drawn with probability g, one unit of downward
  * momentum: a rest particle starts down, or else up-right turns down-right,
@@ -248,22 +248,13 @@ typedef struct {
     char pad[64 - sizeof(uint64_t)];
 } lgca_flag;
 
-/* Until both neighbours of t have saved the edge lanes of step s. A barrier
- * would also wait for the far blocks; on a 256^2 lattice (a step of 16
- * microseconds) the team barrier cost a tenth of the step. Spins, then
- * yields, so that a host with fewer free cores than threads still moves. */
+/* Until both neighbours of t have saved the edge lanes of step s. A
+ * barrier would also wait for the far blocks; on a 256^2 lattice (a step
+ * of 16 microseconds) the team barrier cost a tenth of the step. */
 static void wait_neighbours(lgca_flag *f, int t, int T, uint64_t s)
 {
-    int nb[2] = {t > 0 ? t - 1 : T - 1, t + 1 < T ? t + 1 : 0};
-    for (int k = 0; k < 2; k++)
-        for (unsigned spin = 0; atomic_load_explicit(&f[nb[k]].saved, memory_order_acquire) < s; spin++) {
-            if (spin > 4096)
-                sched_yield();
-#if defined(__x86_64__) || defined(__i386__)
-            else
-                __builtin_ia32_pause();
-#endif
-        }
+    gr_spin_until(&f[t > 0 ? t - 1 : T - 1].saved, s, 4096);
+    gr_spin_until(&f[t + 1 < T ? t + 1 : 0].saved, s, 4096);
 }
 
 static const int across[4] = {1, 2, 4, 5};
