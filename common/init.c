@@ -281,26 +281,3 @@ int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
     gr_rng_free(rng);
     return rc;
 }
-
-int gr_reinsert_spot(const gr_scene *sc, const gr_particles *p, double r,
-                     struct gr_rng *rng, int tries, double *x, double *y)
-{
-    const gr_silo *s = &sc->silo;
-    for (int t = 0; t < tries; t++) {
-        double cx = s->x0 + r + (s->width - 2 * r) * gr_rng_uniform(rng);
-        double cy = s->reinsert_bottom + r + (s->reinsert_top - s->reinsert_bottom - 2 * r) * gr_rng_uniform(rng);
-        int free_spot = 1;
-        for (size_t j = 0; j < p->n && free_spot; j++) {
-            if (p->flags[j] & GR_PF_GONE)
-                continue;
-            double dx = cx - p->x[j], dy = cy - p->y[j], rr = r + p->radius[j];
-            free_spot = dx * dx + dy * dy >= rr * rr;
-        }
-        if (free_spot) {
-            *x = cx;
-            *y = cy;
-            return 1;
-        }
-    }
-    return 0;
-}

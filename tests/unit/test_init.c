@@ -6,6 +6,7 @@
 
 #include "geom.h"
 #include "init.h"
+#include "rng.h"
 
 static gr_scene *parse(const char *text)
 {
@@ -169,6 +170,57 @@ static void hopper_without_perch(void **s)
     gr_scene_free(sc);
 }
 
+/* The spot for a reinserted grain: the same as trying each random spot
+ * against every grain (the search bins the grains near the band), over
+ * bands from sparse to full (where no spot is found), grains of several
+ * radii, some of them gone. */
+static void reinsert_spot_as_brute_force(void **s)
+{
+    (void)s;
+    gr_scene *sc = parse("[domain]\nwidth = 22\nheight = 40\nbottom = open\n[species]\ncount = 10\n"
+                         "[silo]\nwidth = 20\nheight = 30\nbase = 3\norifice = 3.8\nreinsert = yes\n");
+    const gr_silo *si = &sc->silo;
+    gr_err e = {0};
+    int found_some = 0, missed_some = 0;
+    for (int n = 0; n <= 600; n += 40) {
+        gr_particles *p = gr_particles_create(0, &e);
+        gr_rng *place = gr_rng_create(7, (uint64_t)n, &e);
+        for (int k = 0; k < n; k++) {
+            double r = 0.3 + 0.3 * gr_rng_uniform(place);
+            double x = si->x0 - 1.0 + (si->width + 2.0) * gr_rng_uniform(place);
+            double y = si->reinsert_bottom - 1.5 + (si->reinsert_top - si->reinsert_bottom + 3.0) * gr_rng_uniform(place);
+            long i = gr_particles_push(p, x, y, r, 1.0, k % 7 == 3 ? GR_PF_GONE : 0, 0, &e);
+            assert_true(i >= 0);
+        }
+        for (int trial = 0; trial < 4; trial++) {
+            double r = 0.25 + 0.1 * trial, x = NAN, y = NAN, bx = NAN, by = NAN;
+            gr_rng *a = gr_rng_create(11, (uint64_t)(n * 4 + trial), &e), *b = gr_rng_create(11, (uint64_t)(n * 4 + trial), &e);
+            int got = gr_reinsert_spot(sc, p, r, a, 300, &x, &y), want = 0;
+            for (int t = 0; t < 300 && !want; t++) {
+                double cx = si->x0 + r + (si->width - 2 * r) * gr_rng_uniform(b);
+                double cy = si->reinsert_bottom + r + (si->reinsert_top - si->reinsert_bottom - 2 * r) * gr_rng_uniform(b);
+                int ok = 1;
+                for (size_t j = 0; j < p->n && ok; j++) {
+                    double dx = cx - p->x[j], dy = cy - p->y[j], rr = r + p->radius[j];
+                    ok = (p->flags[j] & GR_PF_GONE) || dx * dx + dy * dy >= rr * rr;
+                }
+                if (ok)
+                    want = 1, bx = cx, by = cy;
+            }
+            assert_int_equal(got, want);
+            if (want)
+                assert_true(x == bx && y == by);
+            found_some |= want, missed_some |= !want;
+            gr_rng_free(a), gr_rng_free(b);
+        }
+        gr_rng_free(place);
+        gr_particles_free(p);
+    }
+    /* both outcomes met */
+    assert_true(found_some && missed_some);
+    gr_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -176,6 +228,7 @@ int main(void)
         cmocka_unit_test(random_without_overlap),
         cmocka_unit_test(silo_walls_of_grains),
         cmocka_unit_test(hopper_without_perch),
+        cmocka_unit_test(reinsert_spot_as_brute_force),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
