@@ -15,8 +15,8 @@ void gr_dem_cut_runs(const gr_dem *d, const struct gr_dem_eval *ev, int first, i
     int timed = 1;
     double total = 0.0, acc = 0.0;
     for (int k = 0; k < m; k++)
-        timed &= ev->stime[first + k * step] > 0;
-#define WEIGHT(s) (timed ? ev->stime[s] : (double)(i0[(s) + 1] - i0[s]) + 1.0)
+        timed &= ev->st[first + k * step].stime > 0;
+#define WEIGHT(s) (timed ? ev->st[s].stime : (double)(i0[(s) + 1] - i0[s]) + 1.0)
     for (int k = 0; k < m; k++)
         total += WEIGHT(first + k * step);
     int t = 1;

@@ -14,6 +14,29 @@
  * grain with more list pairs than DEM_BATCH goes one pair at a time. */
 enum { DEM_BATCH = 128, DEM_BATCH_GRAINS = 64 };
 
+/* What one strip's evaluation, kick and drift leave, on cache lines of the
+ * strip's own. Only the thread that runs a strip writes its record (its
+ * kick too: dem_flow.c), so two threads meet only on their neighbours'
+ * flags. Packed per-strip arrays (one array per field) put the last
+ * strips of one thread's run and the first of the next on one line of
+ * each array, which both threads wrote at every step. */
+typedef struct {
+    _Alignas(64) double smax; /* largest relative overlap */
+    double sel;               /* elastic energy */
+    long si, sj;              /* the overlap's pair (j = -1 - k for segment k) */
+    double kin;               /* kinetic energy after the fused kick */
+    double svmax;             /* largest speed^2 of the next drift's half kick */
+    double stime;             /* smoothed wall time of its last timed runs */
+    double tdrift;            /* drift time of this step (timed steps) */
+    double spre[2];           /* two largest squared moves of the drift done ahead */
+    double smove[2];          /* two largest squared moves of this step's drift */
+    double strial[2];         /* time batched, one pair at a time (dem_force.c) */
+    /* the epochs at which its drift and its colour's pushes were done
+     * (the one-barrier step): the neighbours spin on this line */
+    _Alignas(64) _Atomic uint64_t dflag;
+    _Atomic uint64_t cflag;
+} dem_strip;
+
 /* What changes from step to step comes first, in two cache lines: the set-up
  * (gr_dem_eval_begin) stores only the words that changed, so the other
  * threads keep the rest cached. */
@@ -37,20 +60,12 @@ typedef struct {
     const double *seg_off;
     double *seg_vy;
     const unsigned char *seg_on;
-    /* per strip results */
-    double *smax;       /* largest relative overlap */
-    double *sel;        /* elastic energy */
-    long *sarg_i, *sarg_j; /* its pair (j = -1 - s for a segment) */
+    dem_strip *st;      /* per strip results (dem_strip) */
     double *sseg;       /* per strip, per segment: fx, fy, fn */
     size_t sstride;     /* doubles per strip in sseg: whole cache lines */
     int ncol;           /* colours of strips */
-    double *stime;      /* per strip: smoothed wall time of its last timed runs */
-    double *strial;     /* per strip: time batched, one pair at a time (dem_force.c) */
     unsigned char *sway; /* per strip: 1 when the batches were the faster */
-    double *kin;        /* per strip: kinetic energy after the fused kick */
     const int *kicker;  /* per strip: the strip after whose push it is kicked */
-    double *spre;       /* per strip: that drift's two largest squared moves */
-    double *svmax;      /* per strip: see struct gr_dem_eval */
     const int *split;   /* per colour, nth + 1 bounds in the colour's own strip order */
     int nth;            /* threads the split is for */
 } dem_ctx;
@@ -77,24 +92,16 @@ struct gr_dem_eval {
     double t_eval;
     uint64_t E;
     size_t cap_ns, cap_seg, cap_sseg;
-    double *smax, *sel, *sseg, *soff, *svy;
-    long *si, *sj;
+    double *sseg, *soff, *svy;
     unsigned char *son;
-    double *stime;   /* per strip cost, kept across evaluations */
-    double *strial;  /* per strip, likewise: the two loops' trial times */
+    dem_strip *st;   /* per strip; stime and strial kept across evaluations */
+    double *sel, *kin; /* one-barrier step: the strips' sums, packed for the serial end */
     unsigned char *sway;
-    double *kin, *smove; /* per strip: kinetic energy; two largest squared moves */
     int *kicker;     /* per strip: the strip after whose pushes it is kicked */
     int *split;      /* ncol x (nth + 1), then nth + 1 for the one-barrier step */
     size_t cap_split;
-    double *svmax;   /* per strip: largest speed^2 of the next drift's half kick */
-    double *tdrift;  /* per strip: drift time of this step (timed steps) */
-    double *spre;    /* per strip: two largest squared moves of the drift done ahead */
     int drifted;     /* this step's drift was done ahead: the one-barrier step skips it */
-    /* one-barrier step: per strip, the epoch at which its drift and its
-     * colour's pushes were done */
-    _Atomic uint64_t *dflag, *cflag;
-    uint64_t epoch;
+    uint64_t epoch;  /* of the one-barrier step (dem_strip's flags) */
     gr_dem_tred *tred; /* per thread, valid when tred_on: the last evaluation was */
     int tred_on, cap_tred; /* a one-barrier step (set by gr_dem_eval_flow_begin) */
     unsigned char *sstr; /* per strip: seg_strip (dem_evalrun.c) at this evaluation */

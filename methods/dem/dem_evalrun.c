@@ -18,11 +18,8 @@ void gr_dem_eval_free(struct gr_dem_eval *ev)
 {
     if (!ev)
         return;
-    free(ev->smax), free(ev->sel), free(ev->sseg), free(ev->soff), free(ev->svy);
-    free(ev->si), free(ev->sj), free(ev->son);
-    free(ev->stime), free(ev->strial), free(ev->sway), free(ev->split), free(ev->kin), free(ev->kicker);
-    free(ev->smove), free(ev->svmax), free(ev->tdrift), free(ev->spre);
-    free((void *)ev->dflag), free((void *)ev->cflag), free(ev->tred), free(ev->sstr);
+    free(ev->st), free(ev->sel), free(ev->kin), free(ev->sseg), free(ev->soff), free(ev->svy);
+    free(ev->son), free(ev->sway), free(ev->split), free(ev->kicker), free(ev->tred), free(ev->sstr);
     free(ev);
 }
 
@@ -36,34 +33,24 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         memset(ev, 0, sz);
     }
     if ((size_t)ns > ev->cap_ns) {
-        free(ev->smax), free(ev->sel), free(ev->si), free(ev->sj), free(ev->stime);
-        free(ev->strial), free(ev->sway);
-        free(ev->kin), free(ev->kicker), free(ev->smove);
-        free(ev->svmax), free(ev->tdrift), free((void *)ev->dflag), free((void *)ev->cflag), free(ev->spre);
-        free(ev->sstr);
+        free(ev->st), free(ev->sel), free(ev->kin), free(ev->sway), free(ev->kicker), free(ev->sstr);
         ev->sstr = malloc((size_t)ns);
-        ev->spre = calloc((size_t)ns * 2, sizeof *ev->spre);
-        ev->svmax = malloc((size_t)ns * sizeof *ev->svmax);
-        ev->tdrift = calloc((size_t)ns, sizeof *ev->tdrift);
-        ev->dflag = malloc((size_t)ns * sizeof *ev->dflag);
-        ev->cflag = malloc((size_t)ns * sizeof *ev->cflag);
-        for (int k = 0; ev->dflag && ev->cflag && k < ns; k++) {
-            atomic_init(&ev->dflag[k], ev->epoch);
-            atomic_init(&ev->cflag[k], ev->epoch);
-        }
+        ev->st = aligned_alloc(64, (size_t)ns * sizeof *ev->st);
+        ev->sel = malloc((size_t)ns * sizeof *ev->sel);
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
         ev->kicker = calloc((size_t)ns, sizeof *ev->kicker);
-        ev->smove = malloc((size_t)ns * 2 * sizeof *ev->smove);
-        ev->smax = malloc((size_t)ns * sizeof *ev->smax);
-        ev->sel = malloc((size_t)ns * sizeof *ev->sel);
-        ev->si = malloc((size_t)ns * sizeof *ev->si);
-        ev->sj = malloc((size_t)ns * sizeof *ev->sj);
-        ev->stime = calloc((size_t)ns, sizeof *ev->stime);
-        ev->strial = calloc(2 * (size_t)ns, sizeof *ev->strial);
         ev->sway = calloc((size_t)ns, 1);
+        if (ev->st) {
+            memset(ev->st, 0, (size_t)ns * sizeof *ev->st);
+            for (int k = 0; k < ns; k++) {
+                atomic_init(&ev->st[k].dflag, ev->epoch);
+                atomic_init(&ev->st[k].cflag, ev->epoch);
+            }
+        }
         ev->cap_ns = (size_t)ns;
     } else if (ns != ev->ns) {
-        memset(ev->stime, 0, (size_t)ns * sizeof *ev->stime);
+        for (int k = 0; k < ns; k++)
+            ev->st[k].stime = 0.0;
     }
     size_t nsp = (size_t)4 * ((size_t)nth + 1); /* three colours, then the one cut */
     if (nsp > ev->cap_split) {
@@ -88,9 +75,8 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
         ev->sseg = aligned_alloc(64, nsf * sizeof *ev->sseg);
         ev->cap_sseg = nsf;
     }
-    if (!ev->smax || !ev->sel || !ev->si || !ev->sj || !ev->soff || !ev->svy || !ev->son || !ev->sseg ||
-        !ev->stime || !ev->strial || !ev->sway || !ev->split || !ev->kin || !ev->kicker || !ev->smove || !ev->svmax ||
-        !ev->tdrift || !ev->spre || !ev->dflag || !ev->cflag || !ev->tred || !ev->sstr) {
+    if (!ev->st || !ev->sel || !ev->kin || !ev->soff || !ev->svy || !ev->son || !ev->sseg || !ev->sway ||
+        !ev->split || !ev->kicker || !ev->tred || !ev->sstr) {
         gr_dem_eval_free(ev);
         d->ev = NULL;
         return gr_fail(err, GR_ERUN, "out of memory in the force evaluation");
@@ -188,10 +174,8 @@ int gr_dem_eval_begin(gr_dem *d, int q, double t_eval, uint64_t E, double integ,
         .law_w = {d->kn, d->gw, d->kt, d->gt, d->mu, d->par.dt, d->clip},
         .E = E, .integ = integ, .Lx = d->Lx, .Ly = d->Ly,
         .seg_off = ev->soff, .seg_vy = ev->svy, .seg_on = ev->son,
-        .smax = ev->smax, .sel = ev->sel, .sarg_i = ev->si, .sarg_j = ev->sj, .sseg = ev->sseg,
-        .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
-        .stime = ev->stime, .strial = ev->strial, .sway = ev->sway, .split = ev->split, .nth = nth,
-        .kin = ev->kin, .kicker = ev->kicker, .svmax = ev->svmax, .spre = ev->spre,
+        .st = ev->st, .sseg = ev->sseg, .sstride = sstride, .ncol = ns > 1 ? gr_dem_colours(d) : 1,
+        .sway = ev->sway, .split = ev->split, .nth = nth, .kicker = ev->kicker,
     };
     store_changed(&ev->c, &c, sizeof c);
     return GR_OK;
@@ -259,17 +243,18 @@ int gr_dem_eval_end(gr_dem *d, double *seg_out, gr_err *err)
         const gr_dem_tred *r = ev->tred;
         eel = r[0].eel0;
         for (int s = ev->split[3 * (c->nth + 1) + 1]; s < ev->ns; s++)
-            eel += ev->sel[s];
+            eel += ev->sel[s]; /* packed by the threads (dem_flow.c) */
         for (int t = 0; t < c->nth; t++)
             if (r[t].best > best)
                 best = r[t].best, bi = r[t].bi, bj = r[t].bj;
     } else {
         for (int s = 0; s < ev->ns; s++) {
-            eel += ev->sel[s];
-            if (ev->smax[s] > best) {
-                best = ev->smax[s];
-                bi = ev->si[s];
-                bj = ev->sj[s];
+            const dem_strip *r = ev->st + s;
+            eel += r->sel;
+            if (r->smax > best) {
+                best = r->smax;
+                bi = r->si;
+                bj = r->sj;
             }
         }
     }

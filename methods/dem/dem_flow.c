@@ -45,6 +45,30 @@ int gr_dem_eval_pre(gr_dem *d, int on)
     return ev->c.pre;
 }
 
+/* The two largest squared moves of strips [s0, s1) (pre: of the drift
+ * done ahead), as gr_dem_top2 over their pairs in strip order. */
+static void strips_top2(const dem_strip *st, int s0, int s1, int pre, double m[2])
+{
+    double m1 = 0, m2 = 0;
+    for (int s = s0; s < s1; s++) {
+        const double *v = pre ? st[s].spre : st[s].smove;
+        for (int k = 0; k < 2; k++) {
+            if (v[k] > m1)
+                m2 = m1, m1 = v[k];
+            else if (v[k] > m2)
+                m2 = v[k];
+        }
+    }
+    m[0] = m1, m[1] = m2;
+}
+
+static double strips_top2_sum(const struct gr_dem_eval *ev, int pre)
+{
+    double m[2];
+    strips_top2(ev->st, 0, ev->ns, pre, m);
+    return sqrt(m[0]) + sqrt(m[1]);
+}
+
 /* The two largest squared moves over the threads' own (pre: of the drift
  * done ahead): the same two as over every strip's. */
 static double tred_top2(const struct gr_dem_eval *ev, int pre)
@@ -79,7 +103,7 @@ int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)
         d->f[f][q] = d->f[f][2];
         d->f[f][2] = t;
     }
-    *moved = ev->tred_on ? tred_top2(ev, 1) : gr_dem_top2_sum(ev->spre, 2 * (size_t)ev->ns);
+    *moved = ev->tred_on ? tred_top2(ev, 1) : strips_top2_sum(ev, 1);
     atomic_store_explicit(&d->exits, atomic_load_explicit(&d->exits_pre, memory_order_relaxed),
                           memory_order_relaxed);
     d->exits_known = 1;
@@ -89,18 +113,21 @@ int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved)
 double gr_dem_eval_moved(const gr_dem *d)
 {
     const struct gr_dem_eval *ev = d->ev;
-    return ev->tred_on ? tred_top2(ev, 0) : gr_dem_top2_sum(ev->smove, 2 * (size_t)ev->ns);
+    return ev->tred_on ? tred_top2(ev, 0) : strips_top2_sum(ev, 0);
 }
 
 double gr_dem_eval_kinetic(const gr_dem *d)
 {
     const struct gr_dem_eval *ev = d->ev;
     double ek = 0.0;
-    int s = 0;
-    if (ev->tred_on)
-        ek = ev->tred[0].kin0, s = tred_from(ev);
-    for (; s < ev->ns; s++)
-        ek += ev->kin[s];
+    if (ev->tred_on) {
+        ek = ev->tred[0].kin0;
+        for (int s = tred_from(ev); s < ev->ns; s++)
+            ek += ev->kin[s]; /* packed by the threads (reduce_run) */
+        return ek;
+    }
+    for (int s = 0; s < ev->ns; s++)
+        ek += ev->st[s].kin;
     return ek;
 }
 
@@ -114,7 +141,7 @@ double gr_dem_eval_vmax2(const gr_dem *d)
         return m;
     }
     for (int s = 0; s < ev->ns; s++)
-        m = fmax(m, ev->svmax[s]);
+        m = fmax(m, ev->st[s].svmax);
     return m;
 }
 
@@ -176,29 +203,37 @@ static int colour_order(int s0, int s1, int col, int *out)
 /* Thread t's results over its run [s0, s1): the overlap and the drift's
  * moves of the strips it pushed, the speeds and the moves ahead of those
  * it kicked (strip r is kicked after the pushes of kicker[r], r or r - 1,
- * or, kicker -1, by its own thread after its run). */
+ * or, kicker -1, by its own thread after its run). The other threads
+ * pack their strips' sums, which the serial end adds in strip order, into
+ * ev->sel and ev->kin: a line for eight strips, not a record each. */
 static void reduce_run(struct gr_dem_eval *ev, int t, int s0, int s1)
 {
     gr_dem_tred r = {.best = 0.0, .bi = -1, .bj = -1};
+    const dem_strip *st = ev->st;
     for (int s = s0; s < s1; s++) {
-        if (ev->smax[s] > r.best)
-            r.best = ev->smax[s], r.bi = ev->si[s], r.bj = ev->sj[s];
+        if (st[s].smax > r.best)
+            r.best = st[s].smax, r.bi = st[s].si, r.bj = st[s].sj;
     }
     if (!ev->drifted)
-        gr_dem_top2(ev->smove + 2 * s0, 2 * (size_t)(s1 - s0), r.move);
+        strips_top2(st, s0, s1, 0, r.move);
     int r0 = s0, r1 = s1 < ev->ns ? s1 + 1 : s1;
     if (r0 < r1 && ev->kicker[r0] >= 0 && ev->kicker[r0] < s0)
         r0++;
     if (r1 > s1 && (ev->kicker[s1] >= s1 || ev->kicker[s1] < 0))
         r1--;
     for (int s = r0; s < r1; s++)
-        r.vmax2 = fmax(r.vmax2, ev->svmax[s]);
+        r.vmax2 = fmax(r.vmax2, st[s].svmax);
     if (ev->c.pre)
-        gr_dem_top2(ev->spre + 2 * r0, 2 * (size_t)(r1 - r0), r.pre);
+        strips_top2(st, r0, r1, 1, r.pre);
     if (t == 0) {
         /* strips [0, s1) are all pushed and kicked by this thread */
         for (int s = 0; s < s1; s++)
-            r.eel0 += ev->sel[s], r.kin0 += ev->kin[s];
+            r.eel0 += st[s].sel, r.kin0 += st[s].kin;
+    } else {
+        for (int s = s0; s < s1; s++)
+            ev->sel[s] = st[s].sel;
+        for (int s = r0; s < r1; s++)
+            ev->kin[s] = st[s].kin;
     }
     ev->tred[t] = r;
 }
@@ -212,41 +247,42 @@ void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride)
     const int *S = ev->split + 3 * (T + 1);
     int s0 = S[t], s1 = S[t + 1];
     uint64_t ep = ev->epoch;
+    dem_strip *st = ev->st;
     int timed = (ev->c.E & 15) == 0;
     for (int s = s0; s < s1; s++) {
         double t0 = timed ? omp_get_wtime() : 0.0;
         if (!ev->drifted) /* else the last step's kicks did it */
-            gr_dem_drift(d, p, q, 1, (size_t)i0[s], (size_t)i0[s + 1], ev->smove + 2 * s, &d->exits);
+            gr_dem_drift(d, p, q, 1, (size_t)i0[s], (size_t)i0[s + 1], st[s].smove, &d->exits);
         if (timed)
-            ev->tdrift[s] = omp_get_wtime() - t0;
-        atomic_store_explicit(&ev->dflag[s], ep, memory_order_release);
+            st[s].tdrift = omp_get_wtime() - t0;
+        atomic_store_explicit(&st[s].dflag, ep, memory_order_release);
     }
     for (int col = 0; col < 2; col++) {
         int m = colour_order(s0, s1, col, scratch);
         for (int k = 0; k < m; k++) {
             int s = scratch[k];
             if (s + 1 < ns)
-                gr_dem_wait_epoch(&ev->dflag[s + 1], ep);
+                gr_dem_wait_epoch(&st[s + 1].dflag, ep);
             if (col == 1) {
-                gr_dem_wait_epoch(&ev->cflag[s - 1], ep); /* colour 1 strips are odd: s >= 1 */
+                gr_dem_wait_epoch(&st[s - 1].cflag, ep); /* colour 1 strips are odd: s >= 1 */
                 if (s + 1 < ns)
-                    gr_dem_wait_epoch(&ev->cflag[s + 1], ep);
+                    gr_dem_wait_epoch(&st[s + 1].cflag, ep);
             }
             double t0 = timed ? omp_get_wtime() : 0.0;
             gr_dem_eval_strip(d, s);
             if (timed) {
-                double dt = omp_get_wtime() - t0 + ev->tdrift[s];
-                ev->stime[s] = ev->stime[s] > 0 ? 0.75 * ev->stime[s] + 0.25 * dt : dt;
+                double dt = omp_get_wtime() - t0 + st[s].tdrift;
+                st[s].stime = st[s].stime > 0 ? 0.75 * st[s].stime + 0.25 * dt : dt;
             }
-            atomic_store_explicit(&ev->cflag[s], ep, memory_order_release);
+            atomic_store_explicit(&st[s].cflag, ep, memory_order_release);
         }
     }
     if (s0 < s1 && ev->kicker[s0] < 0) { /* see gr_dem_eval_flow_begin */
-        gr_dem_wait_epoch(&ev->cflag[s0 - 1], ep);
+        gr_dem_wait_epoch(&st[s0 - 1].cflag, ep);
         double t0 = timed ? omp_get_wtime() : 0.0;
         gr_dem_eval_kick_strip(d, s0);
         if (timed) /* counted with the strip's own time of this step */
-            ev->stime[s0] += 0.25 * (omp_get_wtime() - t0);
+            st[s0].stime += 0.25 * (omp_get_wtime() - t0);
     }
     reduce_run(ev, t, s0, s1);
 }

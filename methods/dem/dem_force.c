@@ -66,9 +66,9 @@ DEM_INLINE void strip_verlet(dem_ctx *c, const int NL, const int TL, int s)
         acc_store(c, &acc);
     }
     if (ph < 2) {
-        c->strial[2 * s + ph] = omp_get_wtime() - t0;
+        c->st[s].strial[ph] = omp_get_wtime() - t0;
         if (ph == 1)
-            c->sway[s] = c->strial[2 * s] <= c->strial[2 * s + 1];
+            c->sway[s] = c->st[s].strial[0] <= c->st[s].strial[1];
     }
 }
 
@@ -171,10 +171,10 @@ static inline void kick_one(dem_ctx *c, int r)
     gr_dem *d = c->d;
     size_t a = (size_t)d->strips.i0[r], b = (size_t)d->strips.i0[r + 1];
     if (c->pre)
-        c->kin[r] = gr_dem_kick_drift(d, c->kick_p, 1 - c->kick_p, 2, a, b, c->svmax + r, c->spre + 2 * r,
+        c->st[r].kin = gr_dem_kick_drift(d, c->kick_p, 1 - c->kick_p, 2, a, b, &c->st[r].svmax, c->st[r].spre,
                                       &d->exits_pre);
     else
-        c->kin[r] = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, c->svmax + r);
+        c->st[r].kin = gr_dem_kick(d, c->kick_p, 1 - c->kick_p, a, b, &c->st[r].svmax);
 }
 
 static inline void kick_after(dem_ctx *c, int s)
@@ -216,7 +216,7 @@ DEM_INLINE void colour_loop(dem_ctx *c, const int NL, const int TL, int mode, in
             kick_after(c, s);
         if (timed) {
             double dt = omp_get_wtime() - t0;
-            c->stime[s] = c->stime[s] > 0 ? 0.75 * c->stime[s] + 0.25 * dt : dt;
+            c->st[s].stime = c->st[s].stime > 0 ? 0.75 * c->st[s].stime + 0.25 * dt : dt;
         }
     }
 #pragma omp barrier

@@ -25,10 +25,11 @@ static inline dem_acc acc_start(int s) { return (dem_acc){-INFINITY, 0.0, -1, -1
 
 static inline void acc_store(dem_ctx *c, const dem_acc *a)
 {
-    c->smax[a->s] = a->smax;
-    c->sel[a->s] = a->sel;
-    c->sarg_i[a->s] = a->si;
-    c->sarg_j[a->s] = a->sj;
+    dem_strip *r = c->st + a->s;
+    r->smax = a->smax;
+    r->sel = a->sel;
+    r->si = a->si;
+    r->sj = a->sj;
 }
 
 DEM_INLINE void track(dem_acc *a, double rel, long i, long j, double el)
