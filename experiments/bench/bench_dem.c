@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "bench_c2c.h"
 #include "clock.h"
 #include "cmd.h"
 #include "dem/dem.h"
@@ -73,6 +74,7 @@ typedef struct {
     double lammps_seconds;
     double lammps_cpu_rate;
     double rate1;         /* --scaling: one thread, timed interleaved with T */
+    double c2c[2];        /* --scaling: the threads' round trip before and after, ns */
 } bed_result;
 
 static int lammps_run(const gr_particles *p, double width, double height, long steps, double skin,
@@ -157,6 +159,7 @@ static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_e
     enum { ROUNDS = 4 };
     double sec[2] = {0, 0};
     long per = steps / ROUNDS > 0 ? steps / ROUNDS : 1;
+    r->c2c[0] = bench_c2c_ns(2000);
     for (int k = 0; k < ROUNDS; k++) {
         for (int j = 0; j < 2; j++) {
             int v = j ^ (k & 1);
@@ -168,6 +171,7 @@ static int time_scaling(gr_dem *d, long steps, long threads, bed_result *r, gr_e
         }
     }
     d->par.threads = threads;
+    r->c2c[1] = bench_c2c_ns(2000);
     r->seconds = sec[1];
     r->rate = (double)d->nmobile * (double)(per * ROUNDS) / sec[1];
     r->rate1 = (double)d->nmobile * (double)(per * ROUNDS) / sec[0];
@@ -625,8 +629,9 @@ static void print_bed(const bd_opts *o, const bed_result *r)
     if (o->scaling) {
         printf("dem n=%ld: %.4g particle-steps/s on 1 thread, %.4g on %ld (alternating rounds)\n", r->n, r->rate1,
                r->rate, o->threads);
-        printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g threads=%ld speedup=%.3f\n", r->n,
-               o->steps, r->rate, o->threads, r->rate / r->rate1);
+        printf("RESULT method=dem n=%ld steps=%ld particle_steps_per_s=%.6g threads=%ld speedup=%.3f "
+               "c2c_ns=%.0f,%.0f\n",
+               r->n, o->steps, r->rate, o->threads, r->rate / r->rate1, r->c2c[0], r->c2c[1]);
         fflush(stdout);
         return;
     }

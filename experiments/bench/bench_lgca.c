@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench_c2c.h"
 #include "clock.h"
 #include "cmd.h"
 #include "init.h"
@@ -111,13 +112,14 @@ static int run_ratio(long n, int rounds, const char *rules, double p, double upd
         fprintf(stderr, "grano bench lgca: %s\n", e.msg);
         return 1;
     }
-    double ta = 0, tb = 0;
+    double ta = 0, tb = 0, c2c0 = bench_c2c_ns(2000);
     for (int r = 0; r < rounds; r++) {
         double ra = timed(a, n, updates, NULL, &e), rb = timed(b, n, updates, NULL, &e);
         ta += updates / ra, tb += updates / rb;
         printf("round %d: 1 thread %.4g, 2 threads %.4g site updates/s, speed-up %.3f\n", r + 1, ra, rb, rb / ra);
     }
-    printf("RESULT method=lgca nx=%ld ny=%ld speedup_2_threads=%.3f rounds=%d\n", n, n, ta / tb, rounds);
+    printf("RESULT method=lgca nx=%ld ny=%ld speedup_2_threads=%.3f rounds=%d c2c_ns=%.0f,%.0f\n", n, n, ta / tb,
+           rounds, c2c0, bench_c2c_ns(2000));
     gr_sim_free(a), gr_sim_free(b);
     gr_scene_free(sa), gr_scene_free(sb);
     return 0;
