@@ -9,8 +9,8 @@
 #ifndef GR_BENCH_C2C_H
 #define GR_BENCH_C2C_H
 
-/* Median over 5 batches of n round trips each, in ns; NAN without two
- * threads (no OpenMP, or the runtime gave one). */
+/* Median over 5 batches of n round trips each (a batch stops after 50 ms),
+ * in ns; NAN without two threads (no OpenMP, or the runtime gave one). */
 double bench_c2c_ns(int n);
 
 #endif

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """The dem benchmark program's two modes, checked on what they print:
 throughput (a RESULT line with the sizes asked for and a finite positive
-rate) and the speed-against-error sweep (each integrator's error against
+rate; with --scaling, a speed-up and the two threads' cache-line round
+trip, which no machine makes shorter than a few nanoseconds: a probe
+whose threads did not take turns would print less) and the
+speed-against-error sweep (each integrator's error against
 the CVODE reference falls at its order as dt halves: Verlet and Gear 2 on
 the collision, explicit Euler 1; on the slow packing Verlet and Gear sit at
 the reference's own tolerance and Euler halves exactly).
@@ -25,6 +28,17 @@ def throughput(grano):
         rate = float(m.group(3))
         bad += check(m.group(1) == "400" and m.group(2) == "50", "RESULT names n = 400, steps = 50")
         bad += check(math.isfinite(rate) and rate > 0, "rate %.3g particle-steps/s is finite and positive" % rate)
+    return bad
+
+
+def scaling(grano):
+    out = run([grano, "bench", "dem", "--n", "400", "--steps", "200", "--settle", "10", "--scaling"])
+    m = re.search(r"^RESULT method=dem n=400 steps=200 \S+ threads=2 speedup=(\S+) c2c_ns=(\S+),(\S+)$", out, re.M)
+    bad = check(m is not None, "bench dem --scaling prints its RESULT line with c2c_ns")
+    if m:
+        sp, a, b = (float(m.group(k)) for k in (1, 2, 3))
+        bad += check(math.isfinite(sp) and sp > 0, "speed-up %.3g is finite and positive" % sp)
+        bad += check(all(5 < v < 1e7 for v in (a, b)), "round trips %.0f and %.0f ns within (5 ns, 10 ms)" % (a, b))
     return bad
 
 
@@ -61,7 +75,7 @@ def main(argv):
     if len(argv) != 3:
         sys.exit(__doc__)
     os.makedirs(argv[2], exist_ok=True)
-    bad = throughput(argv[1]) + sweep(argv[1], argv[2])
+    bad = throughput(argv[1]) + scaling(argv[1]) + sweep(argv[1], argv[2])
     return 1 if bad else 0
 
 
