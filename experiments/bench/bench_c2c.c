@@ -24,25 +24,10 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Until *f is want or C2C_STOP; returns what it read. */
-static uint64_t await(_Atomic uint64_t *f, uint64_t want)
-{
-    uint64_t v;
-    for (unsigned k = 0; (v = atomic_load_explicit(f, memory_order_acquire)) != want && v != C2C_STOP; k++) {
-        if (k < SPINS) {
-#if defined(__x86_64__) || defined(__i386__)
-            __builtin_ia32_pause();
-#endif
-        } else {
-            sched_yield();
-        }
-    }
-    return v;
-}
-
 /* Thread 0 raises the flag to an odd value, thread 1 answers with the next
- * even one: each round trip moves the line there and back. ns per round
- * trip, NAN without two threads. */
+ * even one: each round trip moves the line there and back. The flag only
+ * grows (C2C_STOP last), so common/spin.h's wait serves both. ns per
+ * round trip, NAN without two threads. */
 static double batch(_Atomic uint64_t *flag, int n)
 {
     double t0 = 0.0, t1 = 0.0;
@@ -62,7 +47,7 @@ static double batch(_Atomic uint64_t *flag, int n)
             t0 = exp_wall_seconds();
             for (uint64_t k = 0; k < (uint64_t)n; k++) {
                 atomic_store_explicit(flag, 2 * k + 1, memory_order_release);
-                await(flag, 2 * k + 2);
+                gr_spin_until(flag, 2 * k + 2, SPINS);
                 done = k + 1;
                 if ((k & 63) == 63 && exp_wall_seconds() - t0 > BUDGET_S)
                     break;
@@ -70,8 +55,12 @@ static double batch(_Atomic uint64_t *flag, int n)
             t1 = exp_wall_seconds();
             atomic_store_explicit(flag, C2C_STOP, memory_order_release);
         } else if (two) {
-            for (uint64_t want = 1; await(flag, want) != C2C_STOP; want += 2)
+            for (uint64_t want = 1;; want += 2) {
+                gr_spin_until(flag, want, SPINS);
+                if (atomic_load_explicit(flag, memory_order_acquire) == C2C_STOP)
+                    break;
                 atomic_store_explicit(flag, want + 1, memory_order_release);
+            }
         }
     }
     return two && done ? (t1 - t0) * 1e9 / (double)done : NAN;
