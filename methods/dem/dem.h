@@ -196,16 +196,19 @@ typedef struct gr_dem {
 /* The two largest of v[0..n) (squared displacements), and their square
  * roots summed: the Verlet-list test, the same whatever grouping produced
  * v (maxima). */
+static inline void gr_dem_top2_add(double v, double m[2])
+{
+    if (v > m[0])
+        m[1] = m[0], m[0] = v;
+    else if (v > m[1])
+        m[1] = v;
+}
+
 static inline void gr_dem_top2(const double *v, size_t n, double m[2])
 {
-    double m1 = 0, m2 = 0;
-    for (size_t k = 0; k < n; k++) {
-        if (v[k] > m1)
-            m2 = m1, m1 = v[k];
-        else if (v[k] > m2)
-            m2 = v[k];
-    }
-    m[0] = m1, m[1] = m2;
+    m[0] = m[1] = 0;
+    for (size_t k = 0; k < n; k++)
+        gr_dem_top2_add(v[k], m);
 }
 
 static inline double gr_dem_top2_sum(const double *v, size_t n)

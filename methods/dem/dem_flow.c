@@ -49,17 +49,12 @@ int gr_dem_eval_pre(gr_dem *d, int on)
  * done ahead), as gr_dem_top2 over their pairs in strip order. */
 static void strips_top2(const dem_strip *st, int s0, int s1, int pre, double m[2])
 {
-    double m1 = 0, m2 = 0;
+    m[0] = m[1] = 0;
     for (int s = s0; s < s1; s++) {
         const double *v = pre ? st[s].spre : st[s].smove;
-        for (int k = 0; k < 2; k++) {
-            if (v[k] > m1)
-                m2 = m1, m1 = v[k];
-            else if (v[k] > m2)
-                m2 = v[k];
-        }
+        gr_dem_top2_add(v[0], m);
+        gr_dem_top2_add(v[1], m);
     }
-    m[0] = m1, m[1] = m2;
 }
 
 static double strips_top2_sum(const struct gr_dem_eval *ev, int pre)
