@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "apart.h"
 #include "lgca_int.h"
 
 /* Wall candidates before duplicates are merged. */
@@ -144,16 +145,21 @@ static int check_size(lgca *L, gr_err *err)
     return GR_OK;
 }
 
-/* Zeroed words on whole cache lines of their own: where two threads' parts
- * of an array meet (scratch, edge slots) neither writes the
- * other's line. */
+/* Zeroed words apart from every other allocation (common/apart.h), for
+ * all that the team's threads share: where two threads' parts of an array
+ * meet (scratch, edge slots) neither writes the other's lines, and what
+ * every thread reads at every word (the masks of valid and wall nodes,
+ * the lane pointers, the struct) shares no line or pair of lines with
+ * anything a thread writes. In malloc's small chunks, on two cores that
+ * share no cache, the main thread ran 7 % slower than the other, which
+ * waited for it every step: 3.46e9 site updates per CPU second against
+ * 3.73e9 with everything apart (medians of 93 runs each of `grano bench
+ * lgca --size 256 --threads 2`, alternated, AMD EPYC, 27 Nov 2026). The
+ * masks alone apart gave 3.75e9, scratch and edge slots alone 3.48e9 (11
+ * runs each; docs/performance.md). */
 static uint64_t *zalloc_lines(size_t n)
 {
-    size_t bytes = (n * sizeof(uint64_t) + 63) & ~(size_t)63;
-    uint64_t *p = aligned_alloc(64, bytes ? bytes : 64);
-    if (p)
-        memset(p, 0, bytes);
-    return p;
+    return gr_zalloc_apart(n * sizeof(uint64_t));
 }
 
 /* The lanes of each thread's block in an allocation of their own, followed
@@ -170,9 +176,9 @@ static int alloc_lanes(lgca *L)
     int nj = L->nj, T = L->nthreads < nj / 2 ? L->nthreads : nj / 2;
     size_t lw = LGCA_CH * (size_t)L->nw;
     L->nseg = T;
-    L->seg = calloc((size_t)T, sizeof *L->seg);
-    L->seg_j = calloc((size_t)T + 1, sizeof *L->seg_j);
-    L->lane = calloc((size_t)nj, sizeof *L->lane);
+    L->seg = (uint64_t **)zalloc_lines((size_t)T);
+    L->seg_j = (int *)zalloc_lines((size_t)T + 1);
+    L->lane = (uint64_t **)zalloc_lines((size_t)nj);
     if (!L->seg || !L->seg_j || !L->lane)
         return 0;
     for (int k = 0; k <= T; k++)
@@ -192,8 +198,8 @@ static int alloc_lattice(lgca *L, gr_err *err)
 {
     size_t nj = (size_t)L->nj, nw = (size_t)L->nw, T = (size_t)L->nthreads;
     int lanes = alloc_lanes(L);
-    L->solid = calloc(nj * nw, sizeof *L->solid);
-    L->valid = calloc(nw, sizeof *L->valid);
+    L->solid = zalloc_lines(nj * nw);
+    L->valid = zalloc_lines(nw);
     L->chunk = nw >= LGCA_CHUNK_WORDS ? 1 : (int)(LGCA_CHUNK_WORDS / nw);
     L->scratch = zalloc_lines(T * LGCA_SCRATCH * (size_t)L->chunk * nw);
     L->edge = zalloc_lines(2 * T * lgca_edge_slot(L));
@@ -210,7 +216,7 @@ int lgca_create(const gr_scene *sc, const lgca_params *par, const uint32_t key[2
                 const gr_particles *init, gr_rng *rng, lgca **out, gr_err *err)
 {
     *out = NULL;
-    lgca *L = calloc(1, sizeof *L);
+    lgca *L = (lgca *)zalloc_lines((sizeof(lgca) + 7) / 8);
     if (!L)
         return gr_fail(err, GR_ERUN, "out of memory");
     L->sc = sc;

@@ -150,10 +150,11 @@ typedef struct lgca {
     uint64_t *edge;         /* per step parity and thread: a slot of 4 planes of a block's edge lanes */
 } lgca;
 
-/* Words per slot of L->edge: 4 planes, rounded up to whole cache lines. */
+/* Words per slot of L->edge: 4 planes, rounded up to whole pairs of cache
+ * lines (lgca_geom.c's zalloc_lines says why). */
 static inline size_t lgca_edge_slot(const lgca *L)
 {
-    return (4 * (size_t)L->nw + 7) & ~(size_t)7;
+    return (4 * (size_t)L->nw + 15) & ~(size_t)15;
 }
 
 /* lgca_geom.c: lattice size, walls, the initial state. */
