@@ -35,7 +35,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     if ((size_t)ns > ev->cap_ns) {
         free(ev->st), free(ev->sel), free(ev->kin), free(ev->sway), free(ev->kicker), free(ev->sstr);
         ev->sstr = malloc((size_t)ns);
-        ev->st = aligned_alloc(64, (size_t)ns * sizeof *ev->st);
+        ev->st = aligned_alloc(128, (size_t)ns * sizeof *ev->st);
         ev->sel = malloc((size_t)ns * sizeof *ev->sel);
         ev->kin = malloc((size_t)ns * sizeof *ev->kin);
         ev->kicker = calloc((size_t)ns, sizeof *ev->kicker);
@@ -60,7 +60,7 @@ static int eval_scratch(gr_dem *d, int ns, int nseg, size_t nsf, int nth, gr_err
     }
     if (nth > ev->cap_tred) {
         free(ev->tred);
-        ev->tred = aligned_alloc(64, (size_t)nth * sizeof *ev->tred);
+        ev->tred = aligned_alloc(128, (size_t)nth * sizeof *ev->tred);
         ev->cap_tred = nth;
     }
     if ((size_t)nseg + 1 > ev->cap_seg) {
