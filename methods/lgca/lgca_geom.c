@@ -203,9 +203,10 @@ static int alloc_lattice(lgca *L, gr_err *err)
     L->chunk = nw >= LGCA_CHUNK_WORDS ? 1 : (int)(LGCA_CHUNK_WORDS / nw);
     L->scratch = zalloc_lines(T * LGCA_SCRATCH * (size_t)L->chunk * nw);
     L->edge = zalloc_lines(2 * T * lgca_edge_slot(L));
+    L->sweep = zalloc_lines(T * lgca_sweep_words(L));
     if (L->thr_stop && !(L->stop_mask = calloc(nj * nw, sizeof *L->stop_mask)))
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
-    if (!lanes || !L->solid || !L->valid || !L->scratch || !L->edge)
+    if (!lanes || !L->solid || !L->valid || !L->scratch || !L->edge || !L->sweep)
         return gr_fail(err, GR_ERUN, "out of memory for a lattice of %d x %d nodes", L->nj, L->ni);
     for (int i = 0; i < L->ni; i++)
         L->valid[i >> 6] |= (uint64_t)1 << (i & 63);
@@ -263,7 +264,7 @@ void lgca_free(lgca *L)
     for (int k = 0; L->seg && k < L->nseg; k++)
         free(L->seg[k]);
     free(L->seg), free(L->seg_j), free(L->lane);
-    free(L->solid), free(L->valid), free(L->walls), free(L->scratch), free(L->edge);
+    free(L->solid), free(L->valid), free(L->walls), free(L->scratch), free(L->edge), free(L->sweep);
     free(L->stop_mask);
     free(L);
 }

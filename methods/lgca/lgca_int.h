@@ -148,7 +148,14 @@ typedef struct lgca {
     int chunk;              /* lanes collided together (LGCA_CHUNK_WORDS words) */
     uint64_t *scratch;      /* per thread: LGCA_SCRATCH chunk nw words (fluid, random bits, masks) */
     uint64_t *edge;         /* per step parity and thread: a slot of 4 planes of a block's edge lanes */
+    uint64_t *sweep;        /* per thread: 4 planes, the sweep's copies of a chunk's last lane (lgca_step.c) */
 } lgca;
+
+/* Words per thread of L->sweep, in whole pairs of cache lines. */
+static inline size_t lgca_sweep_words(const lgca *L)
+{
+    return (4 * (size_t)L->nw + 15) & ~(size_t)15;
+}
 
 /* Words per slot of L->edge: 4 planes, rounded up to whole pairs of cache
  * lines (lgca_geom.c's zalloc_lines says why). */
