@@ -101,9 +101,13 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
         size_t n = (size_t)(jb - ja) * nw;
         uint64_t base = (uint64_t)ja * nw;
         uint64_t *lanes = L->lane[ja];
-        for (size_t o = 0; o < n; o += nw)
-            for (size_t w = 0; w < nw; w++)
-                fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
+        if (L->nwalls)
+            for (size_t o = 0; o < n; o += nw)
+                for (size_t w = 0; w < nw; w++)
+                    fluid[o + w] = L->valid[w] & ~L->solid[base + o + w];
+        else /* no wall node: the mask need not be read (8 MiB a step at 8192^2) */
+            for (size_t o = 0; o < n; o += nw)
+                memcpy(fluid + o, L->valid, nw * sizeof *fluid);
         lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
         if (granular) {
             for (size_t o = 0; o < n; o += nw)
