@@ -193,9 +193,7 @@ typedef struct gr_dem {
  * the number of threads). */
 #define DEM_BLOCK 512
 
-/* The two largest of v[0..n) (squared displacements), and their square
- * roots summed: the Verlet-list test, the same whatever grouping produced
- * v (maxima). */
+/* v into the two largest so far, m[0] >= m[1]. */
 static inline void gr_dem_top2_add(double v, double m[2])
 {
     if (v > m[0])
@@ -204,6 +202,9 @@ static inline void gr_dem_top2_add(double v, double m[2])
         m[1] = v;
 }
 
+/* The two largest of v[0..n) (squared displacements), and their square
+ * roots summed: the Verlet-list test, the same whatever grouping produced
+ * v (maxima). */
 static inline void gr_dem_top2(const double *v, size_t n, double m[2])
 {
     m[0] = m[1] = 0;

@@ -151,17 +151,17 @@ typedef struct lgca {
     uint64_t *sweep;        /* per thread: 4 planes, the sweep's copies of a chunk's last lane (lgca_step.c) */
 } lgca;
 
-/* Words per thread of L->sweep, in whole pairs of cache lines. */
-static inline size_t lgca_sweep_words(const lgca *L)
-{
-    return (4 * (size_t)L->nw + 15) & ~(size_t)15;
-}
-
 /* Words per slot of L->edge: 4 planes, rounded up to whole pairs of cache
  * lines (lgca_geom.c's zalloc_lines says why). */
 static inline size_t lgca_edge_slot(const lgca *L)
 {
     return (4 * (size_t)L->nw + 15) & ~(size_t)15;
+}
+
+/* Words per thread of L->sweep: 4 planes too, the size of an edge slot. */
+static inline size_t lgca_sweep_words(const lgca *L)
+{
+    return lgca_edge_slot(L);
 }
 
 /* lgca_geom.c: lattice size, walls, the initial state. */

@@ -283,7 +283,7 @@ static int end_lanes(const lgca *L, int j0, int j1)
  * and lane j1 - 1 from the right comes later, from the edge slots, which a
  * lone thread fills here. Where the lattice outgrows the caches this pays:
  * one thread's granular rate rose about 10 % at 4096^2 and 20 % at 8192^2,
- * FHP-III's 25 % at 8192^2 (docs/methods/lgca.md, "One sweep"). */
+ * FHP-III's about 30 % at 8192^2 (docs/methods/lgca.md, "One sweep"). */
 static uint64_t sweep(lgca *L, int T, int j0, int j1, int e, uint64_t *scr, uint64_t step, uint64_t *rb, int par)
 {
     size_t nw = (size_t)L->nw;
@@ -300,18 +300,14 @@ static uint64_t sweep(lgca *L, int T, int j0, int j1, int e, uint64_t *scr, uint
             int c = across[q];
             if (b < j1)
                 memcpy(rnext + (size_t)q * nw, plane(L, b - 1, c), nw * sizeof *rnext);
-            for (int j = b - 1; j > a; j--)
-                out += move_across(L, c, j - 1, plane(L, j - 1, c), plane(L, j, c));
+            out += propagate_inner(L, c, a, b);
             if (a > j0)
                 out += move_across(L, c, a - 1, rprev + (size_t)q * nw, plane(L, a, c));
         }
         uint64_t *tmp = rprev;
         rprev = rnext, rnext = tmp;
-        for (int q = 2; q < 4; q++) {
-            int c = across[q];
-            for (int j = a > j0 ? a - 1 : j0; j < b - 1; j++)
-                out += move_across(L, c, j + 1, plane(L, j + 1, c), plane(L, j, c));
-        }
+        for (int q = 2; q < 4; q++)
+            out += propagate_inner(L, across[q], a > j0 ? a - 1 : j0, b);
     }
     return out;
 }

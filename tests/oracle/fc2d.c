@@ -21,7 +21,7 @@
  * GR_FC2D_DLOPEN) loads it on its first solve instead. Linked into grano,
  * Siconos's OpenBLAS started its thread pool in every run of every
  * command, and its worker spun for the first 0.2 s on the cores grano's
- * own threads needed: 50-60 ms of each thread's time lost waiting to run,
+ * own threads needed: 52-64 ms of each thread's time lost waiting to run,
  * and the two-thread rate of a short bench cut by a fifth
  * (docs/performance.md). */
 typedef struct {
