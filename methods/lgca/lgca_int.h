@@ -149,6 +149,7 @@ typedef struct lgca {
     uint64_t *scratch;      /* per thread: LGCA_SCRATCH chunk nw words (fluid, random bits, masks) */
     uint64_t *edge;         /* per step parity and thread: a slot of 4 planes of a block's edge lanes */
     uint64_t *sweep;        /* per thread: 4 planes, the sweep's copies of a chunk's last lane (lgca_step.c) */
+    int prefetch;           /* a thread's lanes outgrow L2: the collision prefetches the next chunk's */
 } lgca;
 
 /* Words per slot of L->edge: 4 planes, rounded up to whole pairs of cache

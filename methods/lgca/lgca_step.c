@@ -64,9 +64,14 @@ static uint64_t shift_down(const lgca *L, uint64_t *dst, const uint64_t *src)
 /* The nodes whose collision a dissipation bit can change (no rest
  * particle, two movers or more: a superset of the table's), and those that
  * gravity can change (after the collision); elsewhere no bit is drawn. */
-static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
+static inline __attribute__((always_inline)) void need_dissipation_t(const uint64_t *lane, size_t nw,
+                                                                      const uint64_t *fluid, uint64_t *need,
+                                                                      const uint64_t *pf)
 {
     for (size_t w = 0; w < nw; w++) {
+        if (pf && !(w & 7))
+            for (int k = 0; k < LGCA_CH; k++)
+                __builtin_prefetch(pf + (size_t)k * nw + w, 1, 2);
         uint64_t one = 0, two = 0;
         for (int k = 0; k < 6; k++) {
             uint64_t a = lane[(size_t)k * nw + w];
@@ -74,6 +79,17 @@ static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fl
         }
         need[w] = fluid[w] & ~lane[LGCA_REST * nw + w] & two;
     }
+}
+
+/* pf: the lane to prefetch alongside (to L2: to L1 it would evict the
+ * chunk's scratch), or NULL */
+static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need,
+                             const uint64_t *pf)
+{
+    if (pf)
+        need_dissipation_t(lane, nw, fluid, need, pf);
+    else
+        need_dissipation_t(lane, nw, fluid, need, NULL);
 }
 
 static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need)
@@ -84,9 +100,23 @@ static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid,
     }
 }
 
+/* The lanes from jb on (before jpf) that the next chunk of
+ * collide_block will first touch, if they follow lanes in memory; NULL
+ * if none. */
+static const uint64_t *next_lanes(const lgca *L, const uint64_t *lanes, int ja, int jb, int jpf)
+{
+    int nn = jb - ja < jpf - jb ? jb - ja : jpf - jb;
+    size_t lw = (size_t)LGCA_CH * (size_t)L->nw;
+    if (nn <= 0 || L->lane[jb] != lanes + (size_t)(jb - ja) * lw ||
+        L->lane[jb + nn - 1] != L->lane[jb] + (size_t)(nn - 1) * lw)
+        return NULL;
+    return L->lane[jb];
+}
+
 /* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
- * drawn together (word j nw + w of lane j). */
-static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t step, int fuse)
+ * drawn together (word j nw + w of lane j). The lanes [j1, jpf) are the
+ * caller's next ones, prefetched while the last chunk computes. */
+static uint64_t collide_block(lgca *L, int j0, int j1, int jpf, uint64_t *scr, uint64_t step, int fuse)
 {
     uint64_t out = 0;
     size_t nw = (size_t)L->nw, cw = (size_t)L->chunk * nw;
@@ -110,8 +140,15 @@ static uint64_t collide_block(lgca *L, int j0, int j1, uint64_t *scr, uint64_t s
                 memcpy(fluid + o, L->valid, nw * sizeof *fluid);
         lgca_rand_words(L->key, base, n, LGCA_RND_CHIRAL, step, ch);
         if (granular) {
+            /* Each step's first touch of the lanes: from DRAM once the
+             * lattice outgrows the caches, in seven planes at once, which the
+             * hardware prefetchers do not follow. The next chunk goes to L2
+             * (to L1 it would evict this chunk's scratch): AVX2-only build,
+             * granular 8192^2, 2.02 -> 2.26e9 site updates/s. */
+            const uint64_t *pf = L->prefetch ? next_lanes(L, lanes, ja, jb, jb < j1 ? j1 : jpf) : NULL;
+            size_t npf = pf ? (size_t)((jb < j1 ? j1 : jpf) - jb) * nw : 0;
             for (size_t o = 0; o < n; o += nw)
-                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o);
+                need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o, o < npf ? pf + o * LGCA_CH : NULL);
             lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_P, step, L->thr_p, need, pb,
                                    dense);
             lgca_delta_granular_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch, pb);
@@ -292,7 +329,7 @@ static uint64_t sweep(lgca *L, int T, int j0, int j1, int e, uint64_t *scr, uint
         int ahead = a < j0 + e || a >= j1 - e;
         b = a < j0 + e ? j0 + e : a >= j1 - e ? j1 : (a + L->chunk < j1 - e ? a + L->chunk : j1 - e);
         if (!ahead)
-            out += collide_block(L, a, b, scr, step, 1);
+            out += collide_block(L, a, b, j1, scr, step, 1);
         for (int q = 0; q < 4 && T == 1; q++)
             if (q < 2 ? b == j1 : a == j0)
                 out += save_edge(L, q, across[q], 0, 1, j0, j1, par);
@@ -328,8 +365,8 @@ static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr,
     int par = (int)(step & 1u), e = T > 1 ? end_lanes(L, j0, j1) : 0;
     uint64_t out = 0, *rb = L->sweep + (size_t)t * lgca_sweep_words(L);
     if (T > 1) {
-        out += collide_block(L, j0, j0 + e, scr, step, 1);
-        out += collide_block(L, j1 - e, j1, scr, step, 1);
+        out += collide_block(L, j0, j0 + e, j0 + e, scr, step, 1);
+        out += collide_block(L, j1 - e, j1, j1, scr, step, 1);
         for (int q = 0; q < 4; q++)
             out += save_edge(L, q, across[q], t, T, j0, j1, par);
         atomic_store_explicit(&flag[t].saved, step + 1, memory_order_release);
@@ -347,7 +384,7 @@ static uint64_t step_alone(lgca *L, int t, int T, int j0, int j1, uint64_t *scr,
 static uint64_t step_serial(lgca *L, int t, int T, int j0, int j1, uint64_t *scr, uint64_t step)
 {
     int par = (int)(step & 1u);
-    uint64_t out = collide_block(L, j0, j1, scr, step, 0);
+    uint64_t out = collide_block(L, j0, j1, j1, scr, step, 0);
 #pragma omp barrier
 #pragma omp single
     {

@@ -150,6 +150,7 @@ static void against_reference(const char *base, const char *const *variants, siz
         gr_scene *sc;
         gr_sim *s = lgca_make(text, &sc);
         lgca *L = gr_sim_state(s);
+        L->prefetch = 1; /* the path of lattices past L2, on small ones */
         if (thr_g) {
             assert_true(L->nwalls == 0 && !L->thr_stop);
             if (L->par.rules == LGCA_RULES_GRANULAR)
