@@ -71,7 +71,7 @@ static inline __attribute__((always_inline)) void need_dissipation_t(const uint6
     for (size_t w = 0; w < nw; w++) {
         if (pf && !(w & 7))
             for (int k = 0; k < LGCA_CH; k++)
-                __builtin_prefetch(pf + (size_t)k * nw + w, 1, 2);
+                __builtin_prefetch(pf + (size_t)k * nw + w, 0, 2);
         uint64_t one = 0, two = 0;
         for (int k = 0; k < 6; k++) {
             uint64_t a = lane[(size_t)k * nw + w];
@@ -143,8 +143,9 @@ static uint64_t collide_block(lgca *L, int j0, int j1, int jpf, uint64_t *scr, u
             /* Each step's first touch of the lanes: from DRAM once the
              * lattice outgrows the caches, in seven planes at once, which the
              * hardware prefetchers do not follow. The next chunk goes to L2
-             * (to L1 it would evict this chunk's scratch): AVX2-only build,
-             * granular 8192^2, 2.02 -> 2.26e9 site updates/s. */
+             * (prefetcht1; to L1, or with prefetchw, it evicts this chunk's
+             * scratch: 2.09-2.13e9): AVX2-only build, granular 8192^2,
+             * 2.02 -> 2.26e9 site updates/s. */
             const uint64_t *pf = L->prefetch ? next_lanes(L, lanes, ja, jb, jb < j1 ? j1 : jpf) : NULL;
             size_t npf = pf ? (size_t)((jb < j1 ? j1 : jpf) - jb) * nw : 0;
             for (size_t o = 0; o < n; o += nw)
