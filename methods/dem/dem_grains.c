@@ -15,6 +15,12 @@ static int field_used(const gr_dem *d, int f)
     return 1;
 }
 
+/* Unused bytes after each per-grain array, a page and more: the next
+ * array's first grains (thread 0's) are then across a page boundary from
+ * this one's last (the last thread's), which the hardware prefetchers
+ * streaming through those do not cross. */
+#define DEM_TAIL (4096 + 128)
+
 int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
 {
     if (cap <= d->cap)
@@ -22,7 +28,7 @@ int gr_dem_grow(gr_dem *d, size_t cap, gr_err *err)
     size_t old = d->cap;
 #define GROW(T, a)                                                                 \
     {                                                                              \
-        T *p_ = realloc((a), cap * sizeof(T));                                     \
+        T *p_ = realloc((a), cap * sizeof(T) + DEM_TAIL);                          \
         if (!p_)                                                                   \
             return gr_fail(err, GR_ERUN, "out of memory for %zu grains", cap);     \
         memset(p_ + old, 0, (cap - old) * sizeof(T));                              \
