@@ -12,7 +12,10 @@
 #include <string.h>
 
 /* bytes zeroed, on 128-byte pairs of lines, followed by 256 bytes that
- * nothing uses; free() releases it. */
+ * nothing uses; free() releases it. Enough for the lattice gas's shared
+ * arrays; a core streaming through the end of an array can prefetch on to
+ * the page boundary, which soft DEM's per-grain arrays guard against with
+ * a page (dem_grains.c, DEM_TAIL). */
 static inline void *gr_zalloc_apart(size_t bytes)
 {
     size_t n = ((bytes + 127) & ~(size_t)127) + 256;

@@ -81,8 +81,8 @@ static inline __attribute__((always_inline)) void need_dissipation_t(const uint6
     }
 }
 
-/* pf: the lane to prefetch alongside (to L2: to L1 it would evict the
- * chunk's scratch), or NULL */
+/* pf: the lane to prefetch alongside, or NULL; a loop for each, so that
+ * lattices in the caches (no prefetch) pay no test per word */
 static void need_dissipation(const uint64_t *lane, size_t nw, const uint64_t *fluid, uint64_t *need,
                              const uint64_t *pf)
 {
@@ -100,17 +100,18 @@ static void need_gravity(const uint64_t *lane, size_t nw, const uint64_t *fluid,
     }
 }
 
-/* The lanes from jb on (before jpf) that the next chunk of
- * collide_block will first touch, if they follow lanes in memory; NULL
- * if none. */
-static const uint64_t *next_lanes(const lgca *L, const uint64_t *lanes, int ja, int jb, int jpf)
+/* The lanes from jb on (before jend, at most as many as [ja, jb)) that
+ * the next chunk of collide_block will first touch, into *pf if they
+ * follow lanes in memory; returns their words (0: none). */
+static size_t next_lanes(const lgca *L, const uint64_t *lanes, int ja, int jb, int jend, const uint64_t **pf)
 {
-    int nn = jb - ja < jpf - jb ? jb - ja : jpf - jb;
+    int nn = jb - ja < jend - jb ? jb - ja : jend - jb;
     size_t lw = (size_t)LGCA_CH * (size_t)L->nw;
     if (nn <= 0 || L->lane[jb] != lanes + (size_t)(jb - ja) * lw ||
         L->lane[jb + nn - 1] != L->lane[jb] + (size_t)(nn - 1) * lw)
-        return NULL;
-    return L->lane[jb];
+        return 0;
+    *pf = L->lane[jb];
+    return (size_t)nn * (size_t)L->nw;
 }
 
 /* Lanes [j0, j1) in chunks of L->chunk lanes, whose random words are
@@ -146,8 +147,8 @@ static uint64_t collide_block(lgca *L, int j0, int j1, int jpf, uint64_t *scr, u
              * (prefetcht1; to L1, or with prefetchw, it evicts this chunk's
              * scratch: 2.09-2.13e9): AVX2-only build, granular 8192^2,
              * 2.02 -> 2.26e9 site updates/s. */
-            const uint64_t *pf = L->prefetch ? next_lanes(L, lanes, ja, jb, jb < j1 ? j1 : jpf) : NULL;
-            size_t npf = pf ? (size_t)((jb < j1 ? j1 : jpf) - jb) * nw : 0;
+            const uint64_t *pf = NULL;
+            size_t npf = L->prefetch ? next_lanes(L, lanes, ja, jb, jb < j1 ? j1 : jpf, &pf) : 0;
             for (size_t o = 0; o < n; o += nw)
                 need_dissipation(lanes + o * LGCA_CH, nw, fluid + o, need + o, o < npf ? pf + o * LGCA_CH : NULL);
             lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_P, step, L->thr_p, need, pb,
