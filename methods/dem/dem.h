@@ -394,6 +394,11 @@ int gr_dem_pre_use(gr_dem *d, uint64_t E, double *moved);
  * the caller's barrier ends the step. */
 int gr_dem_eval_flow_begin(gr_dem *d);
 void gr_dem_eval_flow(gr_dem *d, int p, int q, int *scratch, size_t stride);
+/* The first strip of each of T threads' runs in the last evaluation, if it
+ * was a one-barrier step on T threads and the strips are as they were
+ * (cut[T] = strips.n): the rebuild hands each thread the grains it will
+ * step. 0 otherwise. */
+int gr_dem_eval_flow_cut(const gr_dem *d, int T, int *cut);
 /* dem_force.c: the fused kick of strip r, whatever its kicker. */
 void gr_dem_eval_kick_strip(gr_dem *d, int r);
 /* Largest squared half-kick speed v + (dt/2) a of the next drift, from the

@@ -180,6 +180,15 @@ int gr_dem_eval_flow_begin(gr_dem *d)
     return 1;
 }
 
+int gr_dem_eval_flow_cut(const gr_dem *d, int T, int *cut)
+{
+    const struct gr_dem_eval *ev = d->ev;
+    if (!ev || !ev->tred_on || ev->c.nth != T || ev->ns != d->strips.n)
+        return 0;
+    memcpy(cut, ev->split + 3 * (T + 1), (size_t)(T + 1) * sizeof *cut);
+    return 1;
+}
+
 /* This thread's strips of colour col in [s0, s1), the two ends first (the
  * neighbours' runs wait on them), then the rest upwards. */
 static int colour_order(int s0, int s1, int col, int *out)
