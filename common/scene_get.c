@@ -46,6 +46,14 @@ int gr_scene_entry_fail(const gr_scene *sc, const char *s, const char *k, gr_err
     return gr_fail(err, GR_EINPUT, "%s: %s", where, what);
 }
 
+int gr_scene_no_grains(const gr_scene *sc, gr_err *err)
+{
+    if (gr_scene_find(sc, "init", "kind"))
+        return gr_scene_entry_fail(sc, "init", "kind", err,
+                                   "the scene has no grains (a particle method needs [species] count or a file of grains)");
+    return gr_scene_entry_fail(sc, "species", "count", err, "the scene has no grains");
+}
+
 /* Which section does a name belong to: "species.big" -> "species". */
 const char *gr_scene_section_kind(const char *name)
 {

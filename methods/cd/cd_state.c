@@ -132,7 +132,7 @@ static int load_grains(gr_cd *d, const gr_particles *init, gr_err *err)
         rc = load_grain(d, t, init, ix[t].i, err);
     free(ix);
     if (!rc && !(d->dmax > 0))
-        rc = gr_fail(err, GR_EINPUT, "the scene has no grains");
+        rc = gr_scene_no_grains(&d->sc, err);
     return rc;
 }
 

@@ -157,7 +157,7 @@ static int record_grains(gr_dem *d, const gr_particles *init, const gr_id_index 
                            (long long)init->id[i], init->radius[i], init->mass[i]);
     }
     if (*live == 0)
-        return gr_fail(err, GR_EINPUT, "the scene has no grains");
+        return gr_scene_no_grains(&d->sc, err);
     d->dmax = 2 * d->rmax;
     d->dmin = 2 * rmin;
     if (d->hist_on) {

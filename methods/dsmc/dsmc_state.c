@@ -97,7 +97,7 @@ static int load_grains(gr_dsmc *d, const gr_particles *init, gr_err *err)
     }
     free(ix);
     if (!rc && n == 0)
-        rc = gr_fail(err, GR_EINPUT, "the scene has no grains");
+        rc = gr_scene_no_grains(&d->sc, err);
     return rc;
 }
 

@@ -95,6 +95,18 @@ count = 20
 density = -1
 INI
 
+scene nograins.ini <<'INI'
+[domain]
+width = 10
+height = 10
+[init]
+kind = lattice
+[run]
+until = 0.01
+INI
+for m in dem cd dsmc; do
+    check "no grains for $m: the [init] key named" 2 "nograins.ini:5:" "'kind'" "no grains" -- "$tmp/nograins.ini" --method $m --out "$tmp/out.h5"
+done
 check "missing scene file" 2 "$tmp/none.ini" "cannot read" -- "$tmp/none.ini" --out "$tmp/out.h5"
 check "unknown key, nearest suggested" 2 "typo.ini:6:" "diamter" "did you mean 'diameter'" -- "$tmp/typo.ini" --out "$tmp/out.h5"
 check "NaN value" 2 "nan.ini:3:" "'height'" "finite" -- "$tmp/nan.ini" --out "$tmp/out.h5"
