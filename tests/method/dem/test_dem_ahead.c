@@ -6,7 +6,11 @@
  * against one: test_dem_restart.c; the threaded step drifts ahead too.)
  * And on 2 and 3 threads, where a run of strips that starts at an even
  * strip kicks that strip itself (dem_flow.c), the same bits as one
- * thread's steps, with such runs met. */
+ * thread's steps, with such runs met. The buffers are compared whole, so
+ * they start zeroed: the grains fill only their first 5 ntag doubles, and
+ * with the rest uninitialised the comparison depended on what the heap
+ * held (it failed with the tests in another order, and at times in this
+ * one). */
 #include "dem_test.h"
 #include "dem/dem_eval.h"
 
@@ -57,7 +61,7 @@ static void same_bits_as_steps(void **state)
     (void)state;
     const long steps = 8000; /* 1 tau */
     size_t cap = 5 * 4096;
-    double *a = malloc(cap * sizeof *a), *b = malloc(cap * sizeof *b);
+    double *a = calloc(cap, sizeof *a), *b = calloc(cap, sizeof *b); /* compared whole */
     assert_true(a && b);
     uint64_t oa, ob, ba, bb;
     run(1, steps, a, &oa, &ba);
@@ -106,7 +110,7 @@ static void threads_kick_their_first_strip(void **state)
     (void)state;
     const long steps = 2000;
     size_t cap = 5 * 4096;
-    double *a = malloc(cap * sizeof *a), *b = malloc(cap * sizeof *b);
+    double *a = calloc(cap, sizeof *a), *b = calloc(cap, sizeof *b); /* compared whole */
     assert_true(a && b);
     uint64_t oa, ba;
     run(1, steps, a, &oa, &ba);
