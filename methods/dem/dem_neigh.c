@@ -87,7 +87,7 @@ int gr_dem_sort(gr_dem *d, gr_err *err)
     return GR_OK;
 }
 
-static void strips_index(gr_dem *d)
+void gr_dem_strips_index(gr_dem *d)
 {
     gr_dem_strips *s = &d->strips;
     for (int k = 0; k <= s->n; k++)
@@ -265,7 +265,7 @@ int gr_dem_list_finish(gr_dem *d, size_t cnt, size_t scnt, gr_err *err)
     if (!owner)
         return gr_fail(err, GR_ERUN, "out of memory for the neighbour list");
     d->nb_i = owner;
-    strips_index(d);
+    gr_dem_strips_index(d);
     d->need_build = 0;
     d->builds++;
     d->list_gen++;

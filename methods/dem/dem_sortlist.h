@@ -22,7 +22,6 @@ typedef struct {
     char pad[64]; /* threads write their own entries: no shared cache line */
 } dem_listbuf;
 
-
 /* A per-grain array to reorder: esz bytes per grain. */
 typedef struct {
     void *a;
@@ -43,6 +42,8 @@ int gr_dem_list_run(gr_dem *d, const double *x, const double *y, size_t i0, size
 void gr_dem_list_owners(gr_dem *d, size_t i0, size_t i1, int32_t end);
 /* nb_start and sg_start sized for the grains. */
 int gr_dem_list_starts(gr_dem *d, gr_err *err);
+/* Each strip's first grain, from the cells (after a binning). */
+void gr_dem_strips_index(gr_dem *d);
 /* The list's ends, owners' array and strips, once its rows are in. */
 int gr_dem_list_finish(gr_dem *d, size_t cnt, size_t scnt, gr_err *err);
 

@@ -49,20 +49,18 @@ double gr_dem_team_bytes(const struct gr_dem_team *tm)
  * split: each grain's row is built by one thread, the runs joined in
  * order. */
 
-/* Thread t's grains [r[t], r[t + 1]), on the cells of the new order. */
-static void team_rows(const gr_dem *d, int T, size_t *r)
+/* Thread t's grains [r[t], r[t + 1]), on the strips of the new order. */
+static void team_rows(gr_dem *d, int T, size_t *r)
 {
     int cut[65];
-    const size_t n = d->n;
-    const gr_dem_cells *g = &d->cells;
-    if (T <= 64 && d->strips.n > 0 && gr_dem_eval_flow_cut(d, T, cut)) {
+    if (T <= 64 && gr_dem_eval_flow_cut(d, T, cut)) {
+        gr_dem_strips_index(d);
         for (int t = 0; t <= T; t++)
-            r[t] = (size_t)g->start[(size_t)d->strips.row0[cut[t]] * (size_t)g->nx];
-        r[T] = n;
+            r[t] = (size_t)d->strips.i0[cut[t]];
         return;
     }
     for (int t = 0; t <= T; t++)
-        r[t] = n * (size_t)t / (size_t)T;
+        r[t] = d->n * (size_t)t / (size_t)T;
 }
 
 /* One thread of the team: the bins, the scratch for T threads, the split. */
