@@ -165,8 +165,8 @@ def main():
         print("%s %d - %s" % ("ok" if good else "not ok", tests, name))
         if not good and why:
             print("# " + why.replace("\n", "\n# "))
-    print("# figures: kills %d, unreadable files after a kill %d, restarts %d, rounds %d, bit-identical %d"
-          % (kills, unreadable, restarts, rounds, identical))
+    print("# figures: kills %d, results unreadable after a kill %d, restarts %d, rounds %d, "
+          "equal to the uninterrupted run %d" % (kills, unreadable, restarts, rounds, identical))
     print("1..%d" % tests)
     return 0 if all(r[1] is not False for r in results) else 1
 
