@@ -24,17 +24,6 @@ const gr_elem_def gr_h5md_pdefs[NPE] = {
     {"id", "1", GR_T_I64, 1, 1},
 };
 
-const gr_elem_def gr_h5md_odefs[NOE] = {
-    {"n_mobile", "1", GR_T_I64, 1, 0},
-    {"ekin_trans", "m d+2 tau-2", GR_T_F64, 1, 0},
-    {"ekin_rot", "m d+2 tau-2", GR_T_F64, 1, 0},
-    {"epot_grav", "m d+2 tau-2", GR_T_F64, 1, 0},
-    {"temperature", "m d+2 tau-2", GR_T_F64, 1, 0},
-    {"momentum", "m d tau-1", GR_T_F64, 2, 0},
-    {"outflow", "1", GR_T_I64, 1, 0},
-    {"wall_pressure", "m tau-2", GR_T_F64, 1, 0},
-    {"max_overlap", "d", GR_T_F64, 1, 0},
-};
 
 
 static const char *author_name(const gr_h5md_opts *o)
@@ -103,7 +92,7 @@ gr_h5md *gr_h5md_alloc(void)
     h->obs_step = h->obs_time = -1;
     for (int k = 0; k < NPE; k++)
         h->pe[k].group = h->pe[k].value = -1;
-    for (int k = 0; k < NOE; k++)
+    for (int k = 0; k < GR_OBS_MAX; k++)
         h->oe[k].group = h->oe[k].value = -1;
     return h;
 }
@@ -115,7 +104,7 @@ static void close_handles(gr_h5md *h)
         gr_h5_close(h->pe[k].group);
         free(h->pe[k].prev);
     }
-    for (int k = 0; k < NOE; k++) {
+    for (int k = 0; k < GR_OBS_MAX; k++) {
         gr_h5_close(h->oe[k].value);
         gr_h5_close(h->oe[k].group);
     }
@@ -217,6 +206,10 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
         goto fail;
     }
     h->owned = 1;
+    if (gr_h5md_set_obs(h, o)) {
+        gr_fail(err, GR_ERUN, "a method declares %zu observables, at most %d", gr_obs_count(o->obs), GR_OBS_MAX);
+        goto fail;
+    }
     hid_t fapl = gr_h5_fapl();
     h->file = fapl < 0 ? -1 : H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     gr_h5_close(fapl);
@@ -271,6 +264,7 @@ gr_h5md *gr_h5md_attach(hid_t file, const gr_scene *sc, const gr_h5md_opts *o, g
         return NULL;
     }
     h->file = file;
+    gr_h5md_set_obs(h, o ? o : &zero);
     int rc;
     GR_H5_GUARD(err, rc, rc = build_layout(h, sc, o ? o : &zero, err));
     if (rc) {
@@ -496,32 +490,56 @@ int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time, const gr_particl
     return rc;
 }
 
+int gr_h5md_set_obs(gr_h5md *h, const gr_h5md_opts *o)
+{
+    h->odefs = o->obs ? o->obs : gr_obs_particle_set;
+    h->noe = gr_obs_count(h->odefs);
+    h->oskip = o->obs_skip;
+    for (h->o0 = 0; h->o0 < h->noe && (h->oskip >> h->o0 & 1); h->o0++)
+        ;
+    return h->o0 < h->noe && h->noe <= GR_OBS_MAX ? 0 : -1;
+}
+
+/* observables/<name>: a series whose value carries its unit, meaning and,
+ * for a validity counter, the key that changes the limit. */
+static int obs_element(gr_h5md *h, hid_t og, size_t k)
+{
+    const gr_obs_def *d = &h->odefs[k];
+    gr_elem_def ed = {d->name, d->unit, d->integer ? GR_T_I64 : GR_T_F64, d->ncomp, 0};
+    gr_elem *e = &h->oe[k];
+    e->group = k == h->o0 ? owner_group(og, d->name, &h->obs_step, &h->obs_time)
+                          : series_group(og, d->name, h->oe[h->o0].group);
+    e->series = 1;
+    if (e->group < 0 || (e->value = series_value(e->group, &ed, 0)) < 0)
+        return -1;
+    return (d->doc && gr_h5_attr_str(e->value, "description", d->doc, 0)) ||
+           (d->key && gr_h5_attr_str(e->value, "validity_key", d->key, 0));
+}
+
 static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
 {
     if (!isfinite(o->t) || (h->nobs && o->t < h->last_obs_time))
         return gr_fail(err, GR_ERUN, "observable time %.17g is not after the previous one (%.17g)",
                        o->t, h->last_obs_time);
-    if (!h->nobs && h->oe[0].group < 0) {
+    if (!h->nobs && h->oe[h->o0].group < 0) {
         hid_t og = gr_h5_mkgroup(h->file, "observables");
         int bad = og < 0;
-        for (int k = 0; k < NOE && !bad; k++) {
-            gr_elem *e = &h->oe[k];
-            e->group = k == 0 ? owner_group(og, gr_h5md_odefs[k].name, &h->obs_step, &h->obs_time)
-                              : series_group(og, gr_h5md_odefs[k].name, h->oe[0].group);
-            e->series = 1;
-            bad = e->group < 0 || (e->value = series_value(e->group, &gr_h5md_odefs[k], 0)) < 0;
-        }
+        for (size_t k = h->o0; k < h->noe && !bad; k++)
+            bad = !(h->oskip >> k & 1) && obs_element(h, og, k);
         gr_h5_close(og);
         if (bad)
             return gr_h5_fail(err, GR_ERUN, "cannot create the observables group");
     }
-    int64_t nmob = (int64_t)o->n_mobile, out = (int64_t)o->outflow, step = (int64_t)o->steps;
-    double mom[2] = {o->px, o->py};
-    const void *rows[NOE] = {&nmob, &o->ekin_trans, &o->ekin_rot, &o->epot_grav,
-                             &o->temperature, mom, &out, &o->wall_pressure, &o->max_overlap};
-    for (int k = 0; k < NOE; k++)
-        if (gr_h5_ext_append(h->oe[k].value, gr_h5md_odefs[k].type, rows[k]))
-            return gr_h5_fail(err, GR_ERUN, "cannot append to observables/%s", gr_h5md_odefs[k].name);
+    int64_t step = (int64_t)o->steps;
+    for (size_t k = h->o0; k < h->noe; k++) {
+        if (h->oskip >> k & 1)
+            continue;
+        const gr_obs_def *d = &h->odefs[k];
+        const void *v = gr_obs_value(o, h->odefs, k);
+        int64_t iv = d->integer ? (int64_t)*(const uint64_t *)v : 0;
+        if (gr_h5_ext_append(h->oe[k].value, d->integer ? GR_T_I64 : GR_T_F64, d->integer ? (const void *)&iv : v))
+            return gr_h5_fail(err, GR_ERUN, "cannot append to observables/%s", d->name);
+    }
     if (gr_h5_ext_append(h->obs_step, GR_T_I64, &step) ||
         gr_h5_ext_append(h->obs_time, GR_T_F64, &o->t))
         return gr_h5_fail(err, GR_ERUN, "cannot append the observables step and time");

@@ -31,6 +31,8 @@ typedef struct gr_h5md_opts {
     int no_xdmf;          /* 1: no <path>.xdmf sidecar */
     int any_text;         /* gr_h5md_reopen: the scene text may differ (a restart
                            * whose [run] or [measure] changed); the file keeps its own */
+    const gr_obs_def *obs; /* the observables written (NULL-name ended); NULL: the particle set */
+    uint64_t obs_skip;     /* bit k: obs[k] is not written (the scene has no such quantity) */
 } gr_h5md_opts;
 
 /* Create path. Refuses an existing path unless o->force (GR_EINPUT naming
@@ -162,6 +164,12 @@ int gr_h5md_write_xdmf(gr_h5md_reader *r, gr_err *err);
 int gr_h5md_list(gr_h5md_reader *r, const char *group, char ***names, size_t *n,
                  gr_err *err);
 void gr_h5md_names_free(char **names, size_t n);
+
+/* The last sample of observables/<name> as doubles (*ncomp of them, 1 or
+ * 2) and, for a validity limit's counter, the key that changes it (else
+ * ""). */
+int gr_h5md_obs_last(gr_h5md_reader *r, const char *name, double v[2], int *ncomp, char *key, size_t keyn,
+                     gr_err *err);
 
 /* A time series element (e.g. "observables/ekin_trans", "fields/density"):
  * its complete samples and first and last time (NaN when empty). */

@@ -132,15 +132,15 @@ static int reopen_observables(gr_h5md *h, double t_keep)
     if (og < 0)
         return -1;
     hsize_t keep = 0;
-    int bad = kept_rows(og, gr_h5md_odefs[0].name, t_keep, &keep, NULL, NULL);
-    for (int k = 1; k < NOE && !bad; k++)
-        if (gr_h5_series_rows(og, gr_h5md_odefs[k].name) < keep)
-            keep = gr_h5_series_rows(og, gr_h5md_odefs[k].name);
-    for (int k = 0; k < NOE && !bad; k++)
-        bad = open_series(og, gr_h5md_odefs[k].name, &h->oe[k], keep);
+    int bad = kept_rows(og, h->odefs[h->o0].name, t_keep, &keep, NULL, NULL);
+    for (size_t k = h->o0 + 1; k < h->noe && !bad; k++)
+        if (!(h->oskip >> k & 1) && gr_h5_series_rows(og, h->odefs[k].name) < keep)
+            keep = gr_h5_series_rows(og, h->odefs[k].name);
+    for (size_t k = h->o0; k < h->noe && !bad; k++)
+        bad = !(h->oskip >> k & 1) && open_series(og, h->odefs[k].name, &h->oe[k], keep);
     if (!bad) {
-        h->obs_step = H5Dopen2(h->oe[0].group, "step", H5P_DEFAULT);
-        h->obs_time = H5Dopen2(h->oe[0].group, "time", H5P_DEFAULT);
+        h->obs_step = H5Dopen2(h->oe[h->o0].group, "step", H5P_DEFAULT);
+        h->obs_time = H5Dopen2(h->oe[h->o0].group, "time", H5P_DEFAULT);
         bad = h->obs_step < 0 || h->obs_time < 0 || shrink(h->obs_step, keep) ||
               shrink(h->obs_time, keep) ||
               (keep && gr_h5_read_rows(h->obs_time, GR_T_F64, keep - 1, 1, &h->last_obs_time));
@@ -222,6 +222,7 @@ static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_
     const char *slash = strrchr(path, '/');
     h->h5name = strdup(slash ? slash + 1 : path);
     h->owned = 1;
+    gr_h5md_set_obs(h, o);
     hid_t fapl = gr_h5_fapl();
     h->file = fapl < 0 ? -1 : H5Fopen(path, H5F_ACC_RDWR, fapl);
     if (h->file < 0) {

@@ -101,7 +101,6 @@ int gr_h5md_contacts_keep(hid_t file, double t_keep);
 /* ---- writer state (h5md.c; reopened by h5md_append.c) ---- */
 
 enum { E_POS, E_VEL, E_OMEGA, E_FLAGS, E_RADIUS, E_MASS, E_INERTIA, E_SPECIES, E_ID, NPE };
-enum { O_NMOB, O_EKT, O_EKR, O_EPOT, O_TEMP, O_MOM, O_OUT, O_PRES, O_OVL, NOE };
 typedef struct {
     const char *name;
     const char *unit;
@@ -133,12 +132,18 @@ struct gr_h5md {
     size_t times_cap;
     double last_time;
     hid_t obs_step, obs_time;
-    gr_elem oe[NOE];
+    gr_elem oe[GR_OBS_MAX];
+    const gr_obs_def *odefs; /* the declared observables (gr_h5md_opts.obs) */
+    size_t noe;
+    uint64_t oskip;          /* declared but not written (gr_h5md_opts.obs_skip) */
+    size_t o0;               /* the first written: owner of step and time */
     size_t nobs;
     double last_obs_time;
 };
 
-extern const gr_elem_def gr_h5md_pdefs[NPE], gr_h5md_odefs[NOE];
+extern const gr_elem_def gr_h5md_pdefs[NPE];
+/* Take the observables o declares (the particle set if none). */
+int gr_h5md_set_obs(gr_h5md *h, const gr_h5md_opts *o);
 gr_h5md *gr_h5md_alloc(void);
 herr_t gr_h5md_release(gr_h5md *h); /* close handles (and the owned file), free */
 int gr_h5md_write_sidecar(gr_h5md *h, gr_err *err);

@@ -565,3 +565,35 @@ int gr_h5md_write_xdmf(gr_h5md_reader *r, gr_err *err)
     GR_H5_GUARD(err, rc, rc = xdmf_impl(r, err));
     return rc;
 }
+
+static int obs_last_impl(gr_h5md_reader *r, const char *name, double v[2], int *ncomp, char *key, size_t keyn,
+                         gr_err *err)
+{
+    char p[300];
+    snprintf(p, sizeof p, "observables/%s/value", name);
+    hid_t d = H5Dopen2(r->file, p, H5P_DEFAULT);
+    if (d < 0)
+        return gr_h5_fail(err, GR_EINPUT, "%s: no %s", r->info.path, p);
+    hid_t s = H5Dget_space(d);
+    hsize_t dims[2] = {0, 1};
+    int rank = s < 0 ? -1 : H5Sget_simple_extent_ndims(s);
+    if (rank == 1 || rank == 2)
+        H5Sget_simple_extent_dims(s, dims, NULL);
+    gr_h5_close(s);
+    *ncomp = rank == 2 ? (int)dims[1] : 1;
+    int bad = rank < 1 || rank > 2 || *ncomp > 2 || !dims[0] ||
+              gr_h5_read_rows(d, GR_T_F64, dims[0] - 1, 1, v);
+    char *k = bad ? NULL : gr_h5_read_attr_str(d, "validity_key");
+    snprintf(key, keyn, "%s", k ? k : "");
+    free(k);
+    H5Dclose(d);
+    return bad ? gr_h5_fail(err, GR_EINPUT, "%s: cannot read the last sample of %s", r->info.path, p) : GR_OK;
+}
+
+int gr_h5md_obs_last(gr_h5md_reader *r, const char *name, double v[2], int *ncomp, char *key, size_t keyn,
+                     gr_err *err)
+{
+    int rc;
+    GR_H5_GUARD(err, rc, rc = obs_last_impl(r, name, v, ncomp, key, keyn, err));
+    return rc;
+}

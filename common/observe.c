@@ -3,6 +3,33 @@
 #include <math.h>
 #include <string.h>
 
+const gr_obs_def gr_obs_particle_set[] = {
+    GR_OBS_N_MOBILE,      GR_OBS_EKIN_TRANS, GR_OBS_EKIN_ROT,      GR_OBS_EPOT_GRAV,
+    GR_OBS_TEMPERATURE,   GR_OBS_MOMENTUM,   GR_OBS_OUTFLOW,       GR_OBS_WALL_PRESSURE,
+    GR_OBS_MAX_OVERLAP,   GR_OBS_DEF_END,
+};
+
+size_t gr_obs_count(const gr_obs_def *defs)
+{
+    size_t n = 0;
+    while (defs && defs[n].name)
+        n++;
+    return n;
+}
+
+const void *gr_obs_value(const gr_obs *o, const gr_obs_def *defs, size_t k)
+{
+    const gr_obs_def *d = &defs[k];
+    switch (d->src) {
+    case GR_OBS_COUNTER:
+        return &o->count[k];
+    case GR_OBS_EXTRA:
+        return o->extra[k];
+    default:
+        return (const char *)o + d->off;
+    }
+}
+
 void gr_obs_clear(gr_obs *o)
 {
     memset(o, 0, sizeof *o);

@@ -29,7 +29,7 @@ static const char *const keys_init[] = {"kind", "region", "spacing", "velocity",
                                         "occupation", "rest_occupation", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       "thermo_every", "stress", NULL};
+                                       "thermo_every", "stress", "strict", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
@@ -377,7 +377,8 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         POSITIVE("run", "checkpoint_every", sc->run.until / 10.0, &sc->run.checkpoint_every) ||
         NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
         gr_scene_get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
-        gr_scene_get_yesno(sc, "run", "stress", 0, &sc->run.stress, err))
+        gr_scene_get_yesno(sc, "run", "stress", 0, &sc->run.stress, err) ||
+        gr_scene_get_yesno(sc, "run", "strict", 0, &sc->run.strict, err))
         return err->code;
     return GR_OK;
 }

@@ -114,6 +114,7 @@ typedef struct {
     int field_nx, field_ny; /* coarse-graining grid, 0 = none */
     int contacts;           /* write the contact network with each frame */
     int stress;             /* write the contact stress with each frame */
+    int strict;             /* a broken validity limit stops the run */
 } gr_runctl;
 
 /* Scale limits (docs/reliability.md): a scene beyond them is refused up

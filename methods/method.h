@@ -51,6 +51,12 @@ typedef struct gr_method_type {
     gr_repr repr;
     unsigned features;    /* GR_FEAT_* the backend supports */
     const gr_param *params; /* its section's table, ended by a NULL name */
+    /* What it measures, ended by a NULL name (common/observe.h): a run
+     * writes exactly these, `grano methods NAME` lists them. Each counter
+     * is declared (GR_OBS_DEF_COUNTER or, for a validity limit,
+     * GR_OBS_DEF_LIMIT, at the position k its value takes in gr_obs.count).
+     * [NULL: the common particle set, for a particle method] */
+    const gr_obs_def *observables;
 
     /* ---- mandatory ---- */
     /* Build a state. Features outside `features` were refused and the
@@ -58,13 +64,7 @@ typedef struct gr_method_type {
      * the scene's initial grains (a lattice backend may read occupations
      * from it; it is never NULL). */
     int (*create)(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err);
-    /* Advance until the time reaches t_end or max_steps steps (events) were
-     * done, whichever is first; max_steps 0 = no limit. */
-    int (*advance)(void *state, double t_end, uint64_t max_steps, gr_err *err);
     double (*time)(const void *state);
-    /* Pure: observing twice gives the same numbers. Window quantities
-     * (wall_pressure) are averages since the last reset_window. */
-    int (*observe)(void *state, gr_obs *obs, gr_err *err);
     /* Full state: load into a state created from the same scene continues
      * bit for bit as the uninterrupted run. Random streams handed out by
      * gr_sim_stream are saved by the instance, not here. */
@@ -73,6 +73,17 @@ typedef struct gr_method_type {
     void (*free)(void *state);
 
     /* ---- optional (NULL: the default in brackets) ---- */
+    /* Advance until the time reaches t_end or max_steps steps (events) were
+     * done, whichever is first; max_steps 0 = no limit. [step while
+     * time + dt / 2 <= t_end: needs step and dt] */
+    int (*advance)(void *state, double t_end, uint64_t max_steps, gr_err *err);
+    /* Pure: observing twice gives the same numbers. Window quantities
+     * (wall_pressure) are averages since the last reset_window. [particles:
+     * the kinematic set from the snapshot, t from time, steps from the
+     * counter "steps" (or "events"), outflow from the counter "outflow"] */
+    int (*observe)(void *state, gr_obs *obs, gr_err *err);
+    /* The fixed time step [none: event-driven, or advance of its own]. */
+    double (*dt)(const void *state);
     /* Every grain in id order at time() [mandatory for GR_REPR_PARTICLES;
      * a lattice backend has none, and gr_sim_snapshot refuses by name]. */
     int (*snapshot)(void *state, gr_particles *out, gr_err *err);
@@ -97,6 +108,10 @@ typedef struct gr_method_type {
      * NULL. The first call, or one on another grid, starts the window and
      * gives NaN. [none: `[run] stress = yes` needs contact networks] */
     int (*stress)(void *state, int nx, int ny, double global[4], double *cells, gr_err *err);
+    /* What broke the validity limit counted by the declared counter `name`:
+     * the value measured and the limit, in a phrase ("the mean of particles
+     * per cell is 1.3, below 2") [the limit's description]. */
+    void (*diagnose)(const void *state, const char *name, char *msg, size_t n);
 } gr_method_type;
 
 /* Optional operations, for gr_sim_require and `grano methods`. */
@@ -107,9 +122,11 @@ enum {
     GR_OP_RESET_WINDOW = 1u << 3,
     GR_OP_STEP = 1u << 4,
     GR_OP_CONTACTS = 1u << 5,
-    GR_OP_STRESS = 1u << 6
+    GR_OP_STRESS = 1u << 6,
+    GR_OP_ADVANCE = 1u << 7,
+    GR_OP_OBSERVE = 1u << 8
 };
-#define GR_OP_COUNT 7
+#define GR_OP_COUNT 9
 /* Operations the backend implements itself (not by a default). */
 unsigned gr_method_ops(const gr_method_type *m);
 const char *gr_op_name(unsigned op_bit);
@@ -153,6 +170,23 @@ int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err);
 /* The backend's window-averaged stress (see the table), or GR_EINPUT
  * naming the method if it has none. */
 int gr_sim_stress(gr_sim *s, int nx, int ny, double global[4], double *cells, gr_err *err);
+/* The observables the method declares (its table, or the particle set). */
+const gr_obs_def *gr_method_observables(const gr_method_type *m);
+const gr_obs_def *gr_sim_observables(const gr_sim *s);
+/* Bit k: observable k does not exist in this scene (GR_OBS_NEEDS_*). */
+uint64_t gr_sim_obs_skip(const gr_sim *s);
+
+/* A validity limit broken during the run: the declared limit counter
+ * `name`, the key that changes it, how many steps broke it, and what the
+ * method measured. */
+typedef struct {
+    const char *name, *key, *doc;
+    uint64_t count;
+    char detail[256];
+} gr_diag;
+/* The broken limits (count > 0), at most cap of them. */
+size_t gr_sim_diagnostics(gr_sim *s, gr_diag *out, size_t cap);
+
 /* GR_EINPUT if the backend lacks any of ops (GR_OP_*): "<who> needs <op>,
  * which method '<name>' does not give". */
 int gr_sim_require(const gr_method_type *m, unsigned ops, const char *who, gr_err *err);
@@ -162,9 +196,13 @@ int gr_method_require_features(const gr_method_type *m, unsigned features, const
                                gr_err *err);
 
 /* Random stream k of the backend (k < 0x10000), from the scene seed and
- * GR_STREAM_METHOD_BASE + k, or a stream of the common table (rng.h)
- * named by its id. Owned by the instance, saved and restored with it. */
+ * GR_STREAM_METHOD_BASE + k. Owned by the instance, saved and restored
+ * with it. */
 gr_rng *gr_sim_stream(gr_sim *s, uint64_t id, gr_err *err);
+/* The stream of the common table (rng.h) with that id, owned and saved
+ * likewise: for a backend whose stream predates its numbering (dem's
+ * reinsertion, edmd's floor and reinsertion), so its draws stay the same. */
+gr_rng *gr_sim_stream_id(gr_sim *s, uint64_t id, gr_err *err);
 
 /* Full state: the parameter values (a load compares them and names the
  * first that differs), the random streams, then the backend's save. */

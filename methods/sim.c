@@ -22,7 +22,8 @@ struct gr_sim {
 
 static const char *const op_names[GR_OP_COUNT] = {"snapshots", "fields", "counters",
                                                  "measurement windows", "single steps",
-                                                 "contact networks", "window-averaged stress"};
+                                                 "contact networks", "window-averaged stress",
+                                                 "advancing to a time", "observables"};
 
 const char *gr_op_name(unsigned op)
 {
@@ -36,7 +37,8 @@ unsigned gr_method_ops(const gr_method_type *m)
 {
     return (m->snapshot ? GR_OP_SNAPSHOT : 0) | (m->fields ? GR_OP_FIELDS : 0) |
            (m->counters ? GR_OP_COUNTERS : 0) | (m->reset_window ? GR_OP_RESET_WINDOW : 0) |
-           (m->step ? GR_OP_STEP : 0) | (m->contacts ? GR_OP_CONTACTS : 0) | (m->stress ? GR_OP_STRESS : 0);
+           (m->step ? GR_OP_STEP : 0) | (m->contacts ? GR_OP_CONTACTS : 0) | (m->stress ? GR_OP_STRESS : 0) |
+           (m->advance ? GR_OP_ADVANCE : 0) | (m->observe ? GR_OP_OBSERVE : 0);
 }
 
 /* Operations a backend gives, itself or through a default. */
@@ -44,7 +46,9 @@ static unsigned ops_available(const gr_method_type *m)
 {
     unsigned ops = gr_method_ops(m) | GR_OP_COUNTERS | GR_OP_RESET_WINDOW | GR_OP_STEP;
     if (m->snapshot)
-        ops |= GR_OP_FIELDS;
+        ops |= GR_OP_FIELDS | GR_OP_OBSERVE;
+    if (m->step && m->dt)
+        ops |= GR_OP_ADVANCE;
     return ops;
 }
 
@@ -83,11 +87,24 @@ static int refuse_features(const gr_method_type *m, const gr_scene *sc, gr_err *
     return GR_OK;
 }
 
+/* A table the defaults cannot complete is the backend's bug, not the user's. */
+static int check_type(const gr_method_type *m, gr_err *err)
+{
+    unsigned need = GR_OP_ADVANCE | GR_OP_OBSERVE | (m->repr == GR_REPR_PARTICLES ? GR_OP_SNAPSHOT : 0);
+    if (gr_sim_require(m, need, "the backend interface", err))
+        return GR_ERUN;
+    if (m->repr != GR_REPR_PARTICLES && !m->observables)
+        return gr_fail(err, GR_ERUN, "method '%s': a lattice declares its observables", m->name);
+    if (gr_obs_count(gr_method_observables(m)) > GR_OBS_MAX)
+        return gr_fail(err, GR_ERUN, "method '%s' declares more than %d observables", m->name, GR_OBS_MAX);
+    return GR_OK;
+}
+
 int gr_sim_create(const gr_method_type *m, const gr_scene *sc, const gr_particles *init,
                   gr_sim **out, gr_err *err)
 {
     *out = NULL;
-    if (refuse_features(m, sc, err))
+    if (check_type(m, err) || refuse_features(m, sc, err))
         return err->code;
     gr_sim *s = calloc(1, sizeof *s);
     if (!s)
@@ -124,9 +141,23 @@ const gr_scene *gr_sim_scene(const gr_sim *s) { return s->scene; }
 void *gr_sim_state(gr_sim *s) { return s->state; }
 double gr_sim_time(const gr_sim *s) { return s->type->time(s->state); }
 
+/* Fixed steps while the next one ends no later than half a step past t_end,
+ * so that the time lands on t_end to rounding. */
+static int advance_by_steps(gr_sim *s, double t_end, uint64_t max_steps, gr_err *err)
+{
+    const gr_method_type *m = s->type;
+    double dt = m->dt(s->state);
+    for (uint64_t n = 0; (!max_steps || n < max_steps) && m->time(s->state) + 0.5 * dt <= t_end; n++)
+        if (m->step(s->state, err))
+            return err->code;
+    return GR_OK;
+}
+
 int gr_sim_advance(gr_sim *s, double t_end, uint64_t max_steps, gr_err *err)
 {
-    return s->type->advance(s->state, t_end, max_steps, err);
+    if (s->type->advance)
+        return s->type->advance(s->state, t_end, max_steps, err);
+    return advance_by_steps(s, t_end, max_steps, err);
 }
 
 int gr_sim_step(gr_sim *s, gr_err *err)
@@ -136,9 +167,95 @@ int gr_sim_step(gr_sim *s, gr_err *err)
     return s->type->advance(s->state, INFINITY, 1, err);
 }
 
+const gr_obs_def *gr_method_observables(const gr_method_type *m)
+{
+    return m->observables ? m->observables : gr_obs_particle_set;
+}
+
+const gr_obs_def *gr_sim_observables(const gr_sim *s) { return gr_method_observables(s->type); }
+
+/* What the scene has of what an observable needs. */
+static unsigned scene_has(const gr_scene *sc)
+{
+    unsigned has = 0, f = gr_scene_features(sc);
+    if (f & GR_FEAT_FRICTION)
+        has |= GR_OBS_NEEDS_ROTATION;
+    if (sc->silo.present || (f & GR_FEAT_ORIFICE))
+        has |= GR_OBS_NEEDS_ORIFICE;
+    int walls = sc->nsegments > 0; /* the silo's, when made of segments, are among them */
+    for (int k = 0; k < 4; k++)
+        walls |= sc->side[k] == GR_BC_WALL;
+    if (walls)
+        has |= GR_OBS_NEEDS_WALLS;
+    return has;
+}
+
+uint64_t gr_sim_obs_skip(const gr_sim *s)
+{
+    const gr_obs_def *d = gr_sim_observables(s);
+    unsigned has = scene_has(s->scene);
+    uint64_t skip = 0;
+    for (size_t k = 0; d[k].name && k < GR_OBS_MAX; k++)
+        if (d[k].needs & ~has)
+            skip |= 1ull << k;
+    return skip;
+}
+
+/* The declared counters take their place in obs->count from the method's
+ * counters of the same name. */
+static void fill_counters(const gr_sim *s, gr_obs *obs)
+{
+    const gr_obs_def *d = gr_sim_observables(s);
+    gr_counter c[GR_MAX_COUNTERS];
+    size_t nc = gr_sim_counters(s, c, GR_MAX_COUNTERS);
+    for (size_t k = 0; d[k].name && k < GR_OBS_MAX; k++) {
+        if (d[k].src != GR_OBS_COUNTER)
+            continue;
+        for (size_t j = 0; j < nc; j++)
+            if (!strcmp(c[j].name, d[k].name))
+                obs->count[k] = c[j].value;
+    }
+}
+
+/* The default observe: the kinematic set from the snapshot. */
+static int observe_snapshot(gr_sim *s, gr_obs *obs, gr_err *err)
+{
+    if (!s->scratch && !(s->scratch = gr_particles_create(0, err)))
+        return err->code;
+    if (s->type->snapshot(s->state, s->scratch, err))
+        return err->code;
+    gr_obs_from_particles(s->scratch, s->scene->gravity, obs);
+    obs->t = s->type->time(s->state);
+    if (!gr_sim_counter(s, "steps", &obs->steps))
+        gr_sim_counter(s, "events", &obs->steps);
+    gr_sim_counter(s, "outflow", &obs->outflow);
+    return GR_OK;
+}
+
 int gr_sim_observe(gr_sim *s, gr_obs *obs, gr_err *err)
 {
-    return s->type->observe(s->state, obs, err);
+    if (s->type->observe ? s->type->observe(s->state, obs, err) : observe_snapshot(s, obs, err))
+        return err->code;
+    fill_counters(s, obs);
+    return GR_OK;
+}
+
+size_t gr_sim_diagnostics(gr_sim *s, gr_diag *out, size_t cap)
+{
+    const gr_obs_def *d = gr_sim_observables(s);
+    size_t n = 0;
+    for (size_t k = 0; d[k].name && n < cap; k++) {
+        uint64_t v;
+        if (!d[k].key || !gr_sim_counter(s, d[k].name, &v) || !v)
+            continue;
+        gr_diag *g = &out[n++];
+        g->name = d[k].name, g->key = d[k].key, g->doc = d[k].doc, g->count = v;
+        if (s->type->diagnose)
+            s->type->diagnose(s->state, d[k].name, g->detail, sizeof g->detail);
+        else
+            snprintf(g->detail, sizeof g->detail, "%s", d[k].doc);
+    }
+    return n;
 }
 
 void gr_sim_reset_window(gr_sim *s)
@@ -212,12 +329,17 @@ size_t gr_sim_counters(const gr_sim *s, gr_counter *out, size_t cap)
 
 /* ---- random streams ---- */
 
-/* A backend's stream k is stored as "<method>.stream<k>". */
+/* A backend's stream k is stored as "<method>.stream<k>", a stream of the
+ * common table as "<method>.common<id>". */
 static void stream_name(const gr_sim *s, uint64_t id, char *buf, size_t n)
 {
-    snprintf(buf, n, "%s.stream%llu", s->type->name,
-             (unsigned long long)(id - GR_STREAM_METHOD_BASE));
+    if (id >= GR_STREAM_METHOD_BASE)
+        snprintf(buf, n, "%s.stream%llu", s->type->name, (unsigned long long)(id - GR_STREAM_METHOD_BASE));
+    else
+        snprintf(buf, n, "%s.common%llu", s->type->name, (unsigned long long)id);
 }
+
+static gr_rng *stream_of(gr_sim *s, uint64_t id, gr_err *err);
 
 gr_rng *gr_sim_stream(gr_sim *s, uint64_t k, gr_err *err)
 {
@@ -226,7 +348,13 @@ gr_rng *gr_sim_stream(gr_sim *s, uint64_t k, gr_err *err)
                 (unsigned long long)k, GR_STREAM_METHOD_BASE);
         return NULL;
     }
-    uint64_t id = GR_STREAM_METHOD_BASE + k;
+    return stream_of(s, GR_STREAM_METHOD_BASE + k, err);
+}
+
+gr_rng *gr_sim_stream_id(gr_sim *s, uint64_t id, gr_err *err) { return stream_of(s, id, err); }
+
+static gr_rng *stream_of(gr_sim *s, uint64_t id, gr_err *err)
+{
     for (int i = 0; i < s->nrng; i++)
         if (s->rng_id[i] == id)
             return s->rng[i];

@@ -233,7 +233,7 @@ static int bed(long n, long steps, long settle, long threads, int scaling, int s
     int rc = GR_OK;
     gr_dem_params par;
     if (!sc || gr_dem_params_read(sc, &par, err) || gr_dem_check_dt(sc, p, &par, err) ||
-        gr_dem_create(sc, p, &par, &d, err)) {
+        gr_dem_create(sc, p, &par, NULL, &d, err)) {
         rc = err->code;
         goto done;
     }
@@ -295,7 +295,7 @@ static gr_dem *acc_create(const char *text, const gr_particles *p, gr_err *err)
         }
     }
     if (!gr_dem_params_read(sc, &par, err) && !gr_dem_check_dt(sc, init, &par, err))
-        gr_dem_create(sc, init, &par, &d, err);
+        gr_dem_create(sc, init, &par, NULL, &d, err);
     if (init != p)
         gr_particles_free(init);
     gr_scene_free(sc);

@@ -63,7 +63,7 @@ static gr_edmd *bench_system(long n, double eta, int arity, double cell, const c
     gr_edmd_params prm;
     gr_edmd *s = NULL;
     if (sc && p && !gr_init_particles(sc, p, err) && !gr_edmd_params_read(sc, &prm, err))
-        (void)gr_edmd_create(sc, p, &prm, &s, err);
+        (void)gr_edmd_create(sc, p, &prm, NULL, &s, err);
     gr_particles_free(p);
     gr_scene_free(sc);
     if (s && gr_edmd_advance(s, INFINITY, (uint64_t)(equil * n), err)) {
@@ -206,7 +206,7 @@ static int bench_one(const be_opts *o, long n, double eta)
     gr_edmd_params prm;
     gr_edmd *s = NULL;
     if (!sc || !p || gr_init_particles(sc, p, &err) || gr_edmd_params_read(sc, &prm, &err) ||
-        gr_edmd_create(sc, p, &prm, &s, &err)) {
+        gr_edmd_create(sc, p, &prm, NULL, &s, &err)) {
         fprintf(stderr, "grano bench edmd: N = %ld, eta = %g: %s\n", n, eta, err.msg);
         gr_particles_free(p);
         gr_scene_free(sc);

@@ -156,6 +156,8 @@ static int room_check(room *r, double more, gr_err *err)
 
 typedef struct {
     room out_room, ckpt_room;
+    uint64_t warned;   /* the validity limits already told, by declaration position */
+    int strict_stop;   /* stopped by [run] strict = yes: the state is not a good one */
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
@@ -208,6 +210,64 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
         return err->code;
     gr_field_clear(f);
     return GR_OK;
+}
+
+/* "dsmc.ppc_min" -> where that key is (or would be) in the scene. */
+static void key_where(const gr_scene *sc, const char *key, char *buf, size_t n)
+{
+    char sec[64];
+    const char *dot = strchr(key, '.');
+    size_t l = dot ? (size_t)(dot - key) : 0;
+    snprintf(sec, sizeof sec, "%.*s", (int)(l < sizeof sec ? l : sizeof sec - 1), key);
+    gr_scene_where(sc, sec, dot ? dot + 1 : key, buf, n);
+}
+
+/* Each validity limit the method reports broken is told once, when it is
+ * first seen; under [run] strict = yes the first one stops the run, and
+ * the state that broke it is not kept as a good one. */
+static int check_limits(run_io *io, const gr_scene *sc, gr_sim *st, const gr_run_opts *o, gr_err *err)
+{
+    gr_diag dg[GR_OBS_MAX];
+    size_t n = gr_sim_diagnostics(st, dg, GR_OBS_MAX);
+    const gr_obs_def *defs = gr_sim_observables(st);
+    for (size_t i = 0; i < n; i++) {
+        size_t k = 0;
+        while (defs[k].name && strcmp(defs[k].name, dg[i].name))
+            k++;
+        if (io->warned & (1ull << k))
+            continue;
+        io->warned |= 1ull << k;
+        char where[1200], msg[1800];
+        key_where(sc, dg[i].key, where, sizeof where);
+        snprintf(msg, sizeof msg, "%s: validity limit %s broken at t = %g: %s (%s changes it)",
+                 gr_sim_type(st)->name, dg[i].name, gr_sim_time(st), dg[i].detail, where);
+        if (sc->run.strict) {
+            io->strict_stop = 1;
+            char sw[1200];
+            gr_scene_where(sc, "run", "strict", sw, sizeof sw);
+            return gr_fail(err, GR_ERUN, "%s; stopped (%s = yes)", msg, sw);
+        }
+        if (o->warn)
+            o->warn(o->warn_ctx, msg);
+    }
+    return GR_OK;
+}
+
+/* The limits broken over the whole run, one line each. */
+static void sum_limits(gr_sim *st, const gr_run_opts *o)
+{
+    gr_diag dg[GR_OBS_MAX];
+    size_t n = o->warn ? gr_sim_diagnostics(st, dg, GR_OBS_MAX) : 0;
+    uint64_t steps = 0;
+    if (n && !gr_sim_counter(st, "steps", &steps))
+        gr_sim_counter(st, "events", &steps);
+    for (size_t i = 0; i < n; i++) {
+        char msg[600];
+        snprintf(msg, sizeof msg, "%s: validity limit %s broken in %llu of %llu steps (%s; key %s)",
+                 gr_sim_type(st)->name, dg[i].name, (unsigned long long)dg[i].count, (unsigned long long)steps,
+                 dg[i].doc, dg[i].key);
+        o->warn(o->warn_ctx, msg);
+    }
 }
 
 /* The first k with sample time t0 + k every after t. Computed, not
@@ -295,7 +355,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             double next = t0 + (double)k[j] * every;
             target = next < target ? next : target;
         }
-        if ((status = gr_sim_advance(st, target, 0, err)))
+        if ((status = gr_sim_advance(st, target, 0, err)) || (status = check_limits(io, sc, st, o, err)))
             break;
     }
     gr_progress_free(pg);
@@ -415,7 +475,8 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
      * checkpoint of the initial state. */
     if (o->ckpt && (rc = gr_run_save(o->ckpt, st, k, err)))
         goto done;
-    gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION};
+    gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION,
+                       .obs = gr_method_observables(m), .obs_skip = gr_sim_obs_skip(st)};
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
     struct stat ost;
@@ -427,7 +488,9 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         goto done;
     }
     rc = at_end ? GR_OK : loop(sc, st, &io, o, k, t0, err);
-    if (rc == GR_ERUN && o->ckpt) {
+    if (!io.strict_stop)
+        sum_limits(st, o);
+    if (rc == GR_ERUN && o->ckpt && !io.strict_stop) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};
         if (gr_run_save(o->ckpt, st, k, &e2) == GR_OK)

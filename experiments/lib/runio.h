@@ -19,6 +19,10 @@ typedef struct {
     int branch;           /* restart into a new output, physical changes allowed */
     char *notes;          /* receives the scene differences a restart allowed */
     size_t notes_cap;
+    /* Told each validity limit the run breaks, once when it first happens,
+     * and again in the summary at the end (NULL: not told). */
+    void (*warn)(void *ctx, const char *msg);
+    void *warn_ctx;
 } gr_run_opts;
 
 /* "<out minus .h5>.ckpt" */

@@ -71,6 +71,8 @@ static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
     return rc;
 }
 
+/* Each observable's last value, as the method declared it; a validity
+ * limit broken during the run is said with the key that changes it. */
 static int print_obs(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
 {
     char **names;
@@ -83,25 +85,32 @@ static int print_obs(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
         gr_h5md_names_free(names, n);
         return GR_OK;
     }
-    gr_obs *o = malloc(in->nobs * sizeof *o);
-    if (!o || (rc = gr_h5md_read_obs(r, o, err))) {
-        free(o);
-        gr_h5md_names_free(names, n);
-        return rc ? rc : gr_fail(err, GR_ERUN, "out of memory");
+    double t0, t1;
+    size_t ns;
+    char p[300];
+    snprintf(p, sizeof p, "observables/%s", names[0]);
+    if ((rc = gr_h5md_series_info(r, p, &ns, &t0, &t1, err)))
+        goto done;
+    printf("observables  %zu samples, t = %g .. %g tau; the last:\n", in->nobs, t0, t1);
+    int broken = 0;
+    for (size_t i = 0; i < n && !rc; i++) {
+        double v[2];
+        int nc;
+        char key[128];
+        if ((rc = gr_h5md_obs_last(r, names[i], v, &nc, key, sizeof key, err)))
+            break;
+        if (nc == 2)
+            printf("  %-18s (%.6g, %.6g)\n", names[i], v[0], v[1]);
+        else
+            printf("  %-18s %.6g%s\n", names[i], v[0], key[0] && v[0] > 0 ? "  <- validity limit broken" : "");
+        broken += key[0] && v[0] > 0;
     }
-    printf("observables  %zu samples, t = %g .. %g tau:", in->nobs, o[0].t, o[in->nobs - 1].t);
-    for (size_t i = 0; i < n; i++)
-        printf("%s %s", i ? "," : "", names[i]);
-    const gr_obs *l = &o[in->nobs - 1];
-    printf("\nlast sample  t = %g: %llu mobile, %llu out, ekin %.6g + %.6g (rot), T %.6g",
-           l->t, (unsigned long long)l->n_mobile, (unsigned long long)l->outflow, l->ekin_trans,
-           l->ekin_rot, l->temperature);
-    if (!isnan(l->max_overlap))
-        printf(", max overlap %.3g d", l->max_overlap);
-    printf("\n");
-    free(o);
+    if (!rc && broken)
+        printf("validity     %d limit(s) broken during the run: the counters marked above count the steps "
+               "that broke them (grano methods NAME: the key that changes each)\n", broken);
+done:
     gr_h5md_names_free(names, n);
-    return GR_OK;
+    return rc;
 }
 
 static int print_fields(gr_h5md_reader *r, gr_err *err)

@@ -41,7 +41,13 @@ static void print_method(const gr_method_type *m)
     for (unsigned b = 0; b < GR_OP_COUNT; b++)
         if (ops & (1u << b))
             printf(" %s;", gr_op_name(1u << b));
-    printf("\n  [%s] parameters:\n", m->name);
+    printf("\n  observables (observables/NAME in a result; a validity limit names the key that changes it):\n");
+    const gr_obs_def *d = gr_method_observables(m);
+    for (size_t k = 0; d[k].name; k++)
+        printf("    %-18s %-12s %-8s %s%s%s%s\n", d[k].name, d[k].unit,
+               d[k].ncomp == 2 ? "vector" : d[k].integer ? "count" : "scalar", d[k].doc,
+               d[k].key ? " [validity limit: " : "", d[k].key ? d[k].key : "", d[k].key ? "]" : "");
+    printf("  [%s] parameters:\n", m->name);
     printf("    %-14s %-6s %-10s %-22s %-6s %s\n", "key", "type", "default", "range", "unit", "meaning");
     gr_params_print(stdout, m->params);
 }

@@ -2,6 +2,8 @@
 #include "cd_int.h"
 #include "method.h"
 
+#include <stdio.h>
+
 static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
 {
     gr_cd_params par;
@@ -55,6 +57,28 @@ static void m_free(void *s) { gr_cd_free(s); }
 
 static int m_contacts(void *s, gr_contacts *out, gr_err *err) { return gr_cd_contacts(s, out, err); }
 
+static const gr_obs_def observables[] = {
+    GR_OBS_N_MOBILE,    GR_OBS_EKIN_TRANS, GR_OBS_EKIN_ROT, GR_OBS_EPOT_GRAV,     GR_OBS_TEMPERATURE,
+    GR_OBS_MOMENTUM,    GR_OBS_OUTFLOW,    GR_OBS_WALL_PRESSURE, GR_OBS_MAX_OVERLAP,
+    GR_OBS_DEF_COUNTER("steps", "time steps since t = 0"),
+    GR_OBS_DEF_COUNTER("contacts", "candidate contacts of the last step (gap below [cd] gap)"),
+    GR_OBS_DEF_COUNTER("active_contacts", "contacts of the last step that carry a force"),
+    GR_OBS_DEF_COUNTER("sliding_contacts", "contacts of the last step at the Coulomb limit"),
+    GR_OBS_DEF_COUNTER("iterations", "Gauss-Seidel sweeps since t = 0"),
+    GR_OBS_DEF_LIMIT("nonconverged_steps", "cd.max_iter", "steps that reached max_iter sweeps without converging to tol"),
+    GR_OBS_DEF_COUNTER("lost", "grains that left through an open side"),
+    GR_OBS_DEF_END,
+};
+
+/* The limit's measure: the sweeps it allowed and the tolerance missed. */
+static void m_diagnose(const void *s, const char *name, char *msg, size_t n)
+{
+    const gr_cd *d = s;
+    (void)name;
+    snprintf(msg, n, "%llu of %llu steps stopped at max_iter = %ld sweeps with the residual above tol = %g",
+             (unsigned long long)d->nonconv, (unsigned long long)d->step, d->par.max_iter, d->par.tol);
+}
+
 const gr_method_type gr_cd_method = {
     .name = "cd",
     .summary = "contact dynamics (Moreau-Jean): rigid disks, Signorini-Coulomb by non-linear Gauss-Seidel",
@@ -63,6 +87,8 @@ const gr_method_type gr_cd_method = {
                 GR_FEAT_WALL_GRAINS | GR_FEAT_ORIFICE | GR_FEAT_VIBRATING_FLOOR | GR_FEAT_REINSERT |
                 GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE | GR_FEAT_RESTITUTION,
     .params = gr_cd_param_table,
+    .observables = observables,
+    .diagnose = m_diagnose,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

@@ -145,7 +145,8 @@ typedef struct gr_dem {
     double wall_time;
     double max_ovl;          /* largest overlap of the last force evaluation */
     double *seg_force;       /* per segment: fx, fy, normal force (3 each) */
-    struct gr_rng *rng;      /* reinsertion */
+    struct gr_rng *rng;      /* reinsertion: the caller's (the instance's stream) */
+    struct gr_rng *own_rng;  /* or, made without a caller's, its own */
     gr_particles *scratch;
     void *cv;                /* CVODE reference integrator, or NULL */
     uint64_t since_sort;
@@ -236,7 +237,9 @@ int gr_dem_damping(const gr_scene *sc, const gr_particles *init, double *gn, dou
 double gr_dem_dense_dt(const gr_scene *sc, const gr_particles *init, double v_impact);
 int gr_dem_check_dt(const gr_scene *sc, const gr_particles *init, gr_dem_params *p, gr_err *err);
 
-int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+/* reinsert: the stream of reinsertion spots (GR_STREAM_DEM_REINSERT),
+ * owned by the caller; needed only by a silo that reinserts. */
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par, struct gr_rng *reinsert,
                   gr_dem **out, gr_err *err);
 void gr_dem_free(gr_dem *d);
 int gr_dem_advance(gr_dem *d, double t_end, uint64_t max_steps, gr_err *err);

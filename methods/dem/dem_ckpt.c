@@ -77,7 +77,8 @@ int gr_dem_save(const gr_dem *d, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_f64(ck, "dem_rec_omega", g->omega, nt, err) ||
         gr_ckpt_put_u32(ck, "dem_rec_flags", g->flags, nt, err))
         return err->code;
-    if (d->rng && gr_rng_save(d->rng, ck, "dem_rng_reinsert", err))
+    /* a caller's reinsertion stream (the instance's) is saved by the caller */
+    if (d->own_rng && gr_rng_save(d->own_rng, ck, "dem_rng_reinsert", err))
         return err->code;
     return GR_OK;
 }
@@ -146,7 +147,7 @@ static int load_record(gr_dem *d, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_f64(ck, "dem_rec_omega", g->omega, nt, err) ||
         gr_ckpt_get_u32(ck, "dem_rec_flags", g->flags, nt, err))
         return err->code;
-    if (d->rng && gr_rng_load(d->rng, ck, "dem_rng_reinsert", err))
+    if (d->own_rng && gr_rng_load(d->own_rng, ck, "dem_rng_reinsert", err))
         return err->code;
     return GR_OK;
 }

@@ -11,8 +11,12 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_dem_params_from(ctx->params, &par);
     if (gr_dem_check_dt(ctx->scene, init, &par, err))
         return err->code;
+    const gr_scene *sc = ctx->scene;
+    gr_rng *reinsert = NULL;
+    if (sc->silo.present && sc->silo.reinsert && !(reinsert = gr_sim_stream_id(ctx->sim, GR_STREAM_DEM_REINSERT, err)))
+        return err->code;
     gr_dem *d;
-    if (gr_dem_create(ctx->scene, init, &par, &d, err))
+    if (gr_dem_create(sc, init, &par, reinsert, &d, err))
         return err->code;
     *state = d;
     return GR_OK;
@@ -46,6 +50,13 @@ static int m_load(void *s, gr_ckpt *ck, gr_err *err) { return gr_dem_load(s, ck,
 
 static void m_free(void *s) { gr_dem_free(s); }
 
+static const gr_obs_def observables[] = {
+    GR_OBS_N_MOBILE,    GR_OBS_EKIN_TRANS, GR_OBS_EKIN_ROT, GR_OBS_EPOT_GRAV,     GR_OBS_TEMPERATURE,
+    GR_OBS_MOMENTUM,    GR_OBS_OUTFLOW,    GR_OBS_WALL_PRESSURE, GR_OBS_MAX_OVERLAP,
+    GR_OBS_DEF_COUNTER("steps", "time steps since t = 0"),
+    GR_OBS_DEF_END,
+};
+
 const gr_method_type gr_dem_method = {
     .name = "dem",
     .summary = "soft-particle DEM: linear/Hertz contacts, four friction laws, Verlet/Gear/Euler/CVODE",
@@ -55,6 +66,7 @@ const gr_method_type gr_dem_method = {
                 GR_FEAT_VIBRATING_FLOOR | GR_FEAT_REINSERT | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE |
                 GR_FEAT_HERTZ | GR_FEAT_RESTITUTION,
     .params = gr_dem_param_table,
+    .observables = observables,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

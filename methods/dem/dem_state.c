@@ -15,6 +15,7 @@ void gr_dem_free(gr_dem *d)
     if (!d)
         return;
     gr_dem_cv_free(d);
+    gr_rng_free(d->own_rng);
     gr_dem_eval_free(d->ev);
     gr_dem_team_free(d->team);
     for (int f = 0; f < F_NFIELDS; f++)
@@ -35,7 +36,6 @@ void gr_dem_free(gr_dem *d)
     free(d->nb_start), free(d->nb_j), free(d->nb_i), free(d->sg_start), free(d->sg_j);
     gr_dem_hist *h = &d->hist;
     free(h->partner), free(h->partner_old), free(h->z), free(h->z_old), free(h->stamp), free(h->stamp_old);
-    gr_rng_free(d->rng);
     free(d);
 }
 
@@ -216,9 +216,9 @@ static int set_scene(gr_dem *d, gr_err *err)
     d->scratch = gr_particles_create(d->ntag + 1, err);
     if (!d->scratch)
         return err->code;
-    if (sc->silo.present && sc->silo.reinsert) {
-        d->rng = gr_rng_create(sc->seed, GR_STREAM_DEM_REINSERT, err);
-        if (!d->rng)
+    if (sc->silo.present && sc->silo.reinsert && !d->rng) {
+        /* used without an instance (per-method tests): a stream of its own */
+        if (!(d->rng = d->own_rng = gr_rng_create(sc->seed, GR_STREAM_DEM_REINSERT, err)))
             return err->code;
     }
     d->gates_open = !(sc->silo.present && isfinite(sc->silo.open_time));
@@ -255,7 +255,7 @@ static int first_forces(gr_dem *d, gr_err *err)
     return GR_OK;
 }
 
-int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par,
+int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_params *par, gr_rng *reinsert,
                   gr_dem **out, gr_err *err)
 {
     *out = NULL;
@@ -264,6 +264,7 @@ int gr_dem_create(const gr_scene *sc, const gr_particles *init, const gr_dem_par
         return gr_fail(err, GR_ERUN, "out of memory");
     d->sc = *sc;
     d->par = *par;
+    d->rng = reinsert;
     gr_id_index *ix = NULL;
     size_t live = 0;
     int rc = set_law(d, sc, init, err) || tag_order(d, init, &ix, err) ||

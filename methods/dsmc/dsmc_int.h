@@ -34,6 +34,7 @@ enum {
  * whose velocities are still correlated (they share the cell) slow the
  * cooling by no more than about 1 % (docs/methods/dsmc.md, validity). */
 #define GR_DSMC_SIDE_PER_W 30.0
+#define GR_DSMC_NLIMITS 5
 
 /* A particle's rank (the order of its id) with this bit set has left the
  * domain through an open side. */
@@ -64,6 +65,7 @@ typedef struct gr_dsmc {
     gr_particles *view;    /* grains in id order for output, made when asked */
     uint64_t step, pairs, walls, cand, lost;
     unsigned bad;          /* GR_DSMC_BAD_* at create */
+    double lim_val[GR_DSMC_NLIMITS], lim_max[GR_DSMC_NLIMITS]; /* what broke each limit: measured, limit */
     double t;
     double wall_mom, wall_time, wall_len;
     double virial;         /* sum of sigma J over collisions (collisional transfer) */

@@ -2,6 +2,10 @@
 #include "dsmc_int.h"
 #include "method.h"
 
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
 static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
 {
     gr_dsmc_params par;
@@ -34,7 +38,38 @@ static int m_snapshot(void *s, gr_particles *out, gr_err *err)
     return gr_dsmc_snapshot(s, out, err);
 }
 
-static int m_observe(void *s, gr_obs *o, gr_err *err) { return gr_dsmc_observe(s, o, err); }
+/* The observables' positions of the quantities dsmc fills itself. */
+enum { OBS_A2 = 6 };
+
+/* Sonine a2 = <c^4> / (2 <c^2>^2) - 1 of the peculiar velocities c (2-D):
+ * 0 for a Maxwellian, the homogeneous cooling state's departure from it. */
+static double sonine_a2(const gr_dsmc *d)
+{
+    double n = 0, ux = 0, uy = 0;
+    for (size_t i = 0; i < d->n; i++)
+        if (!(d->rank[i] & GR_DSMC_GONE))
+            n++, ux += d->vx[i], uy += d->vy[i];
+    if (n < 1)
+        return NAN;
+    ux /= n, uy /= n;
+    double c2 = 0, c4 = 0;
+    for (size_t i = 0; i < d->n; i++) {
+        if (d->rank[i] & GR_DSMC_GONE)
+            continue;
+        double cx = d->vx[i] - ux, cy = d->vy[i] - uy, q = cx * cx + cy * cy;
+        c2 += q, c4 += q * q;
+    }
+    c2 /= n, c4 /= n;
+    return c2 > 0 ? c4 / (2 * c2 * c2) - 1 : NAN;
+}
+
+static int m_observe(void *s, gr_obs *o, gr_err *err)
+{
+    if (gr_dsmc_observe(s, o, err))
+        return err->code;
+    o->extra[OBS_A2][0] = sonine_a2(s);
+    return GR_OK;
+}
 
 static void m_reset_window(void *s) { gr_dsmc_reset_window(s); }
 
@@ -50,7 +85,12 @@ static size_t m_counters(const void *s, gr_counter *out, size_t cap)
                       {"wall_collisions", d->walls},
                       {"candidates", d->cand},
                       {"lost", d->lost},
-                      {"validity_warnings", d->bad}};
+                      {"validity_warnings", d->bad},
+                      {"limit_dt", d->bad & GR_DSMC_BAD_DT ? d->step : 0},
+                      {"limit_cell", d->bad & GR_DSMC_BAD_CELL ? d->step : 0},
+                      {"limit_ppc_min", d->bad & GR_DSMC_BAD_PPC ? d->step : 0},
+                      {"limit_enskog_cell", d->bad & GR_DSMC_BAD_ENSKOG_CELL ? d->step : 0},
+                      {"limit_recollision", d->bad & GR_DSMC_BAD_RECOLLIDE ? d->step : 0}};
     return gr_counters_put(out, cap, c, sizeof c / sizeof c[0]);
 }
 
@@ -82,6 +122,44 @@ static void m_free(void *s)
     gr_dsmc_free(d);
 }
 
+/* Smooth disks that never overlap and leave through no orifice: no
+ * ekin_rot, max_overlap or outflow. The limits are fixed at create, so each
+ * counts every step (docs/methods/dsmc.md, validity). */
+static const gr_obs_def observables[] = {
+    GR_OBS_N_MOBILE, GR_OBS_EKIN_TRANS, GR_OBS_EPOT_GRAV, GR_OBS_TEMPERATURE, GR_OBS_MOMENTUM,
+    GR_OBS_WALL_PRESSURE,
+    GR_OBS_DEF_EXTRA("sonine_a2", "1", 1, "Sonine coefficient a2 = <c^4> / (2 <c^2>^2) - 1 of the peculiar velocities"),
+    GR_OBS_DEF_COUNTER("steps", "time steps since t = 0"),
+    GR_OBS_DEF_COUNTER("pair_collisions", "accepted grain-grain collisions"),
+    GR_OBS_DEF_COUNTER("wall_collisions", "grain-wall collisions"),
+    GR_OBS_DEF_COUNTER("candidates", "candidate pairs drawn (no-time-counter)"),
+    GR_OBS_DEF_COUNTER("lost", "particles that left through an open side"),
+    GR_OBS_DEF_COUNTER("validity_warnings", "the limits broken, as bits: 1 dt, 2 cell, 4 ppc_min, 8 Enskog cell, 16 recollision"),
+    GR_OBS_DEF_LIMIT("limit_dt", "dsmc.dt", "steps with dt above half the mean free time"),
+    GR_OBS_DEF_LIMIT("limit_cell", "dsmc.cell", "steps with the cell side above the mean free path"),
+    GR_OBS_DEF_LIMIT("limit_ppc_min", "dsmc.ppc_min", "steps with fewer mean particles per cell than ppc_min"),
+    GR_OBS_DEF_LIMIT("limit_enskog_cell", "dsmc.cell", "steps with enskog = yes and cells under 10 d"),
+    GR_OBS_DEF_LIMIT("limit_recollision", "dsmc.cell", "steps with cells under 30 W d, where partners collide again correlated"),
+    GR_OBS_DEF_END,
+};
+
+/* What each limit measured at create. */
+static void m_diagnose(const void *s, const char *name, char *msg, size_t n)
+{
+    static const char *const names[GR_DSMC_NLIMITS] = {"limit_dt", "limit_cell", "limit_ppc_min", "limit_enskog_cell",
+                                                       "limit_recollision"};
+    static const char *const what[GR_DSMC_NLIMITS] = {
+        "dt is %g, above half the mean free time, %g", "the cell side is %g d, above the mean free path, %g d",
+        "the mean of particles per cell is %g, below ppc_min = %g",
+        "with enskog = yes, the cell side is %g d, below %g d",
+        "the cell side is %g d, below 30 W d = %g d (correlated recollisions)"};
+    const gr_dsmc *d = s;
+    for (int k = 0; k < GR_DSMC_NLIMITS; k++)
+        if (!strcmp(name, names[k]))
+            snprintf(msg, n, what[k], d->lim_val[k] / (k == 0 || k == 2 ? 1 : d->sigma),
+                     d->lim_max[k] / (k == 0 || k == 2 ? 1 : d->sigma));
+}
+
 const gr_method_type gr_dsmc_method = {
     .name = "dsmc",
     .summary = "direct simulation Monte Carlo (Bird's no-time-counter): inelastic smooth disks",
@@ -89,6 +167,8 @@ const gr_method_type gr_dsmc_method = {
     .features = GR_FEAT_GRAVITY | GR_FEAT_PERIODIC | GR_FEAT_OPEN_SIDE | GR_FEAT_VIBRATING_FLOOR |
                 GR_FEAT_HF_FLOOR | GR_FEAT_WEIGHTS | GR_FEAT_RESTITUTION,
     .params = gr_dsmc_param_table,
+    .observables = observables,
+    .diagnose = m_diagnose,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

@@ -125,6 +125,8 @@ static int limit(gr_dsmc *d, int broken, unsigned bit, const char *key, const ch
                        val, lim);
     }
     d->bad |= bit;
+    int k = __builtin_ctz(bit);
+    d->lim_val[k] = val, d->lim_max[k] = lim;
     return GR_OK;
 }
 

@@ -68,7 +68,7 @@ int gr_edmd_save(const gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_put_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_put_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_put_bytes(ck, "edmd.leaves", lf, (size_t)s->P * sizeof *lf, err) ||
-        gr_rng_save(s->rng, ck, "edmd.rng", err))
+        (s->own_rng && gr_rng_save(s->own_rng, ck, "edmd.rng", err)))
         rc = err->code;
     free(lf);
     if (rc)
@@ -130,7 +130,7 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
         gr_ckpt_get_bytes(ck, "edmd.chead", s->chead, nc * sizeof *s->chead, err) ||
         gr_ckpt_get_bytes(ck, "edmd.events", s->ev, n * (size_t)s->ecap * sizeof *s->ev, err) ||
         gr_ckpt_get_bytes(ck, "edmd.leaves", lf, (size_t)s->P * sizeof *lf, err) ||
-        gr_rng_load(s->rng, ck, "edmd.rng", err))
+        (s->own_rng && gr_rng_load(s->own_rng, ck, "edmd.rng", err)))
         rc = err->code;
     free(lf);
     if (rc)

@@ -34,7 +34,9 @@ typedef struct gr_edmd gr_edmd;
 
 /* Create from a scene, its particles and explicit parameters (the method
  * table's create reads them from the scene). */
-int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm,
+/* rng: the stream of floor phases and reinsertion spots (GR_STREAM_EDMD),
+ * the caller's and saved by it; NULL: one of its own, saved here. */
+int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm, struct gr_rng *rng,
                    gr_edmd **out, gr_err *err);
 void gr_edmd_free(gr_edmd *s);
 /* Advance to t_end or until max_collisions state-changing events (pair,

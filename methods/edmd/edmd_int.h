@@ -199,6 +199,7 @@ struct gr_edmd {
     gr_edmd_counters cnt;
     uint64_t steps;
     gr_rng *rng;
+    gr_rng *own_rng; /* rng when the caller gave none */
 
     /* global exact averages (measure.c) */
     double m_t;              /* bookkeeping time */

@@ -10,8 +10,9 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_edmd_params prm;
     if (gr_edmd_params_from(ctx->scene, ctx->params, &prm, err))
         return err->code;
+    gr_rng *rng = gr_sim_stream_id(ctx->sim, GR_STREAM_EDMD, err);
     gr_edmd *s;
-    if (gr_edmd_create(ctx->scene, init, &prm, &s, err))
+    if (!rng || gr_edmd_create(ctx->scene, init, &prm, rng, &s, err))
         return err->code;
     *state = s;
     return GR_OK;
@@ -83,6 +84,20 @@ static int m_save(const void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_sav
 static int m_load(void *st, gr_ckpt *ck, gr_err *err) { return gr_edmd_load(st, ck, err); }
 static void m_free(void *st) { gr_edmd_free(st); }
 
+/* Hard disks never overlap: no max_overlap. */
+static const gr_obs_def observables[] = {
+    GR_OBS_N_MOBILE, GR_OBS_EKIN_TRANS, GR_OBS_EKIN_ROT, GR_OBS_EPOT_GRAV, GR_OBS_TEMPERATURE,
+    GR_OBS_MOMENTUM, GR_OBS_OUTFLOW,    GR_OBS_WALL_PRESSURE,
+    GR_OBS_DEF_COUNTER("events", "events processed since t = 0 (collisions, crossings, stale ones)"),
+    GR_OBS_DEF_COUNTER("pair_collisions", "grain-grain collisions"),
+    GR_OBS_DEF_COUNTER("wall_collisions", "grain-wall collisions"),
+    GR_OBS_DEF_COUNTER("floor_collisions", "collisions with the vibrating floor"),
+    GR_OBS_DEF_COUNTER("cell_crossings", "cell crossings (virtual-wall events)"),
+    GR_OBS_DEF_COUNTER("stale_events", "events dropped because a partner collided since they were scheduled"),
+    GR_OBS_DEF_COUNTER("elastic_guard", "collisions made elastic by the inelastic-collapse guard ([edmd] collapse)"),
+    GR_OBS_DEF_END,
+};
+
 const gr_method_type gr_edmd_method = {
     .name = "edmd",
     .summary = "event-driven inelastic hard disks (cells, event tree, exact averages)",
@@ -91,6 +106,7 @@ const gr_method_type gr_edmd_method = {
                 GR_FEAT_HF_FLOOR | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE | GR_FEAT_SEGMENTS | GR_FEAT_ORIFICE |
                 GR_FEAT_OPEN_SIDE | GR_FEAT_REINSERT | GR_FEAT_RESTITUTION,
     .params = gr_edmd_param_table,
+    .observables = observables,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

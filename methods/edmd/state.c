@@ -41,7 +41,7 @@ void gr_edmd_free(gr_edmd *s)
     free(s->gone);
     free(s->sc_silo);
     gr_particles_free(s->scratch);
-    gr_rng_free(s->rng);
+    gr_rng_free(s->own_rng);
     free(s);
 }
 
@@ -317,7 +317,7 @@ static void set_guard(gr_edmd *s)
     s->prm.collapse = dissipative ? s->collapse_asked : GR_EDMD_COLLAPSE_NONE;
 }
 
-int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm,
+int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm, gr_rng *rng,
                    gr_edmd **out, gr_err *err)
 {
     *out = NULL;
@@ -337,7 +337,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
         rc = edmd_segments_setup(s, sc, err);
     if (!rc)
         rc = check_start(s, err);
-    if (!rc && !(s->rng = gr_rng_create(sc->seed, GR_STREAM_EDMD, err)))
+    if (!rc && !(s->rng = rng) && !(s->rng = s->own_rng = gr_rng_create(sc->seed, GR_STREAM_EDMD, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;
     if (!rc)

@@ -72,10 +72,14 @@ static double m_time(const void *s)
     return (double)L->step * L->par.dt;
 }
 
+/* The observables' position of the mass, which lgca fills itself. */
+enum { OBS_MASS = 0 };
+
 static int m_observe(void *s, gr_obs *o, gr_err *err)
 {
     (void)err;
     lgca_observe(s, o);
+    o->extra[OBS_MASS][0] = ((const lgca *)s)->mass * (double)o->n_mobile;
     return GR_OK;
 }
 
@@ -137,6 +141,23 @@ static int m_load(void *s, gr_ckpt *ck, gr_err *err)
 
 static void m_free(void *s) { lgca_free(s); }
 
+/* Particles of mass m moving at a / dt along their channel (0 at rest);
+ * no rotation, overlap or wall pressure. */
+static const gr_obs_def observables[] = {
+    GR_OBS_DEF_EXTRA("mass", "m", 1, "mass on the lattice, m times the particles (moving and resting)"),
+    GR_OBS_MOMENTUM,
+    GR_OBS_EKIN_TRANS,
+    GR_OBS_EPOT_GRAV,
+    GR_OBS_TEMPERATURE,
+    GR_OBS_OUTFLOW,
+    GR_OBS_DEF_COUNTER("moving", "particles in the six moving channels"),
+    GR_OBS_DEF_COUNTER("resting", "particles in the rest channel"),
+    GR_OBS_DEF_COUNTER("steps", "lattice updates (collision and propagation) since t = 0"),
+    GR_OBS_DEF_COUNTER("reinserted", "particles put back at the top after leaving through the orifice"),
+    GR_OBS_DEF_COUNTER("lost", "particles that left through an open side and were not reinserted"),
+    GR_OBS_DEF_END,
+};
+
 const gr_method_type gr_lgca_method = {
     .name = "lgca",
     .summary = "granular lattice gas (FHP-III and Peng-Herrmann rules), 64 nodes per machine word",
@@ -144,6 +165,7 @@ const gr_method_type gr_lgca_method = {
     .features = GR_FEAT_GRAVITY | GR_FEAT_PERIODIC | GR_FEAT_OPEN_SIDE | GR_FEAT_SEGMENTS |
                 GR_FEAT_ORIFICE | GR_FEAT_REINSERT | GR_FEAT_LATTICE,
     .params = lgca_param_table,
+    .observables = observables,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

@@ -36,7 +36,7 @@ static inline gr_dem *dt_create(const gr_scene *sc, const gr_particles *init)
         print_error("params: %s\n", e.msg);
     assert_int_equal(e.code, GR_OK);
     gr_dem *d = NULL;
-    if (gr_dem_create(sc, p, &par, &d, &e))
+    if (gr_dem_create(sc, p, &par, NULL, &d, &e))
         print_error("create: %s\n", e.msg);
     assert_non_null(d);
     if (!init)

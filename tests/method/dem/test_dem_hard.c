@@ -96,7 +96,7 @@ static void instability_stops_with_diagnostic(void **state)
     e = (gr_err){0};
     par.dt = 20 * lim;
     gr_dem *d = NULL;
-    assert_int_equal(gr_dem_create(sc, init, &par, &d, &e), GR_OK);
+    assert_int_equal(gr_dem_create(sc, init, &par, NULL, &d, &e), GR_OK);
     gr_particles_free(init);
     int rc = GR_OK;
     double t_good = 0;

@@ -28,7 +28,7 @@ static inline int edmd_compare_state(const char *name, const char **sets, int ns
     *p = NULL;
     *s = NULL;
     if (!(*sc = gr_scene_load_set(path, names, sets, nset, e)) || !(*p = gr_particles_create(0, e)) ||
-        gr_init_particles(*sc, *p, e) || gr_edmd_params_read(*sc, &prm, e) || gr_edmd_create(*sc, *p, &prm, s, e))
+        gr_init_particles(*sc, *p, e) || gr_edmd_params_read(*sc, &prm, e) || gr_edmd_create(*sc, *p, &prm, NULL, s, e))
         return e->code ? e->code : GR_ERUN;
     return GR_OK;
 }

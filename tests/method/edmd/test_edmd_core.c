@@ -37,7 +37,7 @@ static gr_edmd *make_arity(const gr_scene *sc, const gr_particles *p, gr_edmd_al
     prm.tree_arity = arity ? arity : 2;
     prm.calendar = arity == 0;
     gr_edmd *s = NULL;
-    int rc = gr_edmd_create(sc, p, &prm, &s, &e);
+    int rc = gr_edmd_create(sc, p, &prm, NULL, &s, &e);
     if (rc)
         fprintf(stderr, "create: %s\n", e.msg);
     assert_int_equal(rc, GR_OK);
@@ -200,7 +200,7 @@ static void resort_keeps_sequence(void **st)
         prm.sort_every = k ? 1.0 : 0.0;
         gr_err e = {0};
         gr_edmd *s = NULL;
-        assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_OK);
+        assert_int_equal(gr_edmd_create(&sc, p, &prm, NULL, &s, &e), GR_OK);
         q[k] = (sequence){0, N, malloc(N * sizeof(long)), malloc(N * sizeof(long)), malloc(N * sizeof(double))};
         gr_edmd_set_event_hook(s, record, &q[k]);
         assert_int_equal(gr_edmd_advance(s, INFINITY, (uint64_t)N, &e), GR_OK);
@@ -252,7 +252,7 @@ static void calendar_same_as_tree(void **st)
             prm.calendar = k;
             gr_err e = {0};
             gr_edmd *s = NULL;
-            assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_OK);
+            assert_int_equal(gr_edmd_create(&sc, p, &prm, NULL, &s, &e), GR_OK);
             long N = cs[c].events;
             q[k] = (sequence){0, N, malloc(N * sizeof(long)), malloc(N * sizeof(long)), malloc(N * sizeof(double))};
             gr_edmd_set_event_hook(s, record, &q[k]);
@@ -361,18 +361,18 @@ static void refuses_bad_starts(void **st)
     gr_edmd_params_default(&prm);
     gr_edmd *s = NULL;
     gr_err e = {0};
-    assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_EINPUT);
+    assert_int_equal(gr_edmd_create(&sc, p, &prm, NULL, &s, &e), GR_EINPUT);
     assert_non_null(strstr(e.msg, "overlap"));
     gr_particles_free(p);
     p = edmd_lattice(4, 0, 0, 10, 10, 1.0, 0, 1);
     prm.cell = 0.5;
-    assert_int_equal(gr_edmd_create(&sc, p, &prm, &s, &e), GR_EINPUT);
+    assert_int_equal(gr_edmd_create(&sc, p, &prm, NULL, &s, &e), GR_EINPUT);
     assert_non_null(strstr(e.msg, "cell"));
     gr_scene pc = edmd_box(3.5, 10, 1, 1.0);
     prm.cell = 0;
     gr_particles_free(p);
     p = edmd_lattice(4, 0, 0, 3.5, 10, 1.0, 0, 1);
-    assert_int_equal(gr_edmd_create(&pc, p, &prm, &s, &e), GR_EINPUT);
+    assert_int_equal(gr_edmd_create(&pc, p, &prm, NULL, &s, &e), GR_EINPUT);
     assert_non_null(strstr(e.msg, "periodic"));
     gr_particles_free(p);
 }

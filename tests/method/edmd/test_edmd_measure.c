@@ -15,7 +15,7 @@ static gr_edmd *make(const gr_scene *sc, const gr_particles *p, const gr_edmd_pa
 {
     gr_err e = {0};
     gr_edmd *s = NULL;
-    int rc = gr_edmd_create(sc, p, prm, &s, &e);
+    int rc = gr_edmd_create(sc, p, prm, NULL, &s, &e);
     if (rc)
         fprintf(stderr, "create: %s\n", e.msg);
     assert_int_equal(rc, GR_OK);

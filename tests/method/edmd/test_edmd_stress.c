@@ -20,7 +20,7 @@ static gr_edmd *make(const gr_scene *sc, const gr_particles *p)
     gr_edmd_params prm;
     gr_edmd_params_default(&prm);
     gr_edmd *s = NULL;
-    if (gr_edmd_create(sc, p, &prm, &s, &e))
+    if (gr_edmd_create(sc, p, &prm, NULL, &s, &e))
         print_error("create: %s\n", e.msg);
     assert_non_null(s);
     return s;
