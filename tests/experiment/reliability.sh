@@ -114,7 +114,8 @@ check "19: dem verlet on the same bed runs on" $?
 
 # 2: a full disk (ulimit -f, SIGXFSZ ignored so writes fail as on a full
 # disk): exit 1, a clear message, result and checkpoint readable, no .tmp
-sed 's/^until = 0.2/until = 3/; s/^output_every = 0.02/output_every = 0.01/; s/count = 20/count = 60/' rs.ini >fd.ini
+# (the run would write about 2.3 MB against the limit of 1.5 MB)
+sed 's/^until = 0.2/until = 6/; s/^output_every = 0.02/output_every = 0.01/; s/count = 20/count = 60/' rs.ini >fd.ini
 mkdir fd
 (trap '' XFSZ; ulimit -f 1500; "$GRANO" run fd.ini -o fd/o.h5 -q) 2>err
 rc=$?
