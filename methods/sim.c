@@ -90,8 +90,7 @@ static int refuse_features(const gr_method_type *m, const gr_scene *sc, gr_err *
 /* A table the defaults cannot complete is the backend's bug, not the user's. */
 static int check_type(const gr_method_type *m, gr_err *err)
 {
-    unsigned need = GR_OP_ADVANCE | GR_OP_OBSERVE | (m->repr == GR_REPR_PARTICLES ? GR_OP_SNAPSHOT : 0);
-    if (gr_sim_require(m, need, "the backend interface", err))
+    if (gr_sim_require(m, GR_OP_ADVANCE | GR_OP_OBSERVE, "the backend interface", err))
         return GR_ERUN;
     if (m->repr != GR_REPR_PARTICLES && !m->observables)
         return gr_fail(err, GR_ERUN, "method '%s': a lattice declares its observables", m->name);
