@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Every scene key the docs name as `[section] key` exists: a common section's
-key in common/scene.c's key lists, a method section's in that method's
+key in common/scene/scene.c's key lists, a method section's in that method's
 parameter table (`grano methods`). Also: no help text shows `run run`.
 
 usage: docs_keys.py GRANO SOURCE_ROOT
@@ -13,7 +13,7 @@ import sys
 
 
 def known_keys(grano, root):
-    with open(os.path.join(root, "common", "scene.c"), encoding="utf-8") as f:
+    with open(os.path.join(root, "common", "scene", "scene.c"), encoding="utf-8") as f:
         src = f.read()
     keys = {}
     for sec, body in re.findall(r"keys_(\w+)\[\] = \{(.*?)NULL\}", src, re.S):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Check that the .c files of one folder stand in layers (issue 12).
+"""Check that the .c files of one folder stand in layers.
 
 A file depends on another when it calls (or takes the address of) a
 function that the other defines without `static`. Calls made in the
@@ -8,11 +8,16 @@ static inline functions of a header of the same folder count for every
 graph. Exits 1 printing a cycle if the graph has one, else 0 printing the
 files bottom-up (layer number, file, the files it calls).
 
+Given several folders, bottom-up (the rooms of common/, docs/architecture.md),
+each folder's files must stand in layers, and a file may call only the
+functions of its own folder and of the folders before it in the list: a
+call up a floor is printed and exits 1, as a cycle does.
+
 Names are matched, C is not parsed: a local variable or a field named like
 another file's function counts as a call to it (rename one of them).
 Standard library only, so that any checkout can run it.
 
-usage: layers.py FOLDER
+usage: layers.py FOLDER [FOLDER...]
 """
 import os
 import re
@@ -121,7 +126,10 @@ def headers_of(folder, name, seen):
     return seen
 
 
-def graph(folder):
+def folder_uses(folder):
+    """The folder's .c files, the non-static functions each defines, and
+    the names each uses (its own and those of the folder's headers it
+    includes)."""
     sources = sorted(f for f in os.listdir(folder) if f.endswith(".c"))
     code = {}
     for f in os.listdir(folder):
@@ -132,21 +140,50 @@ def graph(folder):
     for f in sorted(code):
         macro.update(macros(code[f]))
     scanned = {f: scan(code[f], macro) for f in code}
-    owner = {}
+    defines, uses = {}, {}
     for f in sources:
-        for name, static in scanned[f][0]:
-            if not static:
-                owner[name] = f
-    edges = {f: {} for f in sources}
-    for f in sources:
+        defines[f] = {name for name, static in scanned[f][0] if not static}
         used = set(scanned[f][1])
         for h in headers_of(folder, f, set()):
             used |= scanned[h][1]
-        for name in used:
+        uses[f] = used
+    return sources, defines, uses
+
+
+def graph(folder):
+    sources, defines, uses = folder_uses(folder)
+    owner = {}
+    for f in sources:
+        for name in defines[f]:
+            owner[name] = f
+    edges = {f: {} for f in sources}
+    for f in sources:
+        for name in uses[f]:
             g = owner.get(name)
             if g and g != f:
                 edges[f].setdefault(g, set()).add(name)
     return sources, edges
+
+
+def calls_up(folders):
+    """Calls from a file of one folder to a function defined in a folder
+    later in the list: (caller folder/file, callee folder/file, names)."""
+    found = [folder_uses(d) for d in folders]
+    owner = {}
+    for k, (sources, defines, _) in enumerate(found):
+        for f in sources:
+            for name in defines[f]:
+                owner[name] = (k, f)
+    bad = []
+    for k, (sources, _, uses) in enumerate(found):
+        for f in sources:
+            up = {}
+            for name in uses[f]:
+                if name in owner and owner[name][0] > k:
+                    up.setdefault(owner[name], set()).add(name)
+            for (j, g), names in sorted(up.items()):
+                bad.append((os.path.join(folders[k], f), os.path.join(folders[j], g), names))
+    return bad
 
 
 def find_cycle(sources, edges):
@@ -188,11 +225,11 @@ def bottom_up(sources, edges):
     return sorted(sources, key=lambda f: (layer[f], f)), layer
 
 
-def main(argv):
-    if len(argv) != 2 or not os.path.isdir(argv[1]):
-        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
-        return 2
-    sources, edges = graph(argv[1])
+def layers(folder, title):
+    """Print the folder's files bottom-up, or its cycle; 0 or 1."""
+    sources, edges = graph(folder)
+    if title:
+        print(f"{folder}:")
     cycle = find_cycle(sources, edges)
     if cycle:
         print("cycle:")
@@ -204,6 +241,20 @@ def main(argv):
         calls = ", ".join(sorted(edges[f])) or "-"
         print(f"{layer[f]} {f}: {calls}")
     return 0
+
+
+def main(argv):
+    folders = argv[1:]
+    if not folders or not all(os.path.isdir(d) for d in folders):
+        print(__doc__.strip().splitlines()[-1], file=sys.stderr)
+        return 2
+    status = 0
+    for d in folders:
+        status |= layers(d, len(folders) > 1)
+    for f, g, names in calls_up(folders) if len(folders) > 1 else []:
+        print(f"up a floor: {f} -> {g} ({', '.join(sorted(names))})")
+        status = 1
+    return status
 
 
 if __name__ == "__main__":

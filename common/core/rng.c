@@ -51,13 +51,3 @@ double gr_rng_uniform(gr_rng *r) { return gsl_rng_uniform(r->g); }
 double gr_rng_uniform_pos(gr_rng *r) { return gsl_rng_uniform_pos(r->g); }
 double gr_rng_gaussian(gr_rng *r, double sigma) { return gsl_ran_gaussian_ziggurat(r->g, sigma); }
 unsigned long gr_rng_below(gr_rng *r, unsigned long n) { return gsl_rng_uniform_int(r->g, n); }
-
-int gr_rng_save(const gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err)
-{
-    return gr_ckpt_put_bytes(ck, name, gsl_rng_state(r->g), gsl_rng_size(r->g), err);
-}
-
-int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err)
-{
-    return gr_ckpt_get_bytes(ck, name, gsl_rng_state(r->g), gsl_rng_size(r->g), err);
-}

@@ -8,7 +8,6 @@
 
 #include <gsl/gsl_rng.h>
 
-#include "ckpt.h"
 #include "err.h"
 
 typedef struct gr_rng gr_rng;
@@ -25,9 +24,7 @@ double gr_rng_uniform(gr_rng *r);     /* [0, 1) */
 double gr_rng_uniform_pos(gr_rng *r); /* (0, 1) */
 double gr_rng_gaussian(gr_rng *r, double sigma);
 unsigned long gr_rng_below(gr_rng *r, unsigned long n); /* [0, n) */
-/* Generator state, for checkpoints (name is the dataset name). */
-int gr_rng_save(const gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
-int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
+/* Its state in a checkpoint: gr_rng_save, gr_rng_load (io/ckpt.h). */
 
 /* Every random stream id of the code, in one place so that no two draw
  * the same numbers: a stream is the pair (scene seed, id). A backend's own

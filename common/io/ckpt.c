@@ -13,7 +13,7 @@
 #include <unistd.h>
 
 #include "h5md_impl.h"
-#include "scene.h"
+#include "scene_types.h"
 
 struct gr_ckpt {
     hid_t file, group;

@@ -8,6 +8,7 @@
 
 #include "err.h"
 #include "particles.h"
+#include "rng.h"
 
 typedef struct gr_ckpt gr_ckpt;
 
@@ -34,6 +35,11 @@ int gr_ckpt_close(gr_ckpt *c, gr_err *err);
 /* Abandon a checkpoint being written (its temporary file is removed, the
  * previous checkpoint stays); closes one opened for reading. Accepts NULL. */
 void gr_ckpt_discard(gr_ckpt *c);
+
+/* A random stream's generator state (name is the dataset name);
+ * io/rng_ckpt.c. */
+int gr_rng_save(const gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
+int gr_rng_load(gr_rng *r, gr_ckpt *ck, const char *name, gr_err *err);
 
 /* Make the checkpoint an H5MD file too (h5md/, parameters/ with the scene,
  * one frame at step/time), so gr_h5md_open reads its scene and particles. */

@@ -10,7 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "scene.h"
+#include "scene_types.h"
 
 const gr_elem_def gr_h5md_pdefs[NPE] = {
     {"position", "d", GR_T_F64, 2, 0},

@@ -10,7 +10,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "scene.h"
+#include "scene_types.h"
 
 static int shrink(hid_t d, hsize_t rows)
 {

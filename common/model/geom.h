@@ -2,7 +2,7 @@
 #ifndef GR_GEOM_H
 #define GR_GEOM_H
 
-#include "scene.h"
+#include "scene_types.h"
 #include "vec2.h"
 
 /* Closest point of segment [a,b] to p; *t in [0,1] is its parameter. */

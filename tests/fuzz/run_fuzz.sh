@@ -14,7 +14,8 @@ if ! command -v clang >/dev/null; then
     exit 0
 fi
 flags="-g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -std=c11
-       -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -DGRANO_VERSION=\"fuzz\" -I$SRC/common
+       -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -DGRANO_VERSION=\"fuzz\" -I$SRC/common/core
+       -I$SRC/common/model -I$SRC/common/io -I$SRC/common/scene
        $(pkg-config --cflags hdf5-serial gsl)"
 libs="$(pkg-config --libs hdf5-serial gsl) -lm"
 n=0
@@ -26,11 +27,11 @@ build() { # target sources...
     clang $flags -o "$t" "$SRC/tests/fuzz/$t.c" "$@" $libs 2>"$t.build.log"
 }
 # every file of the scene reader (scene*.c): a new one joins without an edit here
-common="$SRC/common/err.c $(echo "$SRC"/common/scene*.c)"
-h5="$SRC/common/h5md.c $SRC/common/h5md_read.c $SRC/common/h5md_append.c $SRC/common/h5md_contacts.c
-    $SRC/common/h5md_fields.c $SRC/common/h5util.c $SRC/common/xdmf.c $SRC/common/ckpt.c
-    $SRC/common/particles.c $SRC/common/observe.c $SRC/common/contacts.c $SRC/common/fields.c
-    $SRC/common/geom.c $SRC/common/rng.c"
+common="$SRC/common/core/err.c $(echo "$SRC"/common/scene/scene*.c)"
+h5="$SRC/common/io/h5md.c $SRC/common/io/h5md_read.c $SRC/common/io/h5md_append.c $SRC/common/io/h5md_contacts.c
+    $SRC/common/io/h5md_fields.c $SRC/common/io/h5util.c $SRC/common/io/xdmf.c $SRC/common/io/ckpt.c
+    $SRC/common/model/particles.c $SRC/common/model/observe.c $SRC/common/model/contacts.c $SRC/common/model/fields.c
+    $SRC/common/model/geom.c $SRC/common/core/rng.c"
 # shellcheck disable=SC2086
 build fuzz_scene $common || { echo "not ok 1 - build fuzz_scene"; sed 's/^/# /' fuzz_scene.build.log; exit 1; }
 # shellcheck disable=SC2086
