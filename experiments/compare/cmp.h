@@ -12,7 +12,7 @@
 #include <stdio.h>
 
 #include "err.h"
-#include "h5md.h"
+#include "h5tab.h"
 #include "method.h"
 #include "particles.h"
 #include "scene.h"
@@ -67,6 +67,7 @@ struct cmp_case {
     const char *scene;     /* file name under the scenes folder */
     const char *quantity;  /* what value is, for tables and axes */
     const char *aux;       /* what aux is */
+    const char *unit, *aux_unit; /* their units (H5MD's unit strings: "1", "d", "tau", "m d2 tau-2") */
     const char *quick_set; /* settings of --quick ("section.key=value;..."), or NULL */
     int seeds_full, seeds_quick; /* independent realisations */
     double tol_edmd;       /* edmd's relative deviation from the analytic value must stay
@@ -135,10 +136,15 @@ void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n);
 /* The profiles' table lines and HDF5 tables of case c, when its runs gave
  * profiles: each (row, value)'s against the CMP_REFERENCE row's
  * (cmp_profile.c). */
-int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h, gr_err *err);
+int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, exp_tab_file *h,
+                 gr_err *err);
+/* The names of a row's role ("sweep", "reference", "bias", "model"). */
+const char *cmp_role_name(int role);
 
-/* Tables, figures and checks from the parts (cmp_report.c): returns
- * GR_ERUN when a --quick check fails (after writing everything). */
-int cmp_report(const cmp_plan *pl, char *const *parts, gr_err *err);
+/* Tables, figures and checks from the parts (cmp_output.c): returns
+ * GR_ERUN when a --quick check fails (after writing everything). *drawn:
+ * whether the figures were drawn (not without gnuplot on PATH; the tables
+ * are written all the same). */
+int cmp_report(const cmp_plan *pl, char *const *parts, int *drawn, gr_err *err);
 
 #endif

@@ -28,6 +28,7 @@
 
 static const cmp_case cases[] = {
     {.name = "collision", .scene = "collision.ini", .quantity = "restitution", .aux = "contact time",
+     .unit = "1", .aux_unit = "tau",
      .seeds_full = 16, .seeds_quick = 4, .tol_edmd = 1e-9,
      .measure = cmp_measure_collision, .reference = cmp_ref_collision, .prepare = cmp_prepare_collision,
      .rows = {
@@ -37,7 +38,7 @@ static const cmp_case cases[] = {
          {"cd", "cd", "cd.dt", "1e-2,1e-3,1e-4", "1e-2,1e-3", NULL},
      }},
     {.name = "cooling-dilute", .scene = "cooling-dilute.ini", .quantity = "T/T0 at Haff's time",
-     .aux = "T/T0 at half Haff's time",
+     .aux = "T/T0 at half Haff's time", .unit = "1", .aux_unit = "1",
      .quick_set = "species.count=256;domain.width=44.83992973118343;domain.height=44.83992973118343",
      .seeds_full = 16, .seeds_quick = 8, .tol_edmd = 0.1,
      .measure = cmp_measure_cooling, .reference = cmp_ref_cooling, .prepare = cmp_prepare_cooling,
@@ -50,7 +51,7 @@ static const cmp_case cases[] = {
           "dsmc.dt=0.1;dsmc.cell=8"},
      }},
     {.name = "cooling-dense", .scene = "cooling-dense.ini", .quantity = "T/T0 at Haff's time",
-     .aux = "T/T0 at half Haff's time",
+     .aux = "T/T0 at half Haff's time", .unit = "1", .aux_unit = "1",
      .quick_set = "species.count=256;domain.width=25.888345500742656;domain.height=25.888345500742656",
      .seeds_full = 16, .seeds_quick = 8, .tol_edmd = 0.1,
      .measure = cmp_measure_cooling, .reference = cmp_ref_cooling, .prepare = cmp_prepare_cooling,
@@ -61,6 +62,7 @@ static const cmp_case cases[] = {
          {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.05", CMP_BIAS},
      }},
     {.name = "column", .scene = "column.ini", .quantity = "base force / weight", .aux = "bulk packing fraction",
+     .unit = "1", .aux_unit = "1",
      .seeds_full = 1, .seeds_quick = 1, .tol_edmd = 0, .tol_all = 1e-3,
      .measure = cmp_measure_column, .reference = cmp_ref_column,
      .rows = {
@@ -68,6 +70,7 @@ static const cmp_case cases[] = {
          {"cd", "cd", "cd.tol", "1e-2,1e-3,1e-4,1e-5,1e-6", "1e-2,1e-4,1e-6", NULL},
      }},
     {.name = "janssen", .scene = "janssen.ini", .quantity = "base force / Janssen's", .aux = "bulk packing fraction",
+     .unit = "1", .aux_unit = "1",
      .seeds_full = 4, .seeds_quick = 2, .tol_edmd = 0, .tol_all = 0.3,
      .measure = cmp_measure_column, .reference = cmp_ref_column,
      .rows = {
@@ -78,6 +81,7 @@ static const cmp_case cases[] = {
          {"dem", "dem-sliding", "dem.dt", "2.5e-4,1.25e-4", "", NULL, CMP_BIAS},
      }},
     {.name = "eos", .scene = "eos.ini", .quantity = "Z / Z_Luding(eta_bulk)", .aux = "eta_bulk",
+     .unit = "1", .aux_unit = "1",
      .quick_set = "species.count=400;domain.width=33.36043187592832;domain.height=33.36043187592832;"
                   "run.until=25",
      .seeds_full = 6, .seeds_quick = 3, .tol_edmd = 0.05,
@@ -88,6 +92,7 @@ static const cmp_case cases[] = {
          {"dsmc", "dsmc", "dsmc.dt", "0.1,0.05,0.02", "0.1,0.02", "dsmc.cell=8"},
      }},
     {.name = "vibrated", .scene = "vibrated.ini", .quantity = "mean height", .aux = "mean temperature",
+     .unit = "d", .aux_unit = "m d+2 tau-2",
      .quick_set = "run.until=60", .seeds_full = 8, .seeds_quick = 4, .tol_edmd = 0,
      .measure = cmp_measure_bed, .reference = NULL,
      .rows = {
@@ -96,6 +101,7 @@ static const cmp_case cases[] = {
          {"dsmc", "dsmc", "dsmc.dt", "0.01,0.005,0.0025", "0.01,0.0025", "dsmc.cell=4", 0},
      }},
     {.name = "silo", .scene = "silo.ini", .quantity = "outflow rate", .aux = "kinetic energy per grain",
+     .unit = "tau-1", .aux_unit = "m d+2 tau-2",
      .quick_set = "run.until=20", .seeds_full = 3, .seeds_quick = 1, .tol_edmd = 0,
      .measure = cmp_measure_silo, .reference = cmp_ref_silo,
      .rows = {
@@ -105,6 +111,7 @@ static const cmp_case cases[] = {
          {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-3", "edmd.collapse=tc", 0},
      }},
     {.name = "silo-widths", .scene = "silo.ini", .quantity = "Q(4 d) / Q(6 d)", .aux = "Q(8 d) / Q(6 d)",
+     .unit = "1", .aux_unit = "1",
      .quick_set = "run.until=20", .seeds_full = 3, .seeds_quick = 1, .tol_edmd = 0,
      .measure = cmp_measure_silo_widths, .reference = cmp_ref_silo_widths,
      .rows = {
@@ -120,4 +127,10 @@ static const cmp_case cases[] = {
 const cmp_case *cmp_cases(void)
 {
     return cases;
+}
+
+const char *cmp_role_name(int role)
+{
+    static const char *const names[] = {"sweep", "reference", "bias", "model"};
+    return role >= 0 && role <= CMP_MODEL ? names[role] : "?";
 }

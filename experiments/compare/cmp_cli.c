@@ -38,7 +38,8 @@ static void usage(FILE *f)
                "  -f, --force          redo every run\n"
                "      --no-progress    no progress line\n"
                "  -h, --help           this help;  --version: the version\n"
-               "Exit code 0; 1 when a run or a check failed; 2 for bad arguments.\n",
+               "Exit code 0 (also without gnuplot: the tables are written, the figures not, and it says\n"
+               "so); 1 when a run or a check failed; 2 for bad arguments.\n",
             GRANO_COMPARE_SCENES);
 }
 
@@ -138,6 +139,7 @@ int cmd_compare(int argc, char **argv)
                     .progress = pl.progress, .what = "runs", .force = pl.force};
     char **parts = calloc(pl.nunits, sizeof *parts);
     size_t reused = 0;
+    int drawn = 0;
     printf("grano compare%s: %zu runs, %d at once, into %s\n%s", pl.quick ? " --quick" : "", pl.nunits, pl.jobs,
            pl.out, pl.notes);
     fflush(stdout);
@@ -146,7 +148,7 @@ int cmd_compare(int argc, char **argv)
                 : exp_sweep_run(&sw, cmp_run_unit, cmp_unit_label, cmp_unit_key, &pl, parts, &reused, &err);
     if (!rc) {
         printf("%zu runs in %.1f s (%zu reused from %s)\n", pl.nunits, gr_wall_seconds() - t0, reused, parts_dir);
-        rc = cmp_report(&pl, parts, &err);
+        rc = cmp_report(&pl, parts, &drawn, &err);
     }
     for (size_t u = 0; parts && u < pl.nunits; u++)
         free(parts[u]);
@@ -156,7 +158,11 @@ int cmd_compare(int argc, char **argv)
         fprintf(stderr, "grano compare: %s\n", err.msg);
         return rc == GR_EINPUT ? 2 : 1;
     }
-    printf("wrote %s/compare.{h5,txt}, %s/<case>.png and %s/summary.png (gnuplot scripts beside)\n", pl.out,
-           pl.out, pl.out);
+    if (drawn)
+        printf("wrote %s/compare.{h5,txt}, %s/<case>.png and %s/summary.png (gnuplot scripts beside)\n", pl.out,
+               pl.out, pl.out);
+    else
+        fprintf(stderr, "grano compare: wrote %s/compare.{h5,txt}; no figures: gnuplot is not on PATH (install "
+                        "it with 'apt-get install gnuplot-nox', then rerun: the runs are reused)\n", pl.out);
     return 0;
 }

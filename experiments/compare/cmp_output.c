@@ -1,5 +1,5 @@
-/* grano compare's outputs: compare.h5 (a table per case), compare.txt, a
- * speed-against-error figure per case and a summary figure, each with its
+/* grano compare's outputs: compare.h5 (a typed table per case), compare.txt,
+ * a speed-against-error figure per case and a summary figure, each with its
  * gnuplot script beside it. */
 #include <math.h>
 #include <stdio.h>
@@ -8,13 +8,8 @@
 
 #include "cmp.h"
 #include "cmp_report.h"
-#include "h5md.h"
+#include "h5tab.h"
 #include "plot.h"
-#include "table.h"
-
-#define NCOL 14
-static const char *const columns = "row,knob_value,runs,finished,wall_s,steps,value,value_sem,reference,rel_error,"
-                                   "rel_error_sem,aux,aux_reference,analytic";
 
 /* Errors below this are drawn at it on the log axis (exact methods). */
 static const double floor_err = 1e-16;
@@ -55,27 +50,68 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
     }
 }
 
-static int h5_case(gr_h5md *h, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref, gr_err *err)
+/* The case's table: cases/<name>, a column per quantity, one row per
+ * (method line, knob value), the knob value as the user wrote it. */
+static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref,
+                   gr_err *err)
 {
-    double *v = malloc((n ? n : 1) * NCOL * sizeof *v);
-    if (!v)
+    size_t m = n ? n : 1;
+    const char **str = malloc(5 * m * sizeof *str);
+    double *num = malloc(13 * m * sizeof *num);
+    if (!str || !num) {
+        free(str), free(num);
         return gr_fail(err, GR_ERUN, "out of memory");
-    char desc[1024];
-    int k = snprintf(desc, sizeof desc, "%s against its reference; aux = %s; rows:", c->quantity, c->aux);
-    for (int r = 0; c->rows[r].method && k < (int)sizeof desc; r++)
-        k += snprintf(desc + k, sizeof desc - (size_t)k, " %d=%s(%s)", r, c->rows[r].label,
-                      c->rows[r].knob ? c->rows[r].knob : "no knob");
+    }
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
-        double row[NCOL] = {(double)(p->row - c->rows), p->value[0] ? atof(p->value) : NAN, p->n, p->nok,
-                            p->wall, p->steps, p->mean, p->sem, ref->value, p->error, p->error_sem, p->aux,
-                            ref->aux, ref->analytic};
-        memcpy(v + i * NCOL, row, sizeof row);
+        const char *s[5] = {p->row->method, p->row->label, p->row->knob ? p->row->knob : "", p->value,
+                            cmp_role_name(p->row->role)};
+        double v[13] = {p->n, p->nok, p->wall, p->steps, p->mean, p->sem, ref->value, ref->sem, p->error,
+                        p->error_sem, p->aux, ref->aux, ref->analytic};
+        for (int k = 0; k < 5; k++)
+            str[k * m + i] = s[k];
+        for (int k = 0; k < 13; k++)
+            num[k * m + i] = v[k];
     }
+    const char *rl = ref_label(c);
+    char dq[160], dref[200], daux[160], dauxref[200], dan[200], desc[400];
+    snprintf(dq, sizeof dq, "%s, mean over the finished runs", c->quantity);
+    snprintf(dref, sizeof dref, "%s of the reference (%s)", c->quantity, rl ? rl : "the analytic value");
+    snprintf(daux, sizeof daux, "%s, mean over the finished runs", c->aux);
+    snprintf(dauxref, sizeof dauxref, "%s of the reference (%s)", c->aux, rl ? rl : "the analytic value");
+    snprintf(dan, sizeof dan, "analytic or published %s (NaN: none)", c->quantity);
+    snprintf(desc, sizeof desc, "%s against %s: one row per (method line, knob value), seeds pooled", c->quantity,
+             rl ? rl : "the analytic value");
+    const exp_col cols[] = {
+        {"method", "", "registered method that ran", EXP_STR, str, 0},
+        {"variant", "", "the method line (its label in compare.txt and the figures)", EXP_STR, str + m, 0},
+        {"knob", "", "scene keys the knob sets ('+' joins two keys set together; empty: none)", EXP_STR,
+         str + 2 * m, 0},
+        {"knob_value", "", "the knob's value as written in the case (':' between the values of two keys)",
+         EXP_STR, str + 3 * m, 0},
+        {"role", "", "sweep, reference, bias or model (docs/comparison.md)", EXP_STR, str + 4 * m, 0},
+        {"runs", "1", "independent runs (seeds)", EXP_INT, num, 0},
+        {"finished", "1", "runs that finished with finite numbers", EXP_INT, num + m, 0},
+        {"wall_s", "s", "wall time per run", EXP_F64, num + 2 * m, 0},
+        {"steps", "1", "steps (or events) per run, mean over the finished runs", EXP_F64, num + 3 * m, 0},
+        {"value", c->unit, dq, EXP_F64, num + 4 * m, 0},
+        {"value_sem", c->unit, "error bar of value (seed scatter, or the run's block average)", EXP_F64,
+         num + 5 * m, 0},
+        {"reference", c->unit, dref, EXP_F64, num + 6 * m, 0},
+        {"reference_sem", c->unit, "error bar of reference (0 when analytic)", EXP_F64, num + 7 * m, 0},
+        {"rel_error", "1", "|value - reference| / |reference|", EXP_F64, num + 8 * m, 0},
+        {"rel_error_sem", "1", "error bar of rel_error", EXP_F64, num + 9 * m, 0},
+        {"aux", c->aux_unit, daux, EXP_F64, num + 10 * m, 0},
+        {"aux_reference", c->aux_unit, dauxref, EXP_F64, num + 11 * m, 0},
+        {"analytic", c->unit, dan, EXP_F64, num + 12 * m, 0},
+    };
     char name[128];
-    snprintf(name, sizeof name, "compare/%s", c->name);
-    int rc = exp_put_result(h, name, n, NCOL, columns, desc, v, err);
-    free(v);
+    snprintf(name, sizeof name, "cases/%s", c->name);
+    int rc = exp_tab_write(h, name, desc, n, cols, sizeof cols / sizeof cols[0], err);
+    rc = rc || exp_tab_attr(h, name, "quantity", c->quantity, err) || exp_tab_attr(h, name, "aux", c->aux, err) ||
+         exp_tab_attr(h, name, "reference", rl ? rl : "analytic", err) ||
+         exp_tab_attr(h, name, "scene", c->scene, err);
+    free(str), free(num);
     return rc;
 }
 
@@ -129,7 +165,7 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
 }
 
 /* The summary: per case, the error and wall time of each row's finest
- * setting (the last of its values). */
+ * setting (the last of its values), a point style per registered method. */
 static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *const *all, const size_t *nall,
                         gr_err *err)
 {
@@ -138,15 +174,22 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
     FILE *gp = gr_plot_open(png, 1100, 520, err);
     if (!gp)
         return err->code;
-    static const char *const methods[] = {"dem", "edmd", "cd", "dsmc", "lgca", NULL};
-    int count[8] = {0};
-    for (int m = 0; methods[m]; m++) {
+    const gr_method_type *const *methods = gr_method_all();
+    int nm = 0;
+    while (methods[nm])
+        nm++;
+    int *count = calloc((size_t)nm + 1, sizeof *count);
+    if (!count) {
+        gr_plot_close(gp, png, err);
+        return gr_fail(err, GR_ERUN, "out of memory");
+    }
+    for (int m = 0; m < nm; m++) {
         fprintf(gp, "$m%d << EOD\n", m);
         for (int k = 0; cs[k].name; k++)
             for (size_t i = 0; i < nall[k]; i++) {
                 const cmp_point *p = &all[k][i];
                 int last = i + 1 == nall[k] || all[k][i + 1].row != p->row;
-                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]) &&
+                if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]->name) &&
                     (p->row->role == CMP_SWEEP || p->row->role == CMP_MODEL) &&
                     !strchr(p->row->label, '-')) {
                     fprintf(gp, "%d %.6g %.6g\n", k, fmax(p->error, floor_err), p->wall);
@@ -167,40 +210,65 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
             ncases - 0.5);
     for (int panel = 0; panel < 2; panel++) {
         fprintf(gp, "set ylabel '%s'\nplot ", panel ? "wall time per run / s" : "relative error");
-        for (int m = 0, first = 1; methods[m]; m++)
+        for (int m = 0, first = 1; m < nm; m++)
             if (count[m]) {
                 fprintf(gp, "%s$m%d u ($1+%.2f):%d w p pt %d ps 1.5 t '%s'", first ? "" : ", ", m,
-                        0.08 * (m - 2), panel ? 3 : 2, 5 + 2 * m, methods[m]);
+                        0.08 * (m - (nm - 1) / 2.0), panel ? 3 : 2, 5 + 2 * m, methods[m]->name);
                 first = 0;
             }
         fprintf(gp, "\n");
     }
     fprintf(gp, "unset multiplot\n");
+    free(count);
     return gr_plot_close(gp, png, err);
 }
 
-/* The case's points (NULL when it has none), its table lines and checks. */
-static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h,
-                    cmp_point **pts, size_t *n, int *bad, gr_err *err)
+/* The case's points (none when it has no runs), its table lines and
+ * checks, its tables in the file. */
+static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, exp_tab_file *h,
+                    cmp_point **pts, size_t *n, cmp_refs *ref, int *bad, gr_err *err)
 {
-    cmp_refs ref;
     *pts = malloc((pl->nunits ? pl->nunits : 1) * sizeof **pts);
     if (!*pts)
         return gr_fail(err, GR_ERUN, "out of memory");
-    if (cmp_collect(pl, parts, c, *pts, n, &ref, err))
+    if (cmp_collect(pl, parts, c, *pts, n, ref, err))
         return err->code;
     if (!*n)
         return GR_OK;
-    text_case(stdout, c, *pts, *n, &ref);
-    text_case(txt, c, *pts, *n, &ref);
-    *bad += cmp_check(c, *pts, *n, &ref);
-    if (h5_case(h, c, *pts, *n, &ref, err) || cmp_profiles(pl, parts, c, txt, h, err) ||
-        plot_case(pl->out, c, *pts, *n, &ref, err))
+    text_case(stdout, c, *pts, *n, ref);
+    text_case(txt, c, *pts, *n, ref);
+    *bad += cmp_check(c, *pts, *n, ref);
+    if (h_case(h, c, *pts, *n, ref, err) || cmp_profiles(pl, parts, c, txt, h, err))
         return err->code;
     return GR_OK;
 }
 
-int cmp_report(const cmp_plan *pl, char *const *parts, gr_err *err)
+/* compare.txt and compare.h5, written whole before any figure: a study
+ * whose figures cannot be drawn still leaves its data. */
+static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, int ncases, cmp_point **all,
+                  size_t *nall, cmp_refs *refs, int *bad, gr_err *err)
+{
+    char path[2048];
+    snprintf(path, sizeof path, "%s/compare.txt", pl->out);
+    FILE *txt = fopen(path, "w");
+    if (!txt)
+        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
+    fprintf(txt, "# grano compare%s: relative error = |measured - reference| / |reference|; error bars\n"
+                 "# from independent seeds (several) or block averages (one run)\n%s",
+            pl->quick ? " --quick" : "", pl->notes);
+    snprintf(path, sizeof path, "%s/compare.h5", pl->out);
+    exp_tab_file *h = exp_tab_create(path, "grano compare: a table per case", err);
+    int rc = h ? exp_tab_attr(h, "/", "mode", pl->quick ? "quick" : "full", err) : err->code;
+    for (int k = 0; k < ncases && !rc; k++)
+        rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &refs[k], bad, err);
+    if (h)
+        rc = rc ? (exp_tab_free(h), rc) : exp_tab_close(h, err);
+    if (fclose(txt) && !rc)
+        rc = gr_fail(err, GR_ERUN, "%s/compare.txt: write failed", pl->out);
+    return rc;
+}
+
+int cmp_report(const cmp_plan *pl, char *const *parts, int *drawn, gr_err *err)
 {
     const cmp_case *cs = cmp_cases();
     int ncases = 0, bad = 0, rc = GR_OK;
@@ -208,34 +276,18 @@ int cmp_report(const cmp_plan *pl, char *const *parts, gr_err *err)
         ncases++;
     cmp_point **all = calloc((size_t)ncases, sizeof *all);
     size_t *nall = calloc((size_t)ncases, sizeof *nall);
-    char path[2048];
-    snprintf(path, sizeof path, "%s/compare.txt", pl->out);
-    FILE *txt = all && nall ? fopen(path, "w") : NULL;
-    if (!txt)
-        rc = gr_fail(err, GR_ERUN, "%s: cannot write", path);
-    gr_h5md *h = NULL;
-    if (!rc) {
-        fprintf(txt, "# grano compare%s: relative error = |measured - reference| / |reference|; error bars\n"
-                     "# from independent seeds (several) or block averages (one run)\n%s",
-                pl->quick ? " --quick" : "", pl->notes);
-        snprintf(path, sizeof path, "%s/compare.h5", pl->out);
-        gr_scene *sc = pl->nunits ? cmp_unit_scene(pl, &pl->units[0], err) : NULL;
-        gr_h5md_opts ho = {.method = "compare", .seed = 1, .force = 1, .no_xdmf = 1};
-        h = sc ? gr_h5md_create(path, sc, &ho, err) : NULL;
-        gr_scene_free(sc);
-        rc = h ? GR_OK : (err->code ? err->code : gr_fail(err, GR_ERUN, "no runs to report"));
-    }
-    for (int k = 0; k < ncases && !rc; k++)
-        rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &bad, err);
-    if (!rc)
+    cmp_refs *refs = calloc((size_t)ncases, sizeof *refs);
+    rc = all && nall && refs ? tables(pl, parts, cs, ncases, all, nall, refs, &bad, err)
+                             : gr_fail(err, GR_ERUN, "out of memory");
+    *drawn = !rc && gr_plot_have_gnuplot();
+    for (int k = 0; k < ncases && *drawn && !rc; k++)
+        if (nall[k])
+            rc = plot_case(pl->out, &cs[k], all[k], nall[k], &refs[k], err);
+    if (*drawn && !rc)
         rc = plot_summary(pl->out, cs, (const cmp_point *const *)all, nall, err);
-    if (h)
-        rc = gr_h5md_close(h, err) || rc;
-    if (txt && fclose(txt) && !rc)
-        rc = gr_fail(err, GR_ERUN, "%s/compare.txt: write failed", pl->out);
     for (int k = 0; all && k < ncases; k++)
         free(all[k]);
-    free(all), free(nall);
+    free(all), free(nall), free(refs);
     if (!rc && bad)
         rc = gr_fail(err, GR_ERUN, "%d check%s failed (above)", bad, bad > 1 ? "s" : "");
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;

@@ -16,7 +16,6 @@
 
 #include "cmp.h"
 #include "parts.h"
-#include "table.h"
 
 #define NP (4 * CMP_NBINS)
 
@@ -81,11 +80,62 @@ static void norms(const double *a, const double *r, int k, double *e, double *es
     *emax = nmax > 0 ? dmax / nmax : NAN;
 }
 
-#define NCOL 7
-#define DCOL 7
+#define NCOL 5 /* density_l2, its error bar, density_max, temperature_l2, its error bar */
+#define DCOL 5 /* height, density, its error bar, temperature, its error bar */
+
+/* The profile tables of case c: profiles/<case>/errors, one row per (row,
+ * value), and profiles/<case>/bins, one row per (row, value, bin). */
+static int tables(const cmp_case *c, const prof_point *pts, size_t n, const double *t, const double *d,
+                  exp_tab_file *h, gr_err *err)
+{
+    size_t nb = n * CMP_NBINS;
+    const char **s = malloc(4 * nb * sizeof *s);
+    if (!s)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    for (size_t i = 0; i < nb; i++) {
+        const prof_point *p = &pts[i / CMP_NBINS];
+        s[i] = p->row->method, s[nb + i] = p->row->label, s[2 * nb + i] = p->row->knob ? p->row->knob : "",
+        s[3 * nb + i] = p->value;
+    }
+    /* per point: every CMP_NBINS-th of the per-bin strings */
+    const exp_col ecols[] = {
+        {"method", "", "registered method that ran", EXP_STR, s, CMP_NBINS},
+        {"variant", "", "the method line", EXP_STR, s + nb, CMP_NBINS},
+        {"knob", "", "scene keys the knob sets (empty: none)", EXP_STR, s + 2 * nb, CMP_NBINS},
+        {"knob_value", "", "the knob's value as written in the case", EXP_STR, s + 3 * nb, CMP_NBINS},
+        {"density_l2", "1", "relative L2 error of the density profile", EXP_F64, t, NCOL},
+        {"density_l2_sem", "1", "its error bar", EXP_F64, t + 1, NCOL},
+        {"density_max", "1", "largest density deviation over the largest reference density", EXP_F64, t + 2,
+         NCOL},
+        {"temperature_l2", "1", "relative L2 error of the temperature, weighted by the reference density",
+         EXP_F64, t + 3, NCOL},
+        {"temperature_l2_sem", "1", "its error bar", EXP_F64, t + 4, NCOL},
+    };
+    const exp_col bcols[] = {
+        {"method", "", "registered method that ran", EXP_STR, s, 0},
+        {"variant", "", "the method line", EXP_STR, s + nb, 0},
+        {"knob", "", "scene keys the knob sets (empty: none)", EXP_STR, s + 2 * nb, 0},
+        {"knob_value", "", "the knob's value as written in the case", EXP_STR, s + 3 * nb, 0},
+        {"height", "d", "bin centre above the floor's mean height", EXP_F64, d, DCOL},
+        {"density", "d-2", "number density, mean over seeds", EXP_F64, d + 1, DCOL},
+        {"density_sem", "d-2", "its error bar", EXP_F64, d + 2, DCOL},
+        {"temperature", "m d+2 tau-2", "granular temperature (NaN: no grain reached the bin)", EXP_F64, d + 3,
+         DCOL},
+        {"temperature_sem", "m d+2 tau-2", "its error bar", EXP_F64, d + 4, DCOL},
+    };
+    char name[128];
+    snprintf(name, sizeof name, "profiles/%s/errors", c->name);
+    int rc = exp_tab_write(h, name, "profile errors against the reference row, per (method line, knob value)", n,
+                           ecols, sizeof ecols / sizeof ecols[0], err);
+    snprintf(name, sizeof name, "profiles/%s/bins", c->name);
+    rc = rc || exp_tab_write(h, name, "profiles per (method line, knob value, bin of 1 d), pooled over seeds", nb,
+                             bcols, sizeof bcols / sizeof bcols[0], err);
+    free(s);
+    return rc;
+}
 
 static int write_out(const cmp_case *c, const prof_point *pts, size_t n, const prof_point *ref, FILE *txt,
-                     gr_h5md *h, gr_err *err)
+                     exp_tab_file *h, gr_err *err)
 {
     double *t = malloc(n * NCOL * sizeof *t), *d = malloc(n * CMP_NBINS * DCOL * sizeof *d);
     int rc = t && d ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
@@ -100,28 +150,21 @@ static int write_out(const cmp_case *c, const prof_point *pts, size_t n, const p
         snprintf(line, sizeof line, "%-12s %-9s density %.3g +- %.2g (max %.3g)  temperature %.3g +- %.2g\n",
                  pts[i].row->label, pts[i].value[0] ? pts[i].value : "-", en, ens, emax, eT, eTs);
         fputs(line, txt), fputs(line, stdout);
-        double row[NCOL] = {(double)(pts[i].row - c->rows), pts[i].value[0] ? atof(pts[i].value) : NAN,
-                            en, ens, emax, eT, eTs};
+        double row[NCOL] = {en, ens, emax, eT, eTs};
         memcpy(t + i * NCOL, row, sizeof row);
         for (int b = 0; b < CMP_NBINS; b++) {
             double *o = d + (i * CMP_NBINS + (size_t)b) * DCOL;
-            o[0] = row[0], o[1] = row[1], o[2] = b + 0.5;
-            memcpy(o + 3, pts[i].p + 4 * b, 4 * sizeof *o);
+            o[0] = b + 0.5;
+            memcpy(o + 1, pts[i].p + 4 * b, 4 * sizeof *o);
         }
     }
-    char name[128];
-    snprintf(name, sizeof name, "compare/%s_profile_errors", c->name);
-    rc = rc || exp_put_result(h, name, n, NCOL, "row,knob_value,density_l2,density_l2_sem,density_max,"
-                              "temperature_l2,temperature_l2_sem", "profile errors against the reference row", t, err);
-    snprintf(name, sizeof name, "compare/%s_profiles", c->name);
-    rc = rc || exp_put_result(h, name, n * CMP_NBINS, DCOL, "row,knob_value,height,density,density_sem,"
-                              "temperature,temperature_sem", "profiles per (row, knob value), pooled over seeds",
-                              d, err);
+    rc = rc || tables(c, pts, n, t, d, h, err);
     free(t), free(d);
     return rc;
 }
 
-int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, gr_h5md *h, gr_err *err)
+int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, exp_tab_file *h,
+                 gr_err *err)
 {
     prof_point *pts = malloc((pl->nunits ? pl->nunits : 1) * sizeof *pts);
     if (!pts)

@@ -8,7 +8,6 @@
 
 #include "cmp.h"
 #include "cmp_report.h"
-#include "h5md.h"
 #include "parts.h"
 #include "table.h"
 

@@ -62,7 +62,7 @@ FILE *gr_plot_open(const char *png, int w, int h, gr_err *err)
     return gp;
 }
 
-static int have_gnuplot(void)
+int gr_plot_have_gnuplot(void)
 {
     const char *path = getenv("PATH");
     char dir[1100];
@@ -115,7 +115,7 @@ int gr_plot_close(FILE *gp, const char *png, gr_err *err)
     sibling(png, "gp", gp_path, sizeof gp_path);
     if (fclose(gp))
         return gr_fail(err, GR_ERUN, "%s: write failed", gp_path);
-    if (!have_gnuplot())
+    if (!gr_plot_have_gnuplot())
         return gr_fail(err, GR_ERUN,
                        "gnuplot is not installed, so %s was not drawn (its script is saved as %s): install "
                        "it with 'apt-get install gnuplot-nox' (./grano.sh deps does)", png, gp_path);

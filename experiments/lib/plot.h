@@ -15,6 +15,9 @@
  * script into the returned stream, then call gr_plot_close. */
 FILE *gr_plot_open(const char *png, int w, int h, gr_err *err);
 int gr_plot_close(FILE *gp, const char *png, gr_err *err);
+/* Whether gnuplot is on PATH: a study whose data are written but whose
+ * figures cannot be drawn says so and still succeeds. */
+int gr_plot_have_gnuplot(void);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf; text
  * from users (scene names, paths) goes through it. */
 void gr_plot_quote(const char *s, char *buf, size_t n);

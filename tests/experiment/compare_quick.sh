@@ -3,8 +3,10 @@
 # comparison passes its own checks (each method's error does not grow as its
 # knob is tightened, beyond the error bars; edmd within each case's stated
 # tolerance; every run finished with finite numbers: exit 0 only then);
-# compare.h5 holds a finite table per case; every figure and its gnuplot
-# script exist; the results do not depend on -j. TAP.
+# compare.h5 holds a typed table per case, read by column name; the pandas
+# line of docs/comparison.md reads it; every figure and its gnuplot script
+# exist; without gnuplot the data are still written and the exit code is 0;
+# the results do not depend on -j. TAP.
 set -u
 GRANO=$1
 PY=/usr/bin/python3
@@ -37,41 +39,86 @@ if $PY -c 'import h5py, numpy' 2>/dev/null; then
     $PY - "$tmp/q/compare.h5" >"$tmp/err" 2>&1 <<'PYEOF'
 import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")
+assert "h5md" not in f and "particles" not in f, "compare.h5 dressed as an H5MD trajectory"
 cases = ["collision", "cooling-dilute", "cooling-dense", "column", "janssen", "eos", "vibrated", "silo",
          "silo-widths"]
+assert sorted(f["cases"]) == sorted(cases), list(f["cases"])
+
+def table(name):
+    """A case's columns by name: strings as str, counts as integers."""
+    g = f[name]
+    out = {}
+    for k, v in g.items():
+        assert "unit" in v.attrs and "description" in v.attrs, (name, k, "unit or description missing")
+        out[k] = v.asstr()[()] if v.dtype.kind == "O" else v[()]
+    return out
+
 for c in cases:
-    t = f["results/compare/" + c][()]
-    assert t.shape[1] == 14 and t.shape[0] >= (2 if c == "janssen" else 4 if c != "silo-widths" else 5), (c, t.shape)
-    done = t[:, 3] == t[:, 2]
-    assert done.all(), (c, "unfinished runs")
-    # value, its error bar, reference, error, aux: finite
-    assert np.isfinite(t[:, [4, 6, 7, 8, 9, 10, 11]]).all(), (c, "non-finite")
-    rows = set(t[:, 0].astype(int))
-    assert len(rows) >= 2, (c, "fewer than two methods")
+    t = table("cases/" + c)
+    n = len(t["method"])
+    assert n >= (2 if c == "janssen" else 4 if c != "silo-widths" else 5), (c, n)
+    assert t["runs"].dtype.kind == "i" and t["finished"].dtype.kind == "i", (c, "counts not integers")
+    assert (t["finished"] == t["runs"]).all(), (c, "unfinished runs")
+    for k in ("wall_s", "value", "value_sem", "reference", "rel_error", "rel_error_sem", "aux"):
+        assert np.isfinite(t[k]).all(), (c, k, "non-finite")
+    assert len(set(t["method"])) >= 2, (c, "fewer than two methods")
+    assert set(t["role"]) <= {"sweep", "reference", "bias", "model"}, (c, set(t["role"]))
+# knob values are kept as written: dsmc-weight's "count:weight" pairs
+t = table("cases/cooling-dilute")
+w = t["knob_value"][t["variant"] == "dsmc-weight"]
+assert list(w) == ["64:4", "256:1"], ("dsmc-weight's knob values", w)
+assert f["cases/cooling-dilute/value"].attrs["unit"] == "1" and f["cases/collision/wall_s"].attrs["unit"] == "s"
 # the flow rate's shape Q(4 d)/Q(6 d) (value) and Q(8 d)/Q(6 d) (aux):
 # every row, lgca's three resolutions included, has Q(4) < Q(6) < Q(8);
-# lgca (row 2, on its own scene) settles on a flow nearly linear in D
-# (2/3, within 0.05 at its two finest resolutions; measured 0.645-0.670),
-# dem's long run on a steeper one (Beverloo's 0.375): below lgca's by 0.1
-# or more (measured 0.45 in --quick's one short run, 0.36 in the full one)
-t = f["results/compare/silo-widths"][()]
-assert (t[:, 6] > 0).all() and (t[:, 6] < 1).all() and (t[:, 11] > 1).all(), ("Q(D) not increasing", t[:, [6, 11]])
-lg = t[t[:, 0] == 2]
-assert len(lg) == 3, ("lgca rows", t[:, 0])
-assert (abs(lg[1:, 6] - 2 / 3) < 0.05).all(), ("lgca's Q(4)/Q(6)", lg[:, 6])
-ref = t[t[:, 0] == 0]
-assert len(ref) == 1 and ref[0, 6] < lg[-1, 6] - 0.1, ("dem-long's Q(4)/Q(6)", ref[:, 6], lg[-1, 6])
+# lgca (on its own scene) settles on a flow nearly linear in D (2/3,
+# within 0.05 at its two finest resolutions; measured 0.645-0.670), dem's
+# long run on a steeper one (Beverloo's 0.375): below lgca's by 0.1 or more
+# (measured 0.45 in --quick's one short run, 0.36 in the full one)
+t = table("cases/silo-widths")
+v, aux = t["value"], t["aux"]
+assert (v > 0).all() and (v < 1).all() and (aux > 1).all(), ("Q(D) not increasing", v, aux)
+lg = v[t["method"] == "lgca"]
+assert len(lg) == 3, ("lgca rows", t["method"])
+assert list(t["knob_value"][t["method"] == "lgca"]) == ["0.5:0.05", "0.25:0.025", "0.125:0.0125"], t["knob_value"]
+assert (abs(lg[1:] - 2 / 3) < 0.05).all(), ("lgca's Q(4)/Q(6)", lg)
+ref = v[t["role"] == "reference"]
+assert len(ref) == 1 and ref[0] < lg[-1] - 0.1, ("dem-long's Q(4)/Q(6)", ref, lg[-1])
 # the vibrated bed's profiles against edmd's long run: finite, and dem's
 # density profile within 10 % (relative L2; measured 0.026-0.028)
-e = f["results/compare/vibrated_profile_errors"][()]
-assert np.isfinite(e[:, 2:]).all(), "non-finite profile error"
-dem = e[e[:, 0] == 1]
-assert len(dem) and (dem[:, 2] < 0.1).all(), ("dem's density profile", dem[:, 2])
+e = table("profiles/vibrated/errors")
+for k in ("density_l2", "density_l2_sem", "density_max", "temperature_l2", "temperature_l2_sem"):
+    assert np.isfinite(e[k]).all(), ("non-finite profile error", k)
+dem = e["density_l2"][e["variant"] == "dem"]
+assert len(dem) and (dem < 0.1).all(), ("dem's density profile", dem)
+b = table("profiles/vibrated/bins")
+assert len(b["height"]) == 24 * len(e["variant"]), len(b["height"])
 PYEOF
-    check $? "compare.h5: a finite table per case, two methods or more each; vibrated profiles; silo-widths: Q(D) grows, lgca settles near linear, dem steeper"
+    check $? "compare.h5: a typed table per case read by name, two methods or more each, knob values as written; vibrated profiles; silo-widths: Q(D) grows, lgca settles near linear, dem steeper"
 else
     ok "compare.h5 check # SKIP no h5py"
 fi
+
+# docs/comparison.md's one line that reads a case into pandas, run as written
+docline=$(grep -m1 '^ */usr/bin/python3 -c "import h5py, pandas' "$(dirname "$0")/../../docs/comparison.md" | sed 's/^ *//')
+if [ -z "$docline" ]; then
+    notok "docs/comparison.md shows the pandas one-liner"
+elif $PY -c 'import pandas' 2>/dev/null; then
+    (cd "$tmp/q" && bash -c "$docline") >"$tmp/pd" 2>"$tmp/err" &&
+        grep -q "dem-gear" "$tmp/pd" && grep -q "rel_error" "$tmp/pd" && grep -q "\[9 rows x 18 columns\]" "$tmp/pd"
+    check $? "docs/comparison.md's pandas line reads cases/collision (9 rows, 18 named columns)"
+else
+    ok "pandas one-liner # SKIP /usr/bin/python3 lacks pandas (./grano.sh deps installs python3-pandas)"
+fi
+
+# without gnuplot on PATH the data are written, the figures are not, and
+# the study says so and exits 0 (the runs are reused from the quick run)
+mkdir -p "$tmp/nognu" "$tmp/ng"
+cp -r "$tmp/q/parts" "$tmp/ng/parts"
+PATH=$tmp/nognu "$GRANO" compare --quick --cases collision --out "$tmp/ng" --no-progress >"$tmp/log" 2>"$tmp/err"
+rc=$?
+[ $rc = 0 ] && [ -s "$tmp/ng/compare.h5" ] && [ -s "$tmp/ng/compare.txt" ] && [ ! -e "$tmp/ng/collision.png" ] &&
+    grep -q "gnuplot is not on PATH" "$tmp/err"
+check $? "compare without gnuplot: exit 0 (got $rc), compare.h5 and compare.txt written, no figure, says why"
 
 # the same runs one at a time give the same numbers (wall times aside)
 "$GRANO" compare --quick -j 1 --cases collision,column --out "$tmp/j1" --no-progress >/dev/null 2>"$tmp/err"
