@@ -33,31 +33,42 @@ def ks(u, cdf):
     return max(np.max(np.arange(1, n + 1) / n - f), np.max(f - np.arange(n) / n))
 
 
+def table(f, name):
+    """A table of the file, its columns by name."""
+    return {k: (v.asstr()[()] if v.dtype.kind == "O" else v[()]) for k, v in f[name].items()}
+
+
 def main(paths):
     for path in paths:
-        r = h5py.File(path, "r")["results"]
-        cfg = r["config"][:]
-        block_tau = cfg[6] * cfg[3]
-        Ds = r["orifices"][:]
-        nreal = int(cfg[4])
+        f = h5py.File(path, "r")
+        cfg = table(f, "config")
+        block_tau = cfg["block_time"][0]
+        flow, real, blocks = table(f, "flow"), table(f, "realisations"), table(f, "blocks")
+        Ds = flow["D"]
+        nreal = int(cfg["realisations"][0])
         # bulk packing of each realisation's settled silo (its branches to
         # every orifice averaged: they differ only in the bottom layer)
-        bulk = np.array([[r["D%g/r%02d/meta" % (D, q)][3] for D in Ds] for q in range(nreal)])
+        bulk = np.array([[real["bulk_packing"][(real["D"] == D) & (real["realisation"] == q)][0] for D in Ds]
+                         for q in range(nreal)])
         per_real = bulk.mean(axis=1)
         print("%s: bulk packing per realisation %s, mean %.4f, sd %.4f; sd over the branches of one realisation %.4f" % (
             path, " ".join("%.4f" % v for v in per_real), per_real.mean(),
             per_real.std(ddof=1) if nreal > 1 else 0, bulk.std(axis=1, ddof=1).mean() if len(Ds) > 1 else 0))
+
+        def counts(D, q):
+            return blocks["grains"][(blocks["D"] == D) & (blocks["realisation"] == q)].astype(float)
+
         for D in Ds:
-            w = [r["D%g/r%02d/counts" % (D, q)][:].mean() / block_tau for q in range(nreal)]
+            w = [counts(D, q).mean() / block_tau for q in range(nreal)]
             print("  D %g: W per realisation %s" % (D, " ".join("%.2f" % v for v in w)))
-        flow = r["flow"][:]
-        print("  D W W_err packing: " + "; ".join("%g %.2f %.2f %.3f" % (f[0], f[1], f[2], f[5]) for f in flow))
+        print("  D W W_err packing: " + "; ".join("%g %.2f %.2f %.3f" % (flow["D"][i], flow["W"][i], flow["W_err"][i],
+                                                                         flow["packing"][i]) for i in range(len(Ds))))
         for merge in (1, 2, 4, 8):
             for side, sel in (("D<=9", Ds <= 9), ("D>9", Ds > 9)):
                 pool = []
                 for D in Ds[sel]:
                     for q in range(nreal):
-                        c = r["D%g/r%02d/counts" % (D, q)][:]
+                        c = counts(D, q)
                         nb = len(c) // merge * merge
                         c = c[:nb].reshape(-1, merge).sum(axis=1)
                         w = c / c.mean() if c.mean() > 0 else None

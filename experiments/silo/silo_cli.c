@@ -8,6 +8,7 @@
 
 #include "dist.h"
 #include "opts.h"
+#include "plot.h"
 #include "progress.h"
 
 /* a long option without a short one */
@@ -246,6 +247,10 @@ int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre
                     nunits, cli->units_what, d.size > 1 ? (size_t)0 : reused, t_units, jobs * d.size,
                     jobs * d.size > 1 ? "s" : "", d.size > 1 ? " (MPI ranks)" : "", dir);
         fputs(summary, stdout);
+        if (!gr_plot_have_gnuplot())
+            fprintf(stderr, "grano %s: the data are written in %s/ (HDF5 and .dat tables); no figures: gnuplot "
+                            "is not on PATH (install it with 'apt-get install gnuplot-nox', then rerun: the "
+                            "runs are reused)\n", cli->name, dir);
     }
     exp_dist_end(&d);
     return rc;

@@ -1,12 +1,13 @@
 /* grano silo-flow: the report. Flow rate, its fluctuations and the packing
  * above the orifice against D; the Beverloo, power-law, density-law and
- * modified-law fits; silo-flow.h5, tables, and thesis figs. 4.1-4.6. */
+ * modified-law fits; silo-flow.h5 (typed tables), text tables, and thesis
+ * figs. 4.1-4.6 (drawn when gnuplot is on PATH). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "h5md.h"
+#include "h5tab.h"
 #include "parts.h"
 #include "plot.h"
 #include "silo_flow.h"
@@ -250,14 +251,16 @@ static int fit_sigma(const double *D, const double *s, size_t n, double lo, doub
 typedef struct {
     const sf_ctx *c;
     char *const *parts;
-    gr_h5md *h;
+    exp_tab_file *h;
     double sc_width;     /* the domain's width, for the snapshot */
     size_t n, nb, nr;    /* orifices, blocks, realisations */
     double *tab;         /* per orifice: flow_cols */
     double *wser;        /* w per block and orifice, realisation 0 */
     double *dev[2];      /* dw / sigma_w for D <= split and D > split */
     size_t ndev[2];
-    double *cnt, *phi;   /* counts and packing of one orifice's blocks */
+    double *cnt, *phi;   /* counts and packing per (orifice, realisation, block) */
+    double *w;           /* the reduced flow of each of those blocks */
+    double *meta;        /* per (orifice, realisation): seed, settling time, top, bulk packing */
     double *cost;        /* D, realisation, then the part's cost record */
     double bulk_sum;
     size_t bulk_n;
@@ -266,7 +269,7 @@ typedef struct {
     char fitmsg[1024];
 } sf_rep;
 
-/* silo-flow.h5 with the scene of the first orifice. */
+/* silo-flow.h5, a file of typed tables, and the domain's width. */
 static int open_result(sf_rep *r, gr_err *err)
 {
     const sf_ctx *c = r->c;
@@ -277,41 +280,35 @@ static int open_result(sf_rep *r, gr_err *err)
     gr_scene *sc = silo_scene(&cfg, 0, err);
     if (!sc)
         return err->code;
-    char path[1300];
-    snprintf(path, sizeof path, "%s/silo-flow.h5", c->dir);
-    gr_h5md_opts ho = {.method = c->base.method->name, .seed = c->seed, .force = 1, .no_xdmf = 1};
-    r->h = gr_h5md_create(path, sc, &ho, err);
     r->sc_width = sc->width;
     gr_scene_free(sc);
+    char path[1300];
+    snprintf(path, sizeof path, "%s/silo-flow.h5", c->dir);
+    r->h = exp_tab_create(path, "grano silo-flow: flow rate against orifice width (thesis chapter 4)", err);
     return r->h ? GR_OK : err->code;
 }
 
-/* Orifice o's parts: its blocks into cnt and phi, each realisation's
- * series to the result file, the costs. */
+/* Orifice o's parts: its blocks, each realisation's settled silo and the
+ * costs. */
 static int read_parts(sf_rep *r, size_t o, gr_err *err)
 {
     const sf_ctx *c = r->c;
     size_t nb = r->nb, nr = r->nr;
     int rc = GR_OK;
     for (size_t q = 0; q < nr && !rc; q++) {
-        gr_ckpt *ck = gr_ckpt_open(r->parts[o * nr + q], err);
+        size_t u = o * nr + q;
+        gr_ckpt *ck = gr_ckpt_open(r->parts[u], err);
         if (!ck)
             return err->code;
-        if (!(rc = gr_ckpt_get_f64(ck, "counts", r->cnt + q * nb, nb, err)))
-            rc = gr_ckpt_get_f64(ck, "packing", r->phi + q * nb, nb, err);
-        double meta[4] = {(double)(c->seed + q), exp_get_scalar(ck, "t_settle"), exp_get_scalar(ck, "top0"),
-                          exp_get_scalar(ck, "bulk_packing")};
+        if (!(rc = gr_ckpt_get_f64(ck, "counts", r->cnt + u * nb, nb, err)))
+            rc = gr_ckpt_get_f64(ck, "packing", r->phi + u * nb, nb, err);
+        double *meta = r->meta + u * 4;
+        meta[0] = (double)(c->seed + q), meta[1] = exp_get_scalar(ck, "t_settle");
+        meta[2] = exp_get_scalar(ck, "top0"), meta[3] = exp_get_scalar(ck, "bulk_packing");
         if (isfinite(meta[3]))
             r->bulk_sum += meta[3], r->bulk_n++;
         r->tab[o * NCOL + C_BULK] += meta[3] / (double)nr;
-        char nm[128];
-        snprintf(nm, sizeof nm, "D%g/r%02zu/counts", c->orifice[o], q);
-        if (!rc) rc = exp_put_result(r->h, nm, nb, 0, NULL, "grains that left in each block", r->cnt + q * nb, err);
-        snprintf(nm, sizeof nm, "D%g/r%02zu/packing", c->orifice[o], q);
-        if (!rc) rc = exp_put_result(r->h, nm, nb, 0, NULL, "mean packing fraction of the D x D square in each block", r->phi + q * nb, err);
-        snprintf(nm, sizeof nm, "D%g/r%02zu/meta", c->orifice[o], q);
-        if (!rc) rc = exp_put_result(r->h, nm, 4, 0, NULL, "seed, settling time, settled top height, bulk packing fraction", meta, err);
-        double *cr = r->cost + (o * nr + q) * 7;
+        double *cr = r->cost + u * 7;
         cr[0] = c->orifice[o], cr[1] = (double)q;
         exp_get_cost(ck, cr + 2);
         gr_err ig = {0};
@@ -329,23 +326,25 @@ static int orifice_stats(sf_rep *r, size_t o, gr_err *err)
     size_t nb = r->nb, nr = r->nr, n = r->n, m = nb * nr;
     double bt = (double)c->block * c->base.dt;
     double *t = r->tab + o * NCOL, mean, sem;
-    gr_block_average(r->cnt, m, 1, NULL, &mean, &sem);
+    const double *cnt = r->cnt + o * m, *phi = r->phi + o * m;
+    gr_block_average(cnt, m, 1, NULL, &mean, &sem);
     t[C_D] = c->orifice[o];
     t[C_PERBLOCK] = mean;
     t[C_W] = mean / bt, t[C_WERR] = sem / bt;
-    gr_block_average(r->phi, m, 1, NULL, &t[C_PHI], &t[C_PHIERR]);
+    gr_block_average(phi, m, 1, NULL, &t[C_PHI], &t[C_PHIERR]);
     t[C_NBLK] = (double)m;
     double s2 = 0, *wv = malloc(m * sizeof *wv);
     if (!wv)
         return gr_fail(err, GR_ERUN, "out of memory");
     for (size_t q = 0; q < nr; q++) {
-        const double *cq = r->cnt + q * nb;
+        const double *cq = cnt + q * nb;
         double mr = 0;
         for (size_t b = 0; b < nb; b++)
             mr += cq[b] / (double)nb;
         for (size_t b = 0; b < nb; b++) {
             double w = mr > 0 ? cq[b] / mr : NAN;
             wv[q * nb + b] = w - 1;
+            r->w[o * m + q * nb + b] = w;
             if (q == 0)
                 r->wser[b * n + o] = w;
             s2 += (w - 1) * (w - 1) / (double)m;
@@ -445,21 +444,141 @@ static int fluctuation_pdfs(sf_rep *r, gr_err *err)
     return GR_OK;
 }
 
+/* The run's settings, one row. */
+static int write_config(const sf_rep *r, gr_err *err)
+{
+    const sf_ctx *c = r->c;
+    const char *method = c->base.method->name;
+    double v[13] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
+                    (double)c->discard, (double)c->block, (double)c->nblocks, (double)c->block * c->base.dt,
+                    c->lift, c->split, (double)c->seed, r->rho};
+    const exp_col cols[] = {
+        {"method", "", "the method that ran", EXP_STR, &method, 0},
+        {"grains", "1", "grains in the silo", EXP_INT, v, 0},
+        {"width", "d", "silo width", EXP_F64, v + 1, 0},
+        {"height", "d", "silo height", EXP_F64, v + 2, 0},
+        {"dt", "tau", "time step", EXP_F64, v + 3, 0},
+        {"realisations", "1", "independent fillings, each branched to every orifice", EXP_INT, v + 4, 0},
+        {"discard_steps", "1", "steps discarded after the orifice opens", EXP_INT, v + 5, 0},
+        {"block_steps", "1", "steps per measuring block", EXP_INT, v + 6, 0},
+        {"blocks", "1", "measuring blocks per run", EXP_INT, v + 7, 0},
+        {"block_time", "tau", "time per block", EXP_F64, v + 8, 0},
+        {"square_lift", "d", "base of the D x D packing square above the silo's base", EXP_F64, v + 9, 0},
+        {"split", "d", "small orifices D <= split, large D > split (figs. 4.2-4.3)", EXP_F64, v + 10, 0},
+        {"seed", "1", "seed of realisation 0 (realisation q: seed + q)", EXP_INT, v + 11, 0},
+        {"rho_bulk", "d-2", "bulk number density used in the flow laws", EXP_F64, v + 12, 0},
+    };
+    return exp_tab_write(r->h, "config", "the run's settings", 1, cols, sizeof cols / sizeof cols[0], err);
+}
+
+/* Per orifice and realisation: the settled silo and the costs; per block:
+ * the grains that left, the packing and the reduced flow. */
+static int write_runs(const sf_rep *r, gr_err *err)
+{
+    size_t n = r->n, nb = r->nb, nr = r->nr, nu = n * nr, nbl = nu * nb;
+    double *x = malloc(nbl * 3 * sizeof *x);
+    if (!x)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    for (size_t k = 0; k < nbl; k++) {
+        x[k] = r->c->orifice[k / (nr * nb)], x[nbl + k] = (double)(k / nb % nr);
+        x[2 * nbl + k] = (double)(r->c->discard + (long)(k % nb + 1) * r->c->block);
+    }
+    const double *cost = r->cost, *meta = r->meta;
+    const exp_col rcols[] = {
+        {"D", "d", "orifice width", EXP_F64, cost, 7},
+        {"realisation", "1", "realisation (its filling)", EXP_INT, cost + 1, 7},
+        {"seed", "1", "its seed", EXP_INT, meta, 4},
+        {"settle_time", "tau", "time the filling took to settle", EXP_F64, meta + 1, 4},
+        {"top_height", "d", "highest grain of the settled silo", EXP_F64, meta + 2, 4},
+        {"bulk_packing", "1", "packing fraction of the settled bulk", EXP_F64, meta + 3, 4},
+        {"wall_fill", "s", "wall seconds of the filling and settling", EXP_F64, cost + 2, 7},
+        {"cpu_fill", "s", "CPU seconds of the filling and settling", EXP_F64, cost + 3, 7},
+        {"wall_run", "s", "wall seconds of the run after opening", EXP_F64, cost + 4, 7},
+        {"cpu_run", "s", "CPU seconds of the run after opening", EXP_F64, cost + 5, 7},
+        {"steps_run", "1", "steps of the run after opening", EXP_INT, cost + 6, 7},
+    };
+    const exp_col bcols[] = {
+        {"D", "d", "orifice width", EXP_F64, x, 0},
+        {"realisation", "1", "realisation", EXP_INT, x + nbl, 0},
+        {"end_step", "1", "steps after opening at the block's end", EXP_INT, x + 2 * nbl, 0},
+        {"grains", "1", "grains that left in the block", EXP_INT, r->cnt, 0},
+        {"packing", "1", "mean packing fraction of the D x D square in the block", EXP_F64, r->phi, 0},
+        {"reduced_flow", "1", "w = grains / their mean over the realisation's blocks (eq. 4.2)", EXP_F64, r->w, 0},
+    };
+    int rc = exp_tab_write(r->h, "realisations", "one row per (orifice, realisation)", nu, rcols,
+                           sizeof rcols / sizeof rcols[0], err) ||
+             exp_tab_write(r->h, "blocks", "one row per (orifice, realisation, block)", nbl, bcols,
+                           sizeof bcols / sizeof bcols[0], err);
+    free(x);
+    return rc ? err->code : GR_OK;
+}
+
 static int write_results(const sf_rep *r, gr_err *err)
 {
-    size_t n = r->n, nb = r->nb, nr = r->nr;
-    gr_h5md *h = r->h;
-    const char *fcols = "p0,p0_err,p1,p1_err,p2,p2_err,chi2_dof,n,converged (2: density-law b at a bound of its range)";
-    int rc = exp_put_result(h, "flow", n, NCOL, flow_cols, "per orifice: flow rate (grains/tau), fluctuations, packing", r->tab, err);
-    if (!rc) rc = exp_put_result(h, "fits", NFITS, 9, fcols,
-                      "rows: beverloo {C,k}; sigma_w A D^p all, D<=split, D>split {A,p}; density law {rho0,a,b}; modified law {C,a,b}", r->fits, err);
-    if (!rc) rc = exp_put_result(h, "rho_bulk", 1, 0, NULL, "bulk number density used in the flow laws (grains/d^2)", &r->rho, err);
-    if (!rc) rc = exp_put_result(h, "pdf_fluctuations", NB, 5, "u,p_small,err_small,p_large,err_large", "density of dw/sigma_w", r->pdf, err);
-    if (!rc) rc = exp_put_result(h, "pdf_fluctuation_stats", 2, 4, "n,ks_eq44,ks_gauss,kappa", "rows: D <= split, D > split", &r->pstat[0][0], err);
-    if (!rc) rc = exp_put_result(h, "cost", n * nr, 7, "D,realisation,wall_fill,cpu_fill,wall_run,cpu_run,steps_run",
-                      "seconds per unit of work: filling and settling, then the run after opening", r->cost, err);
-    if (!rc) rc = exp_put_result(h, "reduced_flow_r00", nb, n, NULL, "w per block (rows) and orifice (columns), realisation 0", r->wser, err);
-    return rc;
+    const double *t = r->tab, *f = r->fits;
+    const exp_col flow[] = {
+        {"D", "d", "orifice width", EXP_F64, t + C_D, NCOL},
+        {"W", "tau-1", "flow rate (grains per tau)", EXP_F64, t + C_W, NCOL},
+        {"W_err", "tau-1", "its error bar (block average)", EXP_F64, t + C_WERR, NCOL},
+        {"grains_per_block", "1", "mean grains out per block", EXP_F64, t + C_PERBLOCK, NCOL},
+        {"sigma_w", "1", "standard deviation of the reduced flow w (eq. 4.3)", EXP_F64, t + C_SIGW, NCOL},
+        {"packing", "1", "packing fraction of the D x D square above the orifice", EXP_F64, t + C_PHI, NCOL},
+        {"packing_err", "1", "its error bar", EXP_F64, t + C_PHIERR, NCOL},
+        {"bulk_packing", "1", "packing fraction of the settled bulk, mean over realisations", EXP_F64,
+         t + C_BULK, NCOL},
+        {"blocks", "1", "blocks measured (all realisations)", EXP_INT, t + C_NBLK, NCOL},
+        {"kappa_w", "1", "excess kurtosis of w", EXP_F64, t + C_KAPPA, NCOL},
+    };
+    static const char *const law[NFITS] = {"beverloo", "sigma_w_all", "sigma_w_small", "sigma_w_large",
+                                           "density_law", "modified_law"};
+    static const char *const par[NFITS] = {"C,k", "A,p", "A,p", "A,p", "phi0,a,b", "C,a,b"};
+    static const char *const pu[NFITS] = {"1,d", "1,1", "1,1", "1,1", "1,1,d-1", "1,1,d-1"};
+    const char *vary = "per row: units";
+    const exp_col fits[] = {
+        {"law", "", "W = C rho g^1/2 (D - k)^3/2; sigma_w = A D^p (all, D <= split, D > split); packing "
+                    "phi0 (1 - a e^-bD); W = C rho (1 - a e^-bD) g^1/2 D^3/2", EXP_STR, law, 0},
+        {"parameters", "", "names of p0, p1, p2", EXP_STR, par, 0},
+        {"units", "", "units of p0, p1, p2", EXP_STR, pu, 0},
+        {"p0", vary, "first parameter", EXP_F64, f, 9},
+        {"p0_err", vary, "its error (scaled by sqrt(chi2/dof) when above 1)", EXP_F64, f + 1, 9},
+        {"p1", vary, "second parameter", EXP_F64, f + 2, 9},
+        {"p1_err", vary, "its error", EXP_F64, f + 3, 9},
+        {"p2", vary, "third parameter (NaN: none)", EXP_F64, f + 4, 9},
+        {"p2_err", vary, "its error", EXP_F64, f + 5, 9},
+        {"chi2_dof", "1", "chi^2 per degree of freedom", EXP_F64, f + 6, 9},
+        {"n", "1", "points fitted", EXP_INT, f + 7, 9},
+        {"converged", "1", "1 converged, 0 failed, 2 density law: b at a bound of its range", EXP_INT, f + 8, 9},
+    };
+    const double *p = r->pdf, *ps = &r->pstat[0][0];
+    char lo[64], hi[64];
+    snprintf(lo, sizeof lo, "D <= %g", r->c->split);
+    snprintf(hi, sizeof hi, "D > %g", r->c->split);
+    const char *grp[2] = {lo, hi};
+    const exp_col pdf[] = {
+        {"u", "1", "dw / sigma_w, bin centre", EXP_F64, p, 5},
+        {"p_small", "1", "probability density, D <= split", EXP_F64, p + 1, 5},
+        {"err_small", "1", "its error bar", EXP_F64, p + 2, 5},
+        {"p_large", "1", "probability density, D > split", EXP_F64, p + 3, 5},
+        {"err_large", "1", "its error bar", EXP_F64, p + 4, 5},
+    };
+    const exp_col pst[] = {
+        {"orifices", "", "which orifices (d)", EXP_STR, grp, 0},
+        {"n", "1", "blocks pooled", EXP_INT, ps, 4},
+        {"ks_eq44", "1", "KS distance to eq. 4.4", EXP_F64, ps + 1, 4},
+        {"ks_gauss", "1", "KS distance to the Gaussian", EXP_F64, ps + 2, 4},
+        {"kappa", "1", "excess kurtosis", EXP_F64, ps + 3, 4},
+    };
+    int rc = write_config(r, err) ||
+             exp_tab_write(r->h, "flow", "per orifice: flow rate, its fluctuations, packing", r->n, flow,
+                           sizeof flow / sizeof flow[0], err) ||
+             exp_tab_write(r->h, "fits", "the flow laws against D", NFITS, fits, sizeof fits / sizeof fits[0],
+                           err) ||
+             exp_tab_write(r->h, "pdf_fluctuations", "density of dw / sigma_w", NB, pdf,
+                           sizeof pdf / sizeof pdf[0], err) ||
+             exp_tab_write(r->h, "pdf_fluctuation_stats", "the fluctuations against eq. 4.4 and a Gaussian", 2,
+                           pst, sizeof pst / sizeof pst[0], err) ||
+             write_runs(r, err);
+    return rc ? err->code : GR_OK;
 }
 
 static int write_tables(const sf_rep *r, gr_err *err)
@@ -531,23 +650,25 @@ static void summarise(sf_rep *r, char *summary, size_t nsum)
              c->split, r->pstat[1][1], r->pstat[1][2], c->split, r->fitmsg);
 }
 
-/* Every orifice's parts, the fits, then the tables and figures. */
+/* Every orifice's parts, the fits, the tables (silo-flow.h5 closed), then
+ * the figures when gnuplot is there to draw them. */
 static int gather(sf_rep *r, gr_err *err)
 {
     const sf_ctx *c = r->c;
-    double par[10] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
-                      (double)c->discard, (double)c->block, (double)c->nblocks, c->lift, (double)c->seed};
-    int rc = exp_put_result(r->h, "config", 10, 0, NULL, "grains, width, height, dt, realisations, discarded steps, block steps, blocks, square lift, seed", par, err);
-    if (!rc)
-        rc = exp_put_result(r->h, "orifices", r->n, 0, NULL, "orifice widths D / d", c->orifice, err);
+    int rc = GR_OK;
     for (size_t o = 0; o < r->n && !rc; o++)
         rc = read_parts(r, o, err) || orifice_stats(r, o, err);
     if (rc)
         return err->code ? err->code : GR_ERUN;
     r->rho = r->bulk_n ? r->bulk_sum / (double)r->bulk_n * 4.0 / M_PI : NAN; /* number density */
     fit_laws(r);
-    rc = fluctuation_pdfs(r, err) || write_results(r, err) || write_tables(r, err) ||
-         figures(c, r->tab, r->fits, r->wser, r->pdf, r->rho, err) || snapshot_figure(r, err);
+    rc = fluctuation_pdfs(r, err) || write_results(r, err) || write_tables(r, err);
+    if (!rc) {
+        rc = exp_tab_close(r->h, err);
+        r->h = NULL;
+    }
+    if (!rc && gr_plot_have_gnuplot())
+        rc = figures(c, r->tab, r->fits, r->wser, r->pdf, r->rho, err) || snapshot_figure(r, err);
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }
 
@@ -561,17 +682,17 @@ int sf_report(const sf_ctx *c, char *const *parts, char *summary, size_t nsum, g
     r.wser = calloc(nb * n, sizeof *r.wser);
     r.dev[0] = malloc(n * nb * nr * sizeof(double));
     r.dev[1] = malloc(n * nb * nr * sizeof(double));
-    r.cnt = malloc(nb * nr * sizeof *r.cnt);
-    r.phi = malloc(nb * nr * sizeof *r.phi);
+    r.cnt = malloc(n * nb * nr * sizeof *r.cnt);
+    r.phi = malloc(n * nb * nr * sizeof *r.phi);
+    r.w = malloc(n * nb * nr * sizeof *r.w);
+    r.meta = calloc(n * nr * 4, sizeof *r.meta);
     r.cost = calloc(n * nr * 7, sizeof *r.cost);
-    int rc = r.tab && r.wser && r.dev[0] && r.dev[1] && r.cnt && r.phi && r.cost
+    int rc = r.tab && r.wser && r.dev[0] && r.dev[1] && r.cnt && r.phi && r.w && r.meta && r.cost
                  ? gather(&r, err)
                  : gr_fail(err, GR_ERUN, "out of memory");
     summarise(&r, summary, nsum);
-    if (rc)
-        gr_h5md_free(r.h);
-    else
-        rc = gr_h5md_close(r.h, err);
-    free(r.tab), free(r.wser), free(r.dev[0]), free(r.dev[1]), free(r.cnt), free(r.phi), free(r.cost);
+    exp_tab_free(r.h);
+    free(r.tab), free(r.wser), free(r.dev[0]), free(r.dev[1]), free(r.cnt), free(r.phi), free(r.w), free(r.meta),
+        free(r.cost);
     return rc;
 }

@@ -82,8 +82,8 @@ int ss_fig_pdf(const char *png, const ss_res *res, size_t nr, int w, int vert_fi
                const char *title, gr_err *err);
 int ss_fig_msd(const char *png, const ss_res *res, size_t nr, gr_err *err);
 int ss_fig_kurtosis(const char *png, const ss_res *res, size_t nr, gr_err *err);
-/* Also fills table (nr x ntimes x 3: step, discharges, relative change). */
-int ss_fig_stationarity(const char *png, const ss_ctx *c, ss_res *res, size_t nr, double *table,
+/* table: nr x ntimes x 3 (step, discharges, relative change; NaN: none). */
+int ss_fig_stationarity(const char *png, const ss_ctx *c, const ss_res *res, size_t nr, const double *table,
                         gr_err *err);
 /* The silo snapshot (end of the first discharge of orifice o) and fig. 3.1. */
 int ss_pictures(const ss_ctx *c, char *const *parts, size_t o, gr_err *err);

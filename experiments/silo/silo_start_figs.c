@@ -155,34 +155,18 @@ int ss_fig_kurtosis(const char *png, const ss_res *res, size_t nr, gr_err *err)
     return gr_plot_close(gp, png, err);
 }
 
-int ss_fig_stationarity(const char *png, const ss_ctx *c, ss_res *res, size_t nr,
-                            double *table, gr_err *err)
+int ss_fig_stationarity(const char *png, const ss_ctx *c, const ss_res *res, size_t nr,
+                        const double *table, gr_err *err)
 {
     FILE *gp = gr_plot_open(png, 700, 480, err);
     if (!gp)
         return err->code;
-    size_t nc = (size_t)(res[0].grid[0] * res[0].grid[1]);
     for (size_t o = 0; o < nr; o++) {
-        const ss_res *r = &res[o];
         fprintf(gp, "$s%zu << EOD\n", o);
-        long prev = -1;
         for (size_t j = 0; j < c->ntimes; j++) {
-            double *row = table + (o * c->ntimes + j) * 3;
-            row[0] = (double)c->times[j], row[1] = r->wsum[j] / 5.0, row[2] = NAN;
-            if (r->wsum[j] < 5.0 * c->nreal - 0.5)
-                continue; /* not every discharge lasted that long */
-            if (prev >= 0) {
-                double num = 0, den = 0;
-                for (size_t i = 0; i < nc; i++) {
-                    double a = r->vy[j * nc + i], b = r->vy[(size_t)prev * nc + i];
-                    if (isfinite(a) && isfinite(b))
-                        num += (a - b) * (a - b), den += a * a;
-                }
-                row[2] = den > 0 ? sqrt(num / den) : NAN;
-                if (isfinite(row[2]))
-                    fprintf(gp, "%g %g\n", row[0], row[2]);
-            }
-            prev = (long)j;
+            const double *row = table + (o * c->ntimes + j) * 3;
+            if (isfinite(row[2]))
+                fprintf(gp, "%g %g\n", row[0], row[2]);
         }
         fprintf(gp, "EOD\n");
     }

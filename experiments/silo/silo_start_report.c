@@ -1,19 +1,22 @@
 /* grano silo-start: the report. Averages the discharges of each orifice,
  * fits the mean-square-displacement exponents, compares the displacement
- * distributions with eq. 3.4 and a Gaussian, and writes silo-start.h5, the
- * tables and the figures of thesis figs. 3.1-3.6. */
+ * distributions with eq. 3.4 and a Gaussian, and writes silo-start.h5 (typed
+ * tables), the text tables and, when gnuplot is on PATH, the figures of
+ * thesis figs. 3.1-3.6. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "fields.h"
-#include "h5md.h"
+#include "h5tab.h"
 #include "parts.h"
 #include "plot.h"
 #include "silo_start.h"
 #include "stats.h"
 #include "table.h"
+
+#define SS_DCOL 13 /* columns of a discharges table */
 
 static void orif_free(ss_res *o)
 {
@@ -90,24 +93,32 @@ static int add_part(const ss_part *p, size_t nt, ss_res *r, ss_field_sums *f, gr
     return GR_OK;
 }
 
-/* Writes realisation k's raw data to the file and adds its cost to the mean. */
+/* Writes realisation k's raw data to the file, its row of the orifice's
+ * discharges table into disc, and adds its cost to the mean. */
 static int write_part(const ss_ctx *c, int k, gr_ckpt *ck, const ss_part *p, ss_res *r,
-                      gr_h5md *h, gr_err *err)
+                      exp_tab_file *h, double *disc, gr_err *err)
 {
     size_t ns = r->ns;
     char nm[128];
-    double *raw = malloc(ns * 7 * sizeof *raw);
-    for (size_t s = 0; raw && s < ns; s++)
-        for (int i = 0; i < 7; i++)
-            raw[s * 7 + (size_t)i] = p->a[i][s];
     snprintf(nm, sizeof nm, "D%g/r%02d/msd_sums", r->D, k);
-    int rc = raw ? exp_put_result(h, nm, ns, 7, "lag,n,sum_dx2,sum_dx4,sum_dy2,sum_dy4,sum_fall",
-                       "per-slot sums of this discharge", raw, err)
-                 : gr_fail(err, GR_ERUN, "out of memory");
-    free(raw);
+    const exp_col sums[] = {
+        {"lag", "tau", "lag time", EXP_F64, p->a[0], 0},
+        {"n", "1", "displacements summed", EXP_INT, p->a[1], 0},
+        {"sum_dx2", "d+2", "sum of dx^2", EXP_F64, p->a[2], 0},
+        {"sum_dx4", "d+4", "sum of dx^4", EXP_F64, p->a[3], 0},
+        {"sum_dy2", "d+2", "sum of dy^2", EXP_F64, p->a[4], 0},
+        {"sum_dy4", "d+4", "sum of dy^4", EXP_F64, p->a[5], 0},
+        {"sum_fall", "d", "sum of the surface's fall over the lag", EXP_F64, p->a[6], 0},
+    };
+    int rc = exp_tab_write(h, nm, "per-slot sums of this discharge", ns, sums, sizeof sums / sizeof sums[0], err);
     snprintf(nm, sizeof nm, "D%g/r%02d/series", r->D, k);
+    const exp_col ser[] = {
+        {"step", "1", "steps after opening", EXP_INT, p->ser, 3},
+        {"top", "d", "highest grain", EXP_F64, p->ser + 1, 3},
+        {"outflow", "1", "grains out so far", EXP_INT, p->ser + 2, 3},
+    };
     if (!rc && p->nser >= 3)
-        rc = exp_put_result(h, nm, p->nser / 3, 3, "step,top,outflow", "highest grain and outflow after opening", p->ser, err);
+        rc = exp_tab_write(h, nm, "highest grain and outflow after opening", p->nser / 3, ser, 3, err);
     double cost[5], branch[4];
     exp_get_cost(ck, cost);
     gr_err ig = {0};
@@ -118,20 +129,35 @@ static int write_part(const ss_ctx *c, int k, gr_ckpt *ck, const ss_part *p, ss_
         r->cost[q] += cost[q] / (double)c->nreal;
     for (int q = 0; q < 4; q++)
         r->branch[q] += branch[q] / (double)c->nreal;
-    snprintf(nm, sizeof nm, "D%g/r%02d/cost", r->D, k);
-    if (!rc)
-        rc = exp_put_result(h, nm, 5, 0, NULL, "wall and CPU seconds of the branch, of the run, and its steps", cost, err);
-    snprintf(nm, sizeof nm, "D%g/r%02d/branch", r->D, k);
-    if (!rc)
-        rc = exp_put_result(h, nm, 4, 0, NULL,
-                            "the branch from the realisation's filling: its settling time (tau), the lift (d), the filling's CPU seconds, kinetic energy per grain at opening (m g d)",
-                            branch, err);
-    double meta[4] = {(double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
-                      exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps")};
-    snprintf(nm, sizeof nm, "D%g/r%02d/meta", r->D, k);
-    if (!rc)
-        rc = exp_put_result(h, nm, 4, 0, NULL, "seed, settling time, top height, steps run", meta, err);
+    double row[SS_DCOL] = {(double)k, (double)(c->seed + (uint64_t)k), exp_get_scalar(ck, "t_settle"),
+                           exp_get_scalar(ck, "top0"), exp_get_scalar(ck, "steps"), cost[0], cost[1], cost[2],
+                           cost[3], branch[0], branch[1], branch[2], branch[3]};
+    memcpy(disc, row, sizeof row);
     return rc;
+}
+
+/* The orifice's discharges, one row per realisation. */
+static int write_discharges(const ss_ctx *c, const ss_res *r, exp_tab_file *h, const double *d, gr_err *err)
+{
+    const exp_col cols[] = {
+        {"realisation", "1", "realisation (its filling)", EXP_INT, d, SS_DCOL},
+        {"seed", "1", "its seed", EXP_INT, d + 1, SS_DCOL},
+        {"settle_time", "tau", "time the filling took to settle", EXP_F64, d + 2, SS_DCOL},
+        {"top_height", "d", "highest grain at opening", EXP_F64, d + 3, SS_DCOL},
+        {"steps", "1", "steps run after opening", EXP_INT, d + 4, SS_DCOL},
+        {"wall_branch", "s", "wall seconds of the branch from the filling", EXP_F64, d + 5, SS_DCOL},
+        {"cpu_branch", "s", "CPU seconds of the branch", EXP_F64, d + 6, SS_DCOL},
+        {"wall_run", "s", "wall seconds of the discharge", EXP_F64, d + 7, SS_DCOL},
+        {"cpu_run", "s", "CPU seconds of the discharge", EXP_F64, d + 8, SS_DCOL},
+        {"branch_settle_time", "tau", "settling time of the branch", EXP_F64, d + 9, SS_DCOL},
+        {"lift", "d", "the branch's lift", EXP_F64, d + 10, SS_DCOL},
+        {"cpu_fill", "s", "CPU seconds of the filling", EXP_F64, d + 11, SS_DCOL},
+        {"ekin_open", "m d+2 tau-2", "kinetic energy per grain at opening", EXP_F64, d + 12, SS_DCOL},
+    };
+    char nm[64];
+    snprintf(nm, sizeof nm, "D%g/discharges", r->D);
+    return exp_tab_write(h, nm, "one row per realisation's discharge", (size_t)c->nreal, cols,
+                         sizeof cols / sizeof cols[0], err);
 }
 
 static int mean_velocity(const ss_field_sums *f, size_t nt, ss_res *r, gr_err *err)
@@ -145,7 +171,7 @@ static int mean_velocity(const ss_field_sums *f, size_t nt, ss_res *r, gr_err *e
 }
 
 /* Sums of every part of orifice o; per-realisation raw data go to the file. */
-static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h5md *h,
+static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, exp_tab_file *h,
                   gr_err *err)
 {
     size_t ns = c->nslots, nt = c->ntimes;
@@ -154,7 +180,8 @@ static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h
     if (!(r->msd = gr_msd_create(ns, err)))
         return err->code;
     ss_field_sums f = {0};
-    int rc = GR_OK;
+    double *disc = malloc((size_t)c->nreal * SS_DCOL * sizeof *disc);
+    int rc = disc ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");
     for (int k = 0; k < c->nreal && !rc; k++) {
         const char *path = parts[o * (size_t)c->nreal + (size_t)k];
         gr_ckpt *ck = gr_ckpt_open(path, err);
@@ -165,14 +192,14 @@ static int gather(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h
         if (!rc)
             rc = add_part(&p, nt, r, &f, err);
         if (!rc)
-            rc = write_part(c, k, ck, &p, r, h, err);
+            rc = write_part(c, k, ck, &p, r, h, disc + (size_t)k * SS_DCOL, err);
         part_free(&p);
         gr_err ig = {0};
         gr_ckpt_close(ck, &ig);
     }
     if (!rc)
-        rc = mean_velocity(&f, nt, r, err);
-    free(f.num), free(f.py), free(f.mass);
+        rc = write_discharges(c, r, h, disc, err) || mean_velocity(&f, nt, r, err);
+    free(f.num), free(f.py), free(f.mass), free(disc);
     return rc;
 }
 
@@ -278,30 +305,38 @@ static void fit_msd(ss_res *r)
     }
 }
 
-/* silo-start.h5 with the scene of the first orifice, and the run's
- * configuration. */
-static gr_h5md *open_result(const ss_ctx *c, gr_err *err)
+/* silo-start.h5, a file of typed tables, with the run's settings. */
+static exp_tab_file *open_result(const ss_ctx *c, gr_err *err)
 {
-    silo_cfg cfg = c->base;
-    cfg.orifice = c->orifice[0];
-    cfg.seed = c->seed;
-    gr_scene *sc = silo_scene(&cfg, 0, err);
-    if (!sc)
-        return NULL;
     char path[1300];
     snprintf(path, sizeof path, "%s/silo-start.h5", c->dir);
-    gr_h5md_opts ho = {.method = c->base.method->name, .seed = c->seed, .force = 1, .no_xdmf = 1};
-    gr_h5md *h = gr_h5md_create(path, sc, &ho, err);
-    gr_scene_free(sc);
+    exp_tab_file *h = exp_tab_create(path, "grano silo-start: the start of the discharge (thesis chapter 3)", err);
     if (!h)
         return NULL;
-    double par[12] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
-                      (double)c->fs, c->window, c->cell, c->fall_stop, (double)c->max_steps,
-                      (double)c->min_steps, (double)c->seed};
-    if (exp_put_result(h, "config", 12, 0, NULL,
-                       "grains, width, height, dt, realisations, frame steps, window, cell, fall to stop, max steps, min steps, seed", par, err) ||
-        exp_put_result(h, "orifices", c->norif, 0, NULL, "orifice widths D / d", c->orifice, err)) {
-        gr_h5md_free(h);
+    const char *method = c->base.method->name;
+    double v[12] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
+                    (double)c->fs, c->window, c->cell, c->fall_stop, (double)c->max_steps,
+                    (double)c->min_steps, (double)c->seed};
+    const exp_col cols[] = {
+        {"method", "", "the method that ran", EXP_STR, &method, 0},
+        {"grains", "1", "grains in the silo", EXP_INT, v, 0},
+        {"width", "d", "silo width", EXP_F64, v + 1, 0},
+        {"height", "d", "silo height", EXP_F64, v + 2, 0},
+        {"dt", "tau", "time step", EXP_F64, v + 3, 0},
+        {"realisations", "1", "discharges per orifice (one filling each, shared by the orifices)", EXP_INT,
+         v + 4, 0},
+        {"frame_steps", "1", "steps between frames of the displacement record", EXP_INT, v + 5, 0},
+        {"window", "d", "side of the displacement window", EXP_F64, v + 6, 0},
+        {"cell", "d", "velocity field cells", EXP_F64, v + 7, 0},
+        {"fall_stop", "d", "a discharge stops once the surface has fallen this far", EXP_F64, v + 8, 0},
+        {"max_steps", "1", "most steps of a discharge", EXP_INT, v + 9, 0},
+        {"min_steps", "1", "fewest steps of a discharge", EXP_INT, v + 10, 0},
+        {"seed", "1", "seed of realisation 0 (realisation k: seed + k)", EXP_INT, v + 11, 0},
+    };
+    const exp_col ocol = {"D", "d", "orifice width", EXP_F64, c->orifice, 0};
+    if (exp_tab_write(h, "config", "the run's settings", 1, cols, sizeof cols / sizeof cols[0], err) ||
+        exp_tab_write(h, "orifices", "the orifice widths, in --orifices order", c->norif, &ocol, 1, err)) {
+        exp_tab_free(h);
         return NULL;
     }
     return h;
@@ -309,7 +344,7 @@ static gr_h5md *open_result(const ss_ctx *c, gr_err *err)
 
 /* Orifice o from its parts: the MSD and its kurtosis per lag, the two
  * displacement distributions, the MSD fits. */
-static int analyse(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_h5md *h, gr_err *err)
+static int analyse(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, exp_tab_file *h, gr_err *err)
 {
     if (gather(c, o, parts, r, h, err))
         return err->code;
@@ -328,7 +363,7 @@ static int analyse(const ss_ctx *c, size_t o, char *const *parts, ss_res *r, gr_
 
 /* The MSD table (file and .dat) and its fits: exponent, error, prefactor,
  * error and range for x then y, into fit. */
-static int write_msd(const ss_ctx *c, const ss_res *r, gr_h5md *h, double fit[2][6], gr_err *err)
+static int write_msd(const ss_ctx *c, const ss_res *r, exp_tab_file *h, double fit[2][6], gr_err *err)
 {
     char nm[128], dat[1400];
     double tab[SS_MAX_SLOTS][10];
@@ -337,9 +372,22 @@ static int write_msd(const ss_ctx *c, const ss_res *r, gr_h5md *h, double fit[2]
                           r->my[s], r->ex[s], r->ey[s], r->kx[s], r->ky[s]};
         memcpy(tab[s], row, sizeof row);
     }
-    const char *mcols = "lag_time,lag_steps,n,fall,msd_x,msd_y,err_x,err_y,kappa_x,kappa_y";
+    const double *t = &tab[0][0];
+    const exp_col mcols[] = {
+        {"lag_time", "tau", "lag", EXP_F64, t, 10},
+        {"lag_steps", "1", "lag in steps", EXP_INT, t + 1, 10},
+        {"n", "1", "displacements averaged (all discharges)", EXP_INT, t + 2, 10},
+        {"fall", "d", "mean fall of the surface over the lag", EXP_F64, t + 3, 10},
+        {"msd_x", "d+2", "mean square horizontal displacement", EXP_F64, t + 4, 10},
+        {"msd_y", "d+2", "mean square vertical displacement (local mean flow subtracted)", EXP_F64, t + 5, 10},
+        {"err_x", "d+2", "error bar of msd_x", EXP_F64, t + 6, 10},
+        {"err_y", "d+2", "error bar of msd_y", EXP_F64, t + 7, 10},
+        {"kappa_x", "1", "excess kurtosis of dx", EXP_F64, t + 8, 10},
+        {"kappa_y", "1", "excess kurtosis of dy", EXP_F64, t + 9, 10},
+    };
     snprintf(nm, sizeof nm, "D%g/msd", r->D);
-    int rc = exp_put_result(h, nm, r->ns, 10, mcols, "mean square displacement and kurtosis per lag, all discharges", &tab[0][0], err);
+    int rc = exp_tab_write(h, nm, "mean square displacement and kurtosis per lag, all discharges", r->ns, mcols,
+                           sizeof mcols / sizeof mcols[0], err);
     snprintf(dat, sizeof dat, "%s/msd_D%g.dat", c->dir, r->D);
     if (!rc)
         rc = exp_write_dat(dat, "lag_time lag_steps n fall msd_x msd_y err_x err_y kappa_x kappa_y", &tab[0][0], r->ns, 10, err);
@@ -350,45 +398,117 @@ static int write_msd(const ss_ctx *c, const ss_res *r, gr_h5md *h, double fit[2]
                          r->fit_range[0], r->fit_range[1]};
         memcpy(fit[comp], row, sizeof row);
     }
+    static const char *const axis[2] = {"x", "y"};
+    const double *q = &fit[0][0];
+    const exp_col fcols[] = {
+        {"axis", "", "displacement component", EXP_STR, axis, 0},
+        {"exponent", "1", "p of <d^2> = A t^p", EXP_F64, q, 6},
+        {"exponent_err", "1", "its error", EXP_F64, q + 1, 6},
+        {"prefactor", "d+2 tau-p", "A", EXP_F64, q + 2, 6},
+        {"prefactor_err", "d+2 tau-p", "its error", EXP_F64, q + 3, 6},
+        {"t_lo", "tau", "first lag fitted", EXP_F64, q + 4, 6},
+        {"t_hi", "tau", "last lag fitted", EXP_F64, q + 5, 6},
+    };
     snprintf(nm, sizeof nm, "D%g/msd_fit", r->D);
     if (!rc)
-        rc = exp_put_result(h, nm, 2, 6, "exponent,exponent_err,prefactor,prefactor_err,t_lo,t_hi",
-                 "log-log fit <d^2> = A t^p, rows x then y", &fit[0][0], err);
+        rc = exp_tab_write(h, nm, "log-log fit <d^2> = A t^p", 2, fcols, sizeof fcols / sizeof fcols[0], err);
     return rc;
 }
 
+/* Relative change of the velocity field since the previous field time
+ * (every discharge still running at both), rows by orifice then time:
+ * step, discharges, change (NaN at the first time and where a discharge
+ * had ended). */
+static void stationarity(const ss_ctx *c, const ss_res *res, size_t nr, double *table)
+{
+    size_t nc = (size_t)(res[0].grid[0] * res[0].grid[1]);
+    for (size_t o = 0; o < nr; o++) {
+        const ss_res *r = &res[o];
+        long prev = -1;
+        for (size_t j = 0; j < c->ntimes; j++) {
+            double *row = table + (o * c->ntimes + j) * 3;
+            row[0] = (double)c->times[j], row[1] = r->wsum[j] / 5.0, row[2] = NAN;
+            if (r->wsum[j] < 5.0 * c->nreal - 0.5)
+                continue; /* not every discharge lasted that long */
+            if (prev >= 0) {
+                double num = 0, den = 0;
+                for (size_t i = 0; i < nc; i++) {
+                    double a = r->vy[j * nc + i], b = r->vy[(size_t)prev * nc + i];
+                    if (isfinite(a) && isfinite(b))
+                        num += (a - b) * (a - b), den += a * a;
+                }
+                row[2] = den > 0 ? sqrt(num / den) : NAN;
+            }
+            prev = (long)j;
+        }
+    }
+}
+
 /* The displacement distributions and their statistics, and the velocity
- * fields with their grid and times. */
-static int write_pdfs_fields(const ss_ctx *c, const ss_res *r, gr_h5md *h, gr_err *err)
+ * field with its grid and times. */
+static int write_pdfs_fields(const ss_ctx *c, const ss_res *r, exp_tab_file *h, gr_err *err)
 {
     char nm[128], dat[1400];
     int rc = GR_OK;
     for (int w = 0; w < 2 && !rc; w++) {
+        const double *p = &r->pdf[w][0][0];
+        const exp_col pc[] = {
+            {"u", "1", "displacement / its standard deviation, bin centre", EXP_F64, p, 5},
+            {"p_x", "1", "probability density, horizontal", EXP_F64, p + 1, 5},
+            {"err_x", "1", "its error bar", EXP_F64, p + 2, 5},
+            {"p_y", "1", "probability density, vertical", EXP_F64, p + 3, 5},
+            {"err_y", "1", "its error bar", EXP_F64, p + 4, 5},
+        };
         snprintf(nm, sizeof nm, "D%g/pdf_%s", r->D, w ? "long" : "short");
-        rc = exp_put_result(h, nm, NB, 5, "u,p_x,err_x,p_y,err_y",
-                 w ? "normalised displacement density, lag of a 2 d fall" : "normalised displacement density, lag of a 0.01 d fall",
-                 &r->pdf[w][0][0], err);
+        rc = exp_tab_write(h, nm,
+                           w ? "normalised displacement density, lag of a 2 d fall"
+                             : "normalised displacement density, lag of a 0.01 d fall",
+                           NB, pc, sizeof pc / sizeof pc[0], err);
         snprintf(dat, sizeof dat, "%s/pdf_%s_D%g.dat", c->dir, w ? "long" : "short", r->D);
         if (!rc)
-            rc = exp_write_dat(dat, "u p_x err_x p_y err_y", &r->pdf[w][0][0], NB, 5, err);
+            rc = exp_write_dat(dat, "u p_x err_x p_y err_y", p, NB, 5, err);
     }
+    static const char *const lag[2] = {"short", "long"};
+    const double *st = &r->stats[0][0];
+    const exp_col sc[] = {
+        {"lag", "", "short (a 0.01 d fall) or long (a 2 d fall)", EXP_STR, lag, 0},
+        {"lag_time", "tau", "the lag", EXP_F64, st, 10},
+        {"fall", "d", "mean fall of the surface over it", EXP_F64, st + 1, 10},
+        {"sd_x", "d", "standard deviation of dx", EXP_F64, st + 2, 10},
+        {"sd_y", "d", "standard deviation of dy", EXP_F64, st + 3, 10},
+        {"ks_eq34_x", "1", "KS distance of dx to eq. 3.4", EXP_F64, st + 4, 10},
+        {"ks_gauss_x", "1", "KS distance of dx to the Gaussian", EXP_F64, st + 5, 10},
+        {"ks_eq34_y", "1", "KS distance of dy to eq. 3.4", EXP_F64, st + 6, 10},
+        {"ks_gauss_y", "1", "KS distance of dy to the Gaussian", EXP_F64, st + 7, 10},
+        {"kappa_x", "1", "excess kurtosis of dx", EXP_F64, st + 8, 10},
+        {"kappa_y", "1", "excess kurtosis of dy", EXP_F64, st + 9, 10},
+    };
     snprintf(nm, sizeof nm, "D%g/pdf_stats", r->D);
     if (!rc)
-        rc = exp_put_result(h, nm, 2, 10, "lag_time,fall,sd_x,sd_y,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,kappa_x,kappa_y",
-                 "rows: short lag, long lag", &r->stats[0][0], err);
-    size_t nc = (size_t)(r->grid[0] * r->grid[1]);
+        rc = exp_tab_write(h, nm, "the displacement distributions against eq. 3.4 and a Gaussian", 2, sc,
+                           sizeof sc / sizeof sc[0], err);
+    size_t dims[3] = {c->ntimes, (size_t)r->grid[1], (size_t)r->grid[0]};
     snprintf(nm, sizeof nm, "D%g/velocity_y", r->D);
     if (!rc)
-        rc = exp_put_result(h, nm, c->ntimes, nc, NULL, "mean vertical velocity per cell (row-major, y rows) at field_steps", r->vy, err);
+        rc = exp_tab_array(h, nm, 3, dims, r->vy, "d tau-1",
+                           "mean vertical velocity per cell [field time][y][x] (NaN: no grain), at field_steps' "
+                           "steps, on field_grid's cells", err);
+    const double *g = r->grid;
+    const exp_col gc[] = {
+        {"nx", "1", "cells across", EXP_INT, g, 0},        {"ny", "1", "cells up", EXP_INT, g + 1, 0},
+        {"x0", "d", "left edge", EXP_F64, g + 2, 0},        {"y0", "d", "lower edge", EXP_F64, g + 3, 0},
+        {"cell_width", "d", "cell width", EXP_F64, g + 4, 0}, {"cell_height", "d", "cell height", EXP_F64, g + 5, 0},
+    };
     snprintf(nm, sizeof nm, "D%g/field_grid", r->D);
     if (!rc)
-        rc = exp_put_result(h, nm, 6, 0, NULL, "nx, ny, x0, y0, cell width, cell height", r->grid, err);
+        rc = exp_tab_write(h, nm, "the velocity field's grid", 1, gc, sizeof gc / sizeof gc[0], err);
     double ts[SS_MAX_TIMES];
     for (size_t j = 0; j < c->ntimes; j++)
         ts[j] = (double)c->times[j];
+    const exp_col tc = {"step", "1", "steps after opening of each velocity field", EXP_INT, ts, 0};
     snprintf(nm, sizeof nm, "D%g/field_steps", r->D);
     if (!rc)
-        rc = exp_put_result(h, nm, c->ntimes, 0, NULL, "steps after opening of each velocity field", ts, err);
+        rc = exp_tab_write(h, nm, "the times of the velocity fields", c->ntimes, &tc, 1, err);
     return rc;
 }
 
@@ -411,10 +531,33 @@ static void summary_row(const ss_ctx *c, const ss_res *r, double fit[2][6], doub
                                  r->branch[2], r->cost[1], r->branch[1], r->branch[0], r->branch[3], r->cost[2], r->cost[3], r->cost[4]);
 }
 
-static int write_summary(const ss_ctx *c, gr_h5md *h, const double *summ, gr_err *err)
+static int write_summary(const ss_ctx *c, exp_tab_file *h, const double *summ, gr_err *err)
 {
     const char *scols = "D,realisations,lag_short,fall_short,sd_x,sd_y,exp_x,exp_x_err,exp_y,exp_y_err,kappa_x_short,kappa_y_short,fall_long,kappa_x_long,kappa_y_long,ks_eq34_x,ks_gauss_x,ks_eq34_y,ks_gauss_y,lag_long";
-    if (exp_put_result(h, "summary", c->norif, 20, scols, "one row per orifice", summ, err))
+    const double *v = summ;
+    const exp_col cols[20] = {
+        {"D", "d", "orifice width", EXP_F64, v, 20},
+        {"realisations", "1", "discharges", EXP_INT, v + 1, 20},
+        {"lag_short", "tau", "the short lag (a 0.01 d fall)", EXP_F64, v + 2, 20},
+        {"fall_short", "d", "the fall over it", EXP_F64, v + 3, 20},
+        {"sd_x", "d", "standard deviation of dx at the short lag", EXP_F64, v + 4, 20},
+        {"sd_y", "d", "standard deviation of dy at the short lag", EXP_F64, v + 5, 20},
+        {"exp_x", "1", "MSD exponent, horizontal", EXP_F64, v + 6, 20},
+        {"exp_x_err", "1", "its error", EXP_F64, v + 7, 20},
+        {"exp_y", "1", "MSD exponent, vertical", EXP_F64, v + 8, 20},
+        {"exp_y_err", "1", "its error", EXP_F64, v + 9, 20},
+        {"kappa_x_short", "1", "excess kurtosis of dx, short lag", EXP_F64, v + 10, 20},
+        {"kappa_y_short", "1", "excess kurtosis of dy, short lag", EXP_F64, v + 11, 20},
+        {"fall_long", "d", "the fall over the long lag", EXP_F64, v + 12, 20},
+        {"kappa_x_long", "1", "excess kurtosis of dx, long lag", EXP_F64, v + 13, 20},
+        {"kappa_y_long", "1", "excess kurtosis of dy, long lag", EXP_F64, v + 14, 20},
+        {"ks_eq34_x", "1", "KS distance of dx to eq. 3.4, short lag", EXP_F64, v + 15, 20},
+        {"ks_gauss_x", "1", "KS distance of dx to the Gaussian, short lag", EXP_F64, v + 16, 20},
+        {"ks_eq34_y", "1", "KS distance of dy to eq. 3.4, short lag", EXP_F64, v + 17, 20},
+        {"ks_gauss_y", "1", "KS distance of dy to the Gaussian, short lag", EXP_F64, v + 18, 20},
+        {"lag_long", "tau", "the long lag (a 2 d fall)", EXP_F64, v + 19, 20},
+    };
+    if (exp_tab_write(h, "summary", "one row per orifice", c->norif, cols, 20, err))
         return err->code;
     char path[1300], hdr[600];
     snprintf(path, sizeof path, "%s/summary.dat", c->dir);
@@ -425,8 +568,30 @@ static int write_summary(const ss_ctx *c, gr_h5md *h, const double *summ, gr_err
     return exp_write_dat(path, hdr, summ, c->norif, 20, err);
 }
 
-/* Figs. 3.1-3.6 and the stationarity table (which the figure computes). */
-static int figures(const ss_ctx *c, char *const *parts, ss_res *res, double *stab, gr_h5md *h, gr_err *err)
+/* The field's approach to stationarity, every orifice's rows. */
+static int write_stationarity(const ss_ctx *c, const double *stab, gr_err *err, exp_tab_file *h)
+{
+    size_t nr = c->norif, n = nr * c->ntimes;
+    double *D = malloc(n * sizeof *D);
+    if (!D)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    for (size_t k = 0; k < n; k++)
+        D[k] = c->orifice[k / c->ntimes];
+    const exp_col cols[] = {
+        {"D", "d", "orifice width", EXP_F64, D, 0},
+        {"step", "1", "steps after opening", EXP_INT, stab, 3},
+        {"discharges", "1", "discharges still running", EXP_F64, stab + 1, 3},
+        {"relative_change", "1", "|v_j - v_j-1| / |v_j| (NaN: first time, or a discharge had ended)", EXP_F64,
+         stab + 2, 3},
+    };
+    int rc = exp_tab_write(h, "stationarity", "velocity field change since the previous field time", n, cols,
+                           sizeof cols / sizeof cols[0], err);
+    free(D);
+    return rc;
+}
+
+/* Figs. 3.1-3.6. */
+static int figures(const ss_ctx *c, char *const *parts, ss_res *res, const double *stab, gr_err *err)
 {
     size_t nr = c->norif, big = 0;
     char path[1300];
@@ -444,9 +609,6 @@ static int figures(const ss_ctx *c, char *const *parts, ss_res *res, double *sta
     snprintf(path, sizeof path, "%s/fig3_2_stationarity.png", c->dir);
     if (!rc)
         rc = ss_fig_stationarity(path, c, res, nr, stab, err);
-    if (!rc)
-        rc = exp_put_result(h, "stationarity", nr * c->ntimes, 3, "step,discharges,relative_change",
-                 "velocity field change since the previous field time, rows by orifice then time", stab, err);
     snprintf(path, sizeof path, "%s/fig3_3_displacement_pdf.png", c->dir);
     if (!rc)
         rc = ss_fig_pdf(path, res, nr, 0, 1, "Displacements over a 0.01 d fall (thesis fig. 3.3)", err);
@@ -466,7 +628,7 @@ static int figures(const ss_ctx *c, char *const *parts, ss_res *res, double *sta
 
 int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, gr_err *err)
 {
-    gr_h5md *h = open_result(c, err);
+    exp_tab_file *h = open_result(c, err);
     if (!h)
         return err->code;
     size_t nr = c->norif, off = 0;
@@ -483,12 +645,19 @@ int ss_report(const ss_ctx *c, char *const *parts, char *summary, size_t nsum, g
         if (!rc)
             summary_row(c, &res[o], fit, summ[o], summary, nsum, &off);
     }
-    rc = rc || write_summary(c, h, &summ[0][0], err) || figures(c, parts, res, stab, h, err);
-    if (rc) {
-        gr_h5md_free(h);
+    if (!rc)
+        stationarity(c, res, nr, stab);
+    rc = rc || write_summary(c, h, &summ[0][0], err) || write_stationarity(c, stab, err, h);
+    /* the data whole and closed before any figure */
+    if (!rc) {
+        rc = exp_tab_close(h, err);
+        h = NULL;
+    }
+    if (!rc && gr_plot_have_gnuplot())
+        rc = figures(c, parts, res, stab, err);
+    exp_tab_free(h);
+    if (rc)
         rc = err->code ? err->code : GR_ERUN;
-    } else
-        rc = gr_h5md_close(h, err);
     for (size_t o = 0; res && o < nr; o++)
         orif_free(&res[o]);
     free(res), free(stab);
