@@ -11,7 +11,7 @@ MPIRUN=$2
 
 args="silo-flow --quick --orifices 6.24,10,14 --blocks 4 --realisations 2 -q"
 # shellcheck disable=SC2086
-"$GRANO" $args -o "$tmp/serial" 2>"$tmp/err"
+"$GRANO" $args -o "$tmp/serial" >"$tmp/out" 2>"$tmp/err"
 check $? "serial quick sweep runs"
 # as root mpirun refuses to start without --allow-run-as-root; two ranks
 # on a loaded or one-core machine need --oversubscribe

@@ -199,7 +199,7 @@ done
 # 14.25 grains/tau, ratio 0.74, each with an error of 11-20% over 8 and 16
 # blocks; 0.93 over 16 blocks; cd flows slower, docs/methods/cd.md).
 C=$tmp/flowcd
-"$GRANO" silo-flow --quick --method cd --orifices 8 --blocks 8 -o "$C" -q 2>"$tmp/err"
+"$GRANO" silo-flow --quick --method cd --orifices 8 --blocks 8 -o "$C" -q >"$tmp/out" 2>"$tmp/err"
 check $? "silo-flow --quick --method cd runs"
 $PY - "$F/flow.dat" "$C/flow.dat" >"$tmp/err" 2>&1 <<'PY'
 import sys, numpy as np
