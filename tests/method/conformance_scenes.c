@@ -1,6 +1,6 @@
 /* One small scene per scene feature, each runnable in a second on every
  * backend that declares the feature. */
-#include "conformance_scenes.h"
+#include "conformance.h"
 
 #include "scene.h"
 

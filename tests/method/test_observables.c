@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "conformance_scenes.h"
+#include "conformance.h"
 #include "init.h"
 #include "method.h"
 
