@@ -8,6 +8,8 @@
 #include "cmd.h"
 #include "export_fmt.h"
 #include "h5md.h"
+#include "method.h"
+#include "opts.h"
 
 static void usage(FILE *f)
 {
@@ -24,7 +26,8 @@ static void usage(FILE *f)
         "                      from the end); default all frames, the last for lammps-data\n"
         "  -o, --out FILE      default: standard output\n"
         "  -f, --force         replace an existing FILE\n"
-        "  -h, --help          this help\n");
+        "  -h, --help          this help\n"
+        "      --version       the version\n");
 }
 
 /* Python slice semantics on n frames: first, end (excluded), stride. */
@@ -67,38 +70,39 @@ typedef struct {
     int fmt, force;
 } xp_args;
 
-static int parse_args(int argc, char **argv, xp_args *a)
+static int export_option(void *ctx, int id, const char *arg, gr_err *err)
+{
+    xp_args *a = ctx;
+    switch (id) {
+    case 'F':
+        if ((a->fmt = xp_format_of(arg)) < 0)
+            return gr_fail(err, GR_EINPUT, "--format: '%s' is not one of %s", arg, xp_format_names());
+        return 0;
+    case 'n': a->frames = arg; return 0;
+    case 'o': a->out = arg; return 0;
+    case 'f': a->force = 1; return 0;
+    default: return gr_fail(err, GR_EINPUT, "unknown option");
+    }
+}
+
+/* 0: go on; else the exit code (--help and --version: 0). */
+static int parse_args(int argc, char **argv, xp_args *a, int *done)
 {
     static const struct option opts[] = {
         {"format", required_argument, NULL, 'F'}, {"frames", required_argument, NULL, 'n'},
         {"out", required_argument, NULL, 'o'},    {"force", no_argument, NULL, 'f'},
-        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+        {NULL, 0, NULL, 0}};
     *a = (xp_args){.fmt = -1};
-    int c;
-    opterr = 0;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, ":F:n:o:fh", opts, NULL)) != -1) {
-        switch (c) {
-        case 'F':
-            if ((a->fmt = xp_format_of(optarg)) < 0) {
-                fprintf(stderr, "grano export: --format: '%s' is not one of %s\n", optarg, xp_format_names());
-                return 2;
-            }
-            break;
-        case 'n': a->frames = optarg; break;
-        case 'o': a->out = optarg; break;
-        case 'f': a->force = 1; break;
-        case 'h': usage(stdout); exit(0);
-        case ':': fprintf(stderr, "grano export: option '%s' needs a value\n", argv[optind - 1]); return 2;
-        default: fprintf(stderr, "grano export: unknown option '%s'\n", argv[optind - 1]); return 2;
-        }
-    }
-    if (optind != argc - 1 || a->fmt < 0) {
-        fprintf(stderr, "grano export: %s\n", optind != argc - 1 ? "one RESULT.h5 expected" : "--format is required");
+    int first, rc = exp_getopt_main("export", argc, argv, opts, export_option, a, usage, 1, &first);
+    *done = rc >= 0;
+    if (rc >= 0)
+        return rc;
+    if (first != argc - 1 || a->fmt < 0) {
+        fprintf(stderr, "grano export: %s\n", first != argc - 1 ? "one RESULT.h5 expected" : "--format is required");
         usage(stderr);
         return 2;
     }
-    a->in = argv[optind];
+    a->in = argv[first];
     if (a->out && !a->force && access(a->out, F_OK) == 0) {
         fprintf(stderr, "grano export: --out: '%s' already exists; use --force to replace it\n", a->out);
         return 2;
@@ -123,11 +127,24 @@ static int export_frames(gr_h5md_reader *r, const xp_args *a, long i0, long i1, 
     return rc;
 }
 
+/* Why a file has no frame to export: a lattice method writes fields, not
+ * particles; a particle run may have ended before its first frame. */
+static void no_trajectory(const char *path, const gr_h5md_info *in)
+{
+    const gr_method_type *m = in->method ? gr_method_find(in->method) : NULL;
+    if (m && m->repr == GR_REPR_LATTICE)
+        fprintf(stderr, "grano export: %s holds no trajectory (method %s writes fields and observables, not particles)\n",
+                path, m->name);
+    else
+        fprintf(stderr, "grano export: %s holds no trajectory (no frame was written%s%s)\n", path,
+                in->method ? " by method " : "", in->method ? in->method : "");
+}
+
 int cmd_export(int argc, char **argv)
 {
     xp_args a;
-    int rc = parse_args(argc, argv, &a);
-    if (rc)
+    int done, rc = parse_args(argc, argv, &a, &done);
+    if (rc || done)
         return rc;
     gr_err e = {0};
     gr_h5md_reader *r = gr_h5md_open(a.in, &e);
@@ -136,9 +153,14 @@ int cmd_export(int argc, char **argv)
         return e.code;
     }
     size_t n = gr_h5md_info_of(r)->nframes;
+    if (!n) {
+        no_trajectory(a.in, gr_h5md_info_of(r));
+        gr_h5md_reader_free(r);
+        return 2;
+    }
     long i0, i1, di;
     const char *range = a.frames ? a.frames : a.fmt == XP_LAMMPS_DATA ? "-1" : ":";
-    if (!n || parse_range(range, n, &i0, &i1, &di) ||
+    if (parse_range(range, n, &i0, &i1, &di) ||
         (a.fmt == XP_LAMMPS_DATA && (i1 - i0 + di - 1) / di != 1)) {
         fprintf(stderr, "grano export: --frames: '%s' selects no%s frame of the %zu in %s\n", range,
                 a.fmt == XP_LAMMPS_DATA ? " single" : "", n, a.in);

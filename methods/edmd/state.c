@@ -173,7 +173,7 @@ static int grains_fill(gr_edmd *s, const gr_particles *init, gr_err *err)
     return GR_OK;
 }
 
-static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
+static int setup_particles(gr_edmd *s, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     size_t n = 0;
     for (size_t i = 0; i < init->n; i++) {
@@ -184,7 +184,7 @@ static int setup_particles(gr_edmd *s, const gr_particles *init, gr_err *err)
             n++;
     }
     if (n == 0)
-        return gr_fail(err, GR_EINPUT, "edmd: the scene has no mobile grains");
+        return gr_scene_no_grains(sc, err); /* names the key, as the other particle methods do */
     if (n >= (size_t)INT32_MAX / 2)
         return gr_fail(err, GR_EINPUT, "edmd: too many grains (%zu)", n);
     s->n = n;
@@ -330,7 +330,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     int rc = setup_scene(s, sc, err);
     set_guard(s);
     if (!rc)
-        rc = setup_particles(s, init, err);
+        rc = setup_particles(s, sc, init, err);
     if (!rc)
         rc = setup_cells(s, err);
     if (!rc)
