@@ -253,6 +253,9 @@ int bench_dsmc(int argc, char **argv)
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
             usage(stdout);
             return 0;
+        } else if (!strcmp(argv[a], "--version")) {
+            exp_print_version("bench dsmc");
+            return 0;
         } else if (!strcmp(argv[a], "--quick")) {
             quick = 1;
         } else if (!strcmp(argv[a], "--compare")) {

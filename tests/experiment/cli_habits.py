@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""The command line's habits (issue 19): every subcommand has --help (exit
-0, usage on stdout) and --version; --name=VALUE and --name VALUE both work;
+"""The command line's habits: every subcommand (as grano --help lists them,
+and bench for every method grano methods lists) has --help (exit 0, usage
+on stdout) and --version; --name=VALUE and --name VALUE both work;
 bad numbers are refused naming the flag; writers refuse to replace a result
 without --force. TAP output. Usage: cli_habits.py GRANO"""
 import os
@@ -9,8 +10,6 @@ import sys
 import tempfile
 
 GRANO = sys.argv[1]
-COMMANDS = ["run", "info", "methods", "bench", "bench dem", "bench cd", "bench edmd", "silo-start",
-            "silo-flow", "course", "compare"]
 SCENE = "[domain]\nwidth = 10\nheight = 10\n[species]\ncount = 20\n[init]\nkind = random\n[run]\nuntil = 0.01\n"
 
 
@@ -19,14 +18,36 @@ def grano(args, cwd):
     return p.returncode, p.stdout, p.stderr
 
 
+def commands(tmp):
+    """Every subcommand (grano --help) and every method's bench (the
+    registry, through grano methods): none is named here."""
+    rc, out, _ = grano(["--help"], tmp)
+    subs = [line.split()[0] for line in out.split("commands:", 1)[-1].splitlines() if line.startswith("  ")]
+    rc, out, _ = grano(["methods"], tmp)
+    methods = [line.split(":")[0] for line in out.splitlines() if line and not line[0].isspace() and ": " in line]
+    return subs, methods
+
+
 def main():
     checks = []
     with tempfile.TemporaryDirectory() as tmp:
-        for c in COMMANDS:
+        subs, methods = commands(tmp)
+        checks.append(("grano --help lists the subcommands, export among them (%d)" % len(subs),
+                       "export" in subs and "run" in subs, ""))
+        checks.append(("grano methods lists the methods (%d)" % len(methods), len(methods) >= 1, ""))
+        for c in subs + ["bench " + m for m in methods] + ["bench --generic " + m for m in methods]:
             rc, out, err = grano(c.split() + ["--help"], tmp)
             checks.append(("%s --help: exit 0, usage on stdout" % c, rc == 0 and "usage" in out, err))
             rc, out, err = grano(c.split() + ["--version"], tmp)
             checks.append(("%s --version: exit 0, prints the version" % c, rc == 0 and out.startswith("grano"), err))
+        # every registered method is benchable through the method interface
+        for m in methods:
+            rc, out, err = grano(["bench", "--generic", m, "--quick"], tmp)
+            kv = dict(w.split("=", 1) for w in out.split() if "=" in w) if out.startswith("RESULT") else {}
+            good = rc == 0 and kv.get("method") == m and int(kv.get("steps", 0)) > 0 and \
+                float(kv.get("sim_time", 0)) >= 1 and float(kv.get("grain_steps_per_s", 0)) > 0
+            checks.append(("bench --generic %s --quick: a RESULT line, steps > 0, simulated time 1 reached" % m,
+                           good, err + out))
         with open(os.path.join(tmp, "s.ini"), "w") as f:
             f.write(SCENE)
         rc, out, err = grano(["run", "s.ini", "--out=a.h5", "-q"], tmp)
