@@ -13,7 +13,10 @@ if ! command -v clang >/dev/null; then
     echo "1..0 # SKIP clang not installed (apt-get install clang)"
     exit 0
 fi
-flags="-g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -std=c11
+# the backends' scene sections: the registered methods
+sections=$("$GRANO" methods | sed -n 's/^\([a-z0-9_]*\): .*/\1/p' | paste -sd, -)
+[ -n "$sections" ] || { echo "not ok 1 - grano methods lists no method"; exit 1; }
+flags="-DGR_FUZZ_SECTIONS=\"$sections\" -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined -std=c11
        -D_DEFAULT_SOURCE -D_POSIX_C_SOURCE=200809L -DGRANO_VERSION=\"fuzz\" -I$SRC/common/core
        -I$SRC/common/model -I$SRC/common/io -I$SRC/common/scene
        $(pkg-config --cflags hdf5-serial gsl)"
