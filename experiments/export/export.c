@@ -133,7 +133,8 @@ static void no_trajectory(const char *path, const gr_h5md_info *in)
 {
     const gr_method_type *m = in->method ? gr_method_find(in->method) : NULL;
     if (m && m->repr == GR_REPR_LATTICE)
-        fprintf(stderr, "grano export: %s holds no trajectory (method %s writes fields and observables, not particles)\n",
+        fprintf(stderr,
+                "grano export: %s holds no trajectory (method %s writes fields and observables, not particles)\n",
                 path, m->name);
     else
         fprintf(stderr, "grano export: %s holds no trajectory (no frame was written%s%s)\n", path,
