@@ -216,9 +216,8 @@ void conf_param_docs(void **state)
 }
 
 /* The defaults of the optional operations, on a copy of each table with
- * them taken out: one step is one step, a missing snapshot (a lattice's)
- * or stress is refused by name, counters default to none. A particle
- * method's snapshot is not optional: a table without it is refused. */
+ * them taken out: one step is one step, a missing snapshot or stress is
+ * refused by name, counters default to none. */
 void conf_optional_ops(void **state)
 {
     const conf_case *c = *state;
@@ -228,12 +227,6 @@ void conf_optional_ops(void **state)
     bare.snapshot = NULL, bare.fields = NULL, bare.stress = NULL;
     gr_err e = {0};
     gr_sim *s;
-    if (m->repr == GR_REPR_PARTICLES) {
-        assert_int_not_equal(try_create(c, &bare, "", &s, &e), GR_OK);
-        assert_null(s);
-        assert_non_null(strstr(e.msg, "snapshots"));
-        bare.snapshot = m->snapshot;
-    }
     assert_int_equal(try_create(c, &bare, "", &s, &e), GR_OK);
     gr_obs o0, o1;
     assert_int_equal(gr_sim_observe(s, &o0, &e), GR_OK);
@@ -244,12 +237,10 @@ void conf_optional_ops(void **state)
     gr_counter cn[4];
     assert_int_equal(gr_sim_counters(s, cn, 4), 0);
     gr_particles *p = gr_particles_create(0, &e);
-    if (!bare.snapshot) {
-        assert_int_equal(gr_sim_snapshot(s, p, &e), GR_EINPUT);
-        assert_non_null(strstr(e.msg, "snapshots"));
-        assert_non_null(strstr(e.msg, bare.name));
-        assert_int_equal(gr_sim_require(&bare, GR_OP_FIELDS, "the test", &e), GR_EINPUT);
-    }
+    assert_int_equal(gr_sim_snapshot(s, p, &e), GR_EINPUT);
+    assert_non_null(strstr(e.msg, "snapshots"));
+    assert_non_null(strstr(e.msg, bare.name));
+    assert_int_equal(gr_sim_require(&bare, GR_OP_FIELDS, "the test", &e), GR_EINPUT);
     double g[4];
     assert_int_equal(gr_sim_stress(s, 1, 1, g, NULL, &e), GR_EINPUT);
     assert_non_null(strstr(e.msg, "window-averaged stress"));
