@@ -75,7 +75,7 @@ typedef struct gr_method_type {
     /* ---- optional (NULL: the default in brackets) ---- */
     /* Advance until the time reaches t_end or max_steps steps (events) were
      * done, whichever is first; max_steps 0 = no limit. [step while
-     * time + dt / 2 <= t_end: needs step and dt] */
+     * time < t_end - dt / 1e6: needs step and dt] */
     int (*advance)(void *state, double t_end, uint64_t max_steps, gr_err *err);
     /* Pure: observing twice gives the same numbers. Window quantities
      * (wall_pressure) are averages since the last reset_window. [particles:

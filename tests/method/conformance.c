@@ -71,6 +71,7 @@ int conf_run(const conf_battery *b)
         {conf_param_docs, "the docs page lists exactly the parameter table"},
         {conf_optional_ops, "the optional operations' defaults"},
         {conf_features_run, "every declared feature runs on a scene"},
+        {conf_obs_table, "a consistent table of observables"},
     };
     const char **sections = sections_of(b);
     case_list l = {0};
@@ -84,6 +85,7 @@ int conf_run(const conf_battery *b)
         for (size_t j = 0; j < b->nscenes; j++) {
             c.cs = &b->scenes[j];
             add(&l, &c, conf_scene_case, "%s on %s", c.m->name, c.cs->name);
+            add(&l, &c, conf_obs_scene, "%s observables on %s", c.m->name, c.cs->name);
         }
     }
     for (size_t i = 0; i < l.n; i++)

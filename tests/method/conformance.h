@@ -78,6 +78,12 @@ void conf_scene_case(void **state);
 void conf_features_run(void **state);
 void conf_features_covered(void **state);
 
+/* conformance_observables.c: the declared table (per backend), and on a
+ * scene every counter declared, every quantity the scene has finite after
+ * a window, observing pure (per backend x scene) */
+void conf_obs_table(void **state);
+void conf_obs_scene(void **state);
+
 /* conformance_params.c */
 void conf_param_tables(void **state);
 void conf_param_checks_in_scenes(void **state);

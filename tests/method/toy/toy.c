@@ -2,7 +2,8 @@
  * walls, wrapped by periodic sides, blind to one another. It lives only in
  * its test (test_toy.c) and is the proof that a backend outside
  * methods/registry.c passes the conformance battery with no other file
- * edited (docs/interface.md, Adding a backend). */
+ * edited (docs/interface.md, Adding a backend). It gives one step and its
+ * dt, and takes the interface's defaults for advance and observe. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -47,38 +48,35 @@ static void bound(double *x, double *v, double r, double len, int periodic)
         *x = 2 * (len - r) - *x, *v = -*v;
 }
 
-/* Whole steps only, so the path does not depend on where advance stops. */
-static int toy_advance(void *state, double t_end, uint64_t max_steps, gr_err *err)
+static int toy_step(void *state, gr_err *err)
 {
     toy *t = state;
     const gr_scene *sc = t->sc;
     double dt = t->dt, g = sc->gravity;
-    for (uint64_t k = 0; (double)t->steps * dt < t_end && (!max_steps || k < max_steps); k++, t->steps++) {
-        gr_particles *p = t->p;
-        for (size_t i = 0; i < p->n; i++) {
-            if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
-                continue;
-            p->x[i] += p->vx[i] * dt;
-            p->y[i] += p->vy[i] * dt - 0.5 * g * dt * dt;
-            p->vy[i] -= g * dt;
-            bound(&p->x[i], &p->vx[i], p->radius[i], sc->width, sc->side[GR_LEFT] == GR_BC_PERIODIC);
-            bound(&p->y[i], &p->vy[i], p->radius[i], sc->height, sc->side[GR_BOTTOM] == GR_BC_PERIODIC);
-        }
+    gr_particles *p = t->p;
+    for (size_t i = 0; i < p->n; i++) {
+        if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
+            continue;
+        p->x[i] += p->vx[i] * dt;
+        p->y[i] += p->vy[i] * dt - 0.5 * g * dt * dt;
+        p->vy[i] -= g * dt;
+        bound(&p->x[i], &p->vx[i], p->radius[i], sc->width, sc->side[GR_LEFT] == GR_BC_PERIODIC);
+        bound(&p->y[i], &p->vy[i], p->radius[i], sc->height, sc->side[GR_BOTTOM] == GR_BC_PERIODIC);
     }
+    t->steps++;
     (void)err;
     return GR_OK;
 }
 
+/* Time as steps times dt, so that it does not drift. */
 static double toy_time(const void *state) { return (double)((const toy *)state)->steps * ((const toy *)state)->dt; }
 
-static int toy_observe(void *state, gr_obs *o, gr_err *err)
+static double toy_dt(const void *state) { return ((const toy *)state)->dt; }
+
+static size_t toy_counters(const void *state, gr_counter *out, size_t cap)
 {
-    toy *t = state;
-    gr_obs_clear(o);
-    gr_obs_from_particles(t->p, t->sc->gravity, o);
-    o->t = toy_time(t), o->steps = t->steps;
-    (void)err;
-    return GR_OK;
+    gr_counter c[] = {{"steps", ((const toy *)state)->steps}};
+    return gr_counters_put(out, cap, c, 1);
 }
 
 static int toy_save(const void *state, gr_ckpt *ck, gr_err *err)
@@ -115,12 +113,20 @@ static int toy_snapshot(void *state, gr_particles *out, gr_err *err)
     return gr_particles_copy(out, ((toy *)state)->p, err);
 }
 
+/* No collisions, walls that take no momentum, no rotation. */
+static const gr_obs_def toy_observables[] = {
+    GR_OBS_N_MOBILE, GR_OBS_EKIN_TRANS, GR_OBS_EPOT_GRAV, GR_OBS_TEMPERATURE, GR_OBS_MOMENTUM,
+    GR_OBS_DEF_COUNTER("steps", "time steps since t = 0"),
+    GR_OBS_DEF_END,
+};
+
 const gr_method_type toy_method = {
     .name = "toy",
     .summary = "free flight under gravity, walls and periodic sides, no collisions (a test's backend)",
     .repr = GR_REPR_PARTICLES,
     .features = GR_FEAT_GRAVITY | GR_FEAT_PERIODIC,
     .params = toy_params,
-    .create = toy_create, .advance = toy_advance, .time = toy_time, .observe = toy_observe,
-    .save = toy_save, .load = toy_load, .free = toy_free, .snapshot = toy_snapshot,
+    .observables = toy_observables,
+    .create = toy_create, .time = toy_time, .step = toy_step, .dt = toy_dt,
+    .save = toy_save, .load = toy_load, .free = toy_free, .snapshot = toy_snapshot, .counters = toy_counters,
 };

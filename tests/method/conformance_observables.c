@@ -1,6 +1,6 @@
-/* Every registered backend's declared observables (methods/method.h,
- * common/observe.h) hold to their contract, on each conformance scene it
- * takes:
+/* The conformance battery's cases on declared observables (methods/method.h,
+ * common/observe.h): a backend's observables hold to their contract, on
+ * each scene of the battery it takes:
  *   the table: unique HDF5-safe names, units and meanings, at most
  *   GR_OBS_MAX, counts as integers, a validity limit's key naming a real
  *   key of the method's own section;
@@ -16,7 +16,6 @@
 
 #include "conformance.h"
 #include "init.h"
-#include "method.h"
 
 static void check_table(const gr_method_type *m)
 {
@@ -48,29 +47,11 @@ static void check_table(const gr_method_type *m)
     }
 }
 
-static gr_sim *try_create(const gr_method_type *m, const conf_scene *cs, gr_scene **sc)
+static void check_sample(const conf_case *cc, gr_scene *sc)
 {
-    const char *names[GR_MAX_METHODS + 1];
-    gr_method_names(names, GR_MAX_METHODS + 1);
-    gr_err e = {0};
-    *sc = gr_scene_parse(cs->text, "observables.ini", names, &e);
-    assert_non_null(*sc);
-    gr_particles *p = gr_particles_create(0, &e);
-    assert_int_equal(gr_init_particles(*sc, p, &e), GR_OK);
-    gr_sim *s = NULL;
-    gr_sim_create(m, *sc, p, &s, &e);
-    gr_particles_free(p);
-    return s;
-}
-
-static int check_sample(const gr_method_type *m, const conf_scene *cs)
-{
-    gr_scene *sc;
-    gr_sim *s = try_create(m, cs, &sc);
-    if (!s) {
-        gr_scene_free(sc);
-        return 0; /* refused: the conformance battery checks how */
-    }
+    const gr_method_type *m = cc->m;
+    const conf_scene *cs = cc->cs;
+    gr_sim *s = conf_create(m, sc);
     gr_err e = {0};
     assert_int_equal(gr_sim_advance(s, 0.2 * cs->t_end, 0, &e), GR_OK);
     gr_sim_reset_window(s);
@@ -104,28 +85,19 @@ static int check_sample(const gr_method_type *m, const conf_scene *cs)
                 fail_msg("%s on %s: observable '%s' is %g after a window", m->name, cs->name, d[k].name, v[q]);
     }
     gr_sim_free(s);
+}
+
+void conf_obs_table(void **state)
+{
+    const conf_case *c = *state;
+    check_table(c->m);
+}
+
+void conf_obs_scene(void **state)
+{
+    const conf_case *c = *state;
+    gr_scene *sc = conf_parse(c, c->cs->text);
+    if (!(gr_scene_features(sc) & ~c->m->features) && conf_accepts(c->m, sc, c->cs->name))
+        check_sample(c, sc);
     gr_scene_free(sc);
-    return 1;
-}
-
-static void every_backend(void **unused)
-{
-    (void)unused;
-    const gr_method_type *const *all = gr_method_all();
-    for (size_t i = 0; all[i]; i++) {
-        check_table(all[i]);
-        int taken = 0;
-        for (size_t j = 0; j < conf_nscenes; j++)
-            taken += check_sample(all[i], &conf_scenes[j]);
-        if (!taken)
-            fail_msg("%s takes none of the conformance scenes", all[i]->name);
-        print_message("# %s: %zu observables hold on %d scenes\n", all[i]->name,
-                      gr_obs_count(gr_method_observables(all[i])), taken);
-    }
-}
-
-int main(void)
-{
-    const struct CMUnitTest tests[] = {cmocka_unit_test(every_backend)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
 }
