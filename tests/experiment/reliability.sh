@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The behaviour defects of issue 18 that are not a refusal (those are rows of
+# The reliability behaviours (docs/reliability.md) that are not a refusal (those are rows of
 # bad_input.py): each check failed before its fix. TAP output.
 set -u
 GRANO=$1
@@ -129,7 +129,7 @@ h5py.File(sys.argv[2], "r")
 PY
 check "2: full disk: exit $rc, frames and checkpoint readable" $?
 
-# Settle once, branch many (issue 19): a restart may change [run] and
+# Settle once, branch many: a restart may change [run] and
 # [measure]; a physical change is refused by name unless --branch
 sed 's/^until = 0.2/until = 0.1/' rs.ini >short.ini
 "$GRANO" run short.ini -o s.h5 -q 2>err &&

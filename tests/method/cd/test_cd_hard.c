@@ -1,4 +1,4 @@
-/* Hard cases on purpose (issue 13).
+/* Hard cases on purpose.
  * 1. A jammed arch: 120 disks (mu = 0.5, e = 0) in a silo with walls of
  *    fixed grains and an orifice of 3 d. Nothing leaves while the gate is
  *    closed; after opening some grains leave, then the others arch over

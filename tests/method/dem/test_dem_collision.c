@@ -1,4 +1,4 @@
-/* Validations 1 and 2 of issue 3: the two-disk head-on collision.
+/* Validations 1 and 2 of docs/methods/dem.md: the two-disk head-on collision.
  * 1. Linear spring-dashpot: restitution and contact time equal eqs. 2.2-2.3
  *    within 0.1 % at dt = t_c/100; velocity Verlet's error falls by ~4 when
  *    dt halves.

@@ -1,4 +1,4 @@
-/* Validation 4 of issue 3, static friction with the tangential spring
+/* Validation 4 of docs/methods/dem.md, static friction with the tangential spring
  * (eqs. 2.10-2.12): a disk on a frictional incline rolls without slipping
  * below tan(theta) = 3 mu with acceleration (2/3) g sin(theta), and slips
  * above it with g (sin(theta) - mu cos(theta)); a disk pushed by a horizontal

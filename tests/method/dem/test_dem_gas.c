@@ -1,4 +1,4 @@
-/* Validation 3 of issue 3: an elastic frictionless gas in a periodic box
+/* Validation 3 of docs/methods/dem.md: an elastic frictionless gas in a periodic box
  * conserves total momentum to round-off, and velocity Verlet's relative
  * energy drift stays below 1e-4 over 1e5 steps at dt = t_c/50. */
 #include "dem_test.h"

@@ -1,4 +1,4 @@
-/* Validation 7 of issue 3, hard cases: a time step just above the limit is
+/* Validation 7 of docs/methods/dem.md, hard cases: a time step just above the limit is
  * refused (naming file, line, key and the limit) and one just below runs a
  * dense stiff packing stably; a run pushed past stability stops with the
  * grain, overlap and time, leaving the last good state; a tall column at

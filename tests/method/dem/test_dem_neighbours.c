@@ -1,4 +1,4 @@
-/* Validation 5 of issue 3: Verlet lists, linked cells and brute force give
+/* Validation 5 of docs/methods/dem.md: Verlet lists, linked cells and brute force give
  * the same forces (to 1e-12 of the largest force) on random dense packings,
  * also after thousands of steps with list rebuilds, with and without the
  * tangential spring; and the spring's history survives the rebuilds (a run

@@ -1,4 +1,4 @@
-/* Validation 8 of issue 3 (beyond the shared conformance test): a run saved
+/* Validation 8 of docs/methods/dem.md (beyond the shared conformance test): a run saved
  * and restarted continues bit for bit, with contact history, gates opening,
  * grains leaving and being reinserted (the generator's state), the Gear
  * integrator and linked cells; and runs are bit-identical for any number

@@ -1,4 +1,4 @@
-/* Validation 6 of issue 3: a box of grains with the thesis's parameters
+/* Validation 6 of docs/methods/dem.md: a box of grains with the thesis's parameters
  * (Hertz, regularised friction, kn = 1e5, gamma_n = 100, gamma_t = 300,
  * mu = 0.5, dt = 1.25e-4) settles: the kinetic energy decays and the
  * largest overlap stays below 1 % of a diameter. Walls of segments in one
