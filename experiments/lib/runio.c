@@ -259,13 +259,14 @@ static void sum_limits(gr_sim *st, const gr_run_opts *o)
     gr_diag dg[GR_OBS_MAX];
     size_t n = o->warn ? gr_sim_diagnostics(st, dg, GR_OBS_MAX) : 0;
     uint64_t steps = 0;
-    if (n && !gr_sim_counter(st, "steps", &steps))
-        gr_sim_counter(st, "events", &steps);
+    const char *unit = "steps";
+    if (n && !gr_sim_counter(st, "steps", &steps) && gr_sim_counter(st, "events", &steps))
+        unit = "events";
     for (size_t i = 0; i < n; i++) {
         char msg[600];
-        snprintf(msg, sizeof msg, "%s: validity limit %s broken in %llu of %llu steps (%s; key %s)",
+        snprintf(msg, sizeof msg, "%s: validity limit %s counted %llu in %llu %s of the run (%s; key %s)",
                  gr_sim_type(st)->name, dg[i].name, (unsigned long long)dg[i].count, (unsigned long long)steps,
-                 dg[i].doc, dg[i].key);
+                 unit, dg[i].doc, dg[i].key);
         o->warn(o->warn_ctx, msg);
     }
 }

@@ -1,5 +1,6 @@
 /* The event-driven backend's table (methods/method.h). */
 #include <math.h>
+#include <stdio.h>
 
 #include "edmd_int.h"
 #include "edmd_params.h"
@@ -94,9 +95,26 @@ static const gr_obs_def observables[] = {
     GR_OBS_DEF_COUNTER("floor_collisions", "collisions with the vibrating floor"),
     GR_OBS_DEF_COUNTER("cell_crossings", "cell crossings (virtual-wall events)"),
     GR_OBS_DEF_COUNTER("stale_events", "events dropped because a partner collided since they were scheduled"),
-    GR_OBS_DEF_COUNTER("elastic_guard", "collisions made elastic by the inelastic-collapse guard ([edmd] collapse)"),
+    GR_OBS_DEF_LIMIT("elastic_guard", "edmd.collapse", "collisions made elastic by the inelastic-collapse guard"),
     GR_OBS_DEF_END,
 };
+
+/* The guard keeps the run going where inelastic collapse would stop it,
+ * at the price of elastic collisions the model does not have. */
+static void m_diagnose(const void *st, const char *name, char *msg, size_t n)
+{
+    const gr_edmd *s = st;
+    gr_edmd_counters c;
+    gr_edmd_get_counters(s, &c);
+    (void)name;
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
+        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = tc: a partner collided less than "
+                 "tc = %g ago)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair, s->prm.tc);
+    else
+        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = threshold: normal speed below "
+                 "v_threshold = %g)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair,
+                 s->prm.v_threshold);
+}
 
 const gr_method_type gr_edmd_method = {
     .name = "edmd",
@@ -107,6 +125,7 @@ const gr_method_type gr_edmd_method = {
                 GR_FEAT_OPEN_SIDE | GR_FEAT_REINSERT | GR_FEAT_RESTITUTION,
     .params = gr_edmd_param_table,
     .observables = observables,
+    .diagnose = m_diagnose,
     .create = m_create,
     .advance = m_advance,
     .time = m_time,

@@ -67,7 +67,7 @@ def dsmc_limits(t, grano, root, work):
     first = [l for l in r.stderr.splitlines() if "limit_ppc_min broken at" in l]
     t.check(len(first) == 1 and "is 0.25, below ppc_min = 2" in first[0] and "key 'ppc_min'" in first[0],
             "stderr says once: limit, value measured, the key that changes it", r.stderr)
-    t.check(any("limit_ppc_min broken in 50 of 50 steps" in l for l in r.stderr.splitlines()),
+    t.check(any("limit_ppc_min counted 50 in 50 steps of the run" in l for l in r.stderr.splitlines()),
             "the run's summary counts the steps that broke it", r.stderr)
     if r.returncode == 0:
         v, attrs = values(out)
