@@ -180,6 +180,7 @@ uint64_t gr_sim_obs_skip(const gr_sim *s);
  * `name`, the key that changes it, how many steps broke it, and what the
  * method measured. */
 typedef struct {
+    size_t index;   /* its position among the declared observables */
     const char *name, *key, *doc;
     uint64_t count;
     char detail[256];

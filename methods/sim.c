@@ -200,6 +200,18 @@ uint64_t gr_sim_obs_skip(const gr_sim *s)
     return skip;
 }
 
+/* The counter of that name among c[0 .. n-1]: 1 and its value, else 0. */
+static int find_counter(const gr_counter *c, size_t n, const char *name, uint64_t *value)
+{
+    for (size_t k = 0; k < n; k++) {
+        if (!strcmp(c[k].name, name)) {
+            *value = c[k].value;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* The declared counters take their place in obs->count from the method's
  * counters of the same name. */
 static void fill_counters(const gr_sim *s, gr_obs *obs)
@@ -207,13 +219,9 @@ static void fill_counters(const gr_sim *s, gr_obs *obs)
     const gr_obs_def *d = gr_sim_observables(s);
     gr_counter c[GR_MAX_COUNTERS];
     size_t nc = gr_sim_counters(s, c, GR_MAX_COUNTERS);
-    for (size_t k = 0; d[k].name && k < GR_OBS_MAX; k++) {
-        if (d[k].src != GR_OBS_COUNTER)
-            continue;
-        for (size_t j = 0; j < nc; j++)
-            if (!strcmp(c[j].name, d[k].name))
-                obs->count[k] = c[j].value;
-    }
+    for (size_t k = 0; d[k].name && k < GR_OBS_MAX; k++)
+        if (d[k].src == GR_OBS_COUNTER)
+            find_counter(c, nc, d[k].name, &obs->count[k]);
 }
 
 /* The default observe: the kinematic set from the snapshot. */
@@ -225,9 +233,11 @@ static int observe_snapshot(gr_sim *s, gr_obs *obs, gr_err *err)
         return err->code;
     gr_obs_from_particles(s->scratch, s->scene->gravity, obs);
     obs->t = s->type->time(s->state);
-    if (!gr_sim_counter(s, "steps", &obs->steps))
-        gr_sim_counter(s, "events", &obs->steps);
-    gr_sim_counter(s, "outflow", &obs->outflow);
+    gr_counter c[GR_MAX_COUNTERS];
+    size_t nc = gr_sim_counters(s, c, GR_MAX_COUNTERS);
+    if (!find_counter(c, nc, "steps", &obs->steps))
+        find_counter(c, nc, "events", &obs->steps);
+    find_counter(c, nc, "outflow", &obs->outflow);
     return GR_OK;
 }
 
@@ -242,13 +252,14 @@ int gr_sim_observe(gr_sim *s, gr_obs *obs, gr_err *err)
 size_t gr_sim_diagnostics(gr_sim *s, gr_diag *out, size_t cap)
 {
     const gr_obs_def *d = gr_sim_observables(s);
-    size_t n = 0;
+    gr_counter c[GR_MAX_COUNTERS];
+    size_t nc = gr_sim_counters(s, c, GR_MAX_COUNTERS), n = 0;
     for (size_t k = 0; d[k].name && n < cap; k++) {
         uint64_t v;
-        if (!d[k].key || !gr_sim_counter(s, d[k].name, &v) || !v)
+        if (!d[k].key || !find_counter(c, nc, d[k].name, &v) || !v)
             continue;
         gr_diag *g = &out[n++];
-        g->name = d[k].name, g->key = d[k].key, g->doc = d[k].doc, g->count = v;
+        g->index = k, g->name = d[k].name, g->key = d[k].key, g->doc = d[k].doc, g->count = v;
         if (s->type->diagnose)
             s->type->diagnose(s->state, d[k].name, g->detail, sizeof g->detail);
         else
@@ -286,14 +297,7 @@ int gr_sim_fields(gr_sim *s, gr_field *f, double w, gr_err *err)
 int gr_sim_counter(const gr_sim *s, const char *name, uint64_t *value)
 {
     gr_counter c[GR_MAX_COUNTERS];
-    size_t n = gr_sim_counters(s, c, GR_MAX_COUNTERS);
-    for (size_t k = 0; k < n; k++) {
-        if (!strcmp(c[k].name, name)) {
-            *value = c[k].value;
-            return 1;
-        }
-    }
-    return 0;
+    return find_counter(c, gr_sim_counters(s, c, GR_MAX_COUNTERS), name, value);
 }
 
 int gr_sim_contacts(gr_sim *s, gr_contacts *out, gr_err *err)
@@ -338,20 +342,6 @@ static void stream_name(const gr_sim *s, uint64_t id, char *buf, size_t n)
         snprintf(buf, n, "%s.common%llu", s->type->name, (unsigned long long)id);
 }
 
-static gr_rng *stream_of(gr_sim *s, uint64_t id, gr_err *err);
-
-gr_rng *gr_sim_stream(gr_sim *s, uint64_t k, gr_err *err)
-{
-    if (k >= GR_STREAM_METHOD_BASE) {
-        gr_fail(err, GR_ERUN, "%s: stream %llu is not below %d", s->type->name,
-                (unsigned long long)k, GR_STREAM_METHOD_BASE);
-        return NULL;
-    }
-    return stream_of(s, GR_STREAM_METHOD_BASE + k, err);
-}
-
-gr_rng *gr_sim_stream_id(gr_sim *s, uint64_t id, gr_err *err) { return stream_of(s, id, err); }
-
 static gr_rng *stream_of(gr_sim *s, uint64_t id, gr_err *err)
 {
     for (int i = 0; i < s->nrng; i++)
@@ -368,6 +358,19 @@ static gr_rng *stream_of(gr_sim *s, uint64_t id, gr_err *err)
     }
     return r;
 }
+
+gr_rng *gr_sim_stream(gr_sim *s, uint64_t k, gr_err *err)
+{
+    if (k >= GR_STREAM_METHOD_BASE) {
+        gr_fail(err, GR_ERUN, "%s: stream %llu is not below %d", s->type->name,
+                (unsigned long long)k, GR_STREAM_METHOD_BASE);
+        return NULL;
+    }
+    return stream_of(s, GR_STREAM_METHOD_BASE + k, err);
+}
+
+gr_rng *gr_sim_stream_id(gr_sim *s, uint64_t id, gr_err *err) { return stream_of(s, id, err); }
+
 
 /* ---- checkpoints ---- */
 

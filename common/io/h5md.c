@@ -24,8 +24,6 @@ const gr_elem_def gr_h5md_pdefs[NPE] = {
     {"id", "1", GR_T_I64, 1, 1},
 };
 
-
-
 static const char *author_name(const gr_h5md_opts *o)
 {
     if (o->author && o->author[0])
@@ -207,7 +205,8 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
     }
     h->owned = 1;
     if (gr_h5md_set_obs(h, o)) {
-        gr_fail(err, GR_ERUN, "a method declares %zu observables, at most %d", gr_obs_count(o->obs), GR_OBS_MAX);
+        gr_fail(err, GR_ERUN, "observables: %zu declared; at most %d, and at least one written, are allowed",
+                gr_obs_count(o->obs ? o->obs : gr_obs_particle_set), GR_OBS_MAX);
         goto fail;
     }
     hid_t fapl = gr_h5_fapl();

@@ -229,14 +229,10 @@ static int check_limits(run_io *io, const gr_scene *sc, gr_sim *st, const gr_run
 {
     gr_diag dg[GR_OBS_MAX];
     size_t n = gr_sim_diagnostics(st, dg, GR_OBS_MAX);
-    const gr_obs_def *defs = gr_sim_observables(st);
     for (size_t i = 0; i < n; i++) {
-        size_t k = 0;
-        while (defs[k].name && strcmp(defs[k].name, dg[i].name))
-            k++;
-        if (io->warned & (1ull << k))
+        if (io->warned & (1ull << dg[i].index))
             continue;
-        io->warned |= 1ull << k;
+        io->warned |= 1ull << dg[i].index;
         char where[1200], msg[1800];
         key_where(sc, dg[i].key, where, sizeof where);
         snprintf(msg, sizeof msg, "%s: validity limit %s broken at t = %g: %s (%s changes it)",

@@ -38,9 +38,8 @@ static void check_table(const gr_method_type *m)
         if (!d[k].key)
             continue;
         const char *dot = strchr(d[k].key, '.');
-        int found = d[k].src == GR_OBS_COUNTER && dot && !strncmp(d[k].key, m->name, (size_t)(dot - d[k].key));
-        for (const gr_param *p = m->params; found && p->name && strcmp(p->name, dot + 1); p++)
-            found = p[1].name != NULL;
+        int found = d[k].src == GR_OBS_COUNTER && dot && (size_t)(dot - d[k].key) == strlen(m->name) &&
+                    !strncmp(d[k].key, m->name, strlen(m->name)) && gr_param_index(m->params, dot + 1) >= 0;
         if (!found)
             fail_msg("%s: limit '%s' names the key '%s', not a counter's key of [%s]", m->name, d[k].name,
                      d[k].key, m->name);
