@@ -10,92 +10,7 @@
 
 static int slow;
 
-#define GAS                                                                                                            \
-    "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"                 \
-    "bottom = periodic\ntop = periodic\n[material]\nrestitution = %g\n[species]\ncount = %d\n"                         \
-    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n[dsmc]\ndt = %.17g\ncell = %g\n[edmd]\ncell = 10\n"
-
-static gr_sim *gas(const char *method, int seed, int n, double eta, double alpha, double dtf, double cell,
-                   gr_scene **sc)
-{
-    char text[1024];
-    double L = sqrt(n * M_PI / 4 / eta), nd = n / (L * L);
-    snprintf(text, sizeof text, GAS, seed, L, L, alpha, n, dtf / (2 * sqrt(M_PI) * nd), cell);
-    return ds_make_method(method, text, sc);
-}
-
-/* Mean and standard error of x[0..k) from blocks of b. */
-static void block_stats(const double *x, int k, int b, double *mean, double *err)
-{
-    int nb = k / b;
-    double s = 0, s2 = 0;
-    for (int j = 0; j < nb; j++) {
-        double m = 0;
-        for (int i = 0; i < b; i++)
-            m += x[j * b + i] / b;
-        s += m, s2 += m * m;
-    }
-    *mean = s / nb;
-    *err = sqrt(fmax(0, s2 / nb - *mean * *mean) / (nb - 1));
-}
-
-/* The scaled HCS in one cell: every mean free time (of the rescaled gas)
- * the peculiar velocities go back to T = 1 (a2 is scale free); a2 sampled
- * then; the cooling per collision from the temperature each interval ends
- * at and the collisions in it. 10 intervals skipped. */
-static void scaled_hcs(double alpha, int n, double dtf, int K, double *a2, double *a2e, double *slope)
-{
-    gr_scene *sc;
-    gr_sim *s = gas("dsmc", 11, n, 0.3, alpha, dtf, 1e6, &sc);
-    gr_dsmc *d = gr_sim_state(s);
-    double nd = n / (d->Lx * d->Ly), tau = 1.0 / (2 * sqrt(M_PI) * nd), lnT = 0, C = 0;
-    double *x = malloc(sizeof *x * (size_t)K);
-    assert_non_null(x);
-    for (int k = -10; k < K; k++) {
-        uint64_t p0 = ds_counter(s, "pair_collisions");
-        ds_run_to(s, d->t + tau);
-        double T = ds_temp(s), f = 1.0 / sqrt(T), mx = 0, my = 0;
-        for (size_t i = 0; i < d->n; i++)
-            mx += d->vx[i] / (double)d->n, my += d->vy[i] / (double)d->n;
-        for (size_t i = 0; i < d->n; i++)
-            d->vx[i] = (d->vx[i] - mx) * f, d->vy[i] = (d->vy[i] - my) * f;
-        if (k >= 0) {
-            x[k] = ds_a2(d);
-            lnT += log(T), C += 2.0 * (double)(ds_counter(s, "pair_collisions") - p0) / (double)n;
-        }
-    }
-    block_stats(x, K, 20, a2, a2e);
-    *slope = -lnT / C;
-    free(x);
-    gr_sim_free(s);
-    gr_scene_free(sc);
-}
-
-/* The Boltzmann HCS a2 of hard disks beyond first Sonine, from
- * `/usr/bin/python3 tests/method/dsmc/sonine_hcs.py` (Sonine orders K = 2..8
- * by exact quadrature of the collisional moments, independent of dsmc):
- * `best` the middle of the range that K = 5..8 (linear and full closures)
- * span, `band` half that range. For alpha >= 0.7 the expansion converges
- * (band <= 3e-5); at 0.6 and 0.5 successive orders alternate about the value
- * and the band is what is known. */
-static const struct {
-    double alpha, best, band;
-} sonine_ref[] = {
-    {0.5, 0.07627, 0.01121},   {0.6, 0.03322, 0.00060},   {0.7, -0.00204, 0.00002}, {0.8, -0.02626, 0.00003},
-    {0.9, -0.03008, 0.00001},  {0.95, -0.02038, 0.00001}, {0.99, -0.00507, 0.00000},
-};
-
-static void sonine_best(double alpha, double *best, double *band)
-{
-    for (size_t k = 0; k < sizeof sonine_ref / sizeof *sonine_ref; k++)
-        if (fabs(sonine_ref[k].alpha - alpha) < 1e-9) {
-            *best = sonine_ref[k].best, *band = sonine_ref[k].band;
-            return;
-        }
-    fail_msg("no Sonine reference at alpha %g", alpha);
-}
-
-/* a2 of N = 4000 particles against the Boltzmann HCS (sonine_ref) within
+/* a2 of N = 4000 particles against the Boltzmann HCS (ds_sonine_best) within
  * 3 standard errors (blocks of 20 mean free times) + the band of the
  * Sonine orders + 0.3/N, after adding 1/N: the sample a2 of N particles
  * whose total energy and momentum are fixed is biased by -1/N exactly
@@ -115,8 +30,8 @@ static void test_hcs_a2(void **st)
     int K = slow ? 20000 : 2000, na = slow ? 7 : 3, n = 4000;
     for (int k = 0; k < na; k++) {
         double a2, err, sl, vne = exp_sonine_a2(al[k]), best = NAN, band = 0;
-        sonine_best(al[k], &best, &band);
-        scaled_hcs(al[k], n, 0.07, K, &a2, &err, &sl);
+        ds_sonine_best(al[k], &best, &band);
+        ds_scaled_hcs(al[k], n, 0.07, K, &a2, &err, &sl);
         double sw = (1 - al[k] * al[k]) / 2 * (1 + 3 * a2 / 16) / (1 - a2 / 16), a2n = a2 + 1.0 / n;
         print_message("# HCS alpha %.2f: a2 %.5f +- %.5f (blocks of 20), + 1/N %.5f; Boltzmann (Sonine K 5-8) %.5f "
                       "+- %.5f, off by %.1f sigma; first Sonine %.5f, off by %.1f sigma (%+.0f %%); cooling per "
@@ -139,7 +54,7 @@ static void free_a2(const char *method, double alpha, int n, int seeds, double *
     int k = 0;
     for (int r = 0; r < seeds; r++) {
         gr_scene *sc;
-        gr_sim *s = gas(method, 41 + r, n, 0.005, alpha, 0.1, 0, &sc);
+        gr_sim *s = ds_gas(method, 41 + r, n, 0.005, alpha, 0.1, 0, &sc);
         gr_err e = {0};
         gr_particles *p = gr_particles_create(0, &e);
         for (int c = 1; c <= 30; c++) {
@@ -165,7 +80,7 @@ static void free_a2(const char *method, double alpha, int n, int seeds, double *
         gr_sim_free(s);
         gr_scene_free(sc);
     }
-    block_stats(x, k, 20, a2, err);
+    ds_block_stats(x, k, 20, a2, err);
 }
 
 static void test_free_a2_edmd(void **st)
@@ -189,7 +104,7 @@ int main(int argc, char **argv)
     if (argc == 6 && !strcmp(argv[1], "scan")) {
         double a2, err, sl, al = atof(argv[2]), dtf = atof(argv[5]);
         int n = atoi(argv[3]), K = atoi(argv[4]);
-        scaled_hcs(al, n, dtf, K, &a2, &err, &sl);
+        ds_scaled_hcs(al, n, dtf, K, &a2, &err, &sl);
         printf("scan alpha %.3f n %d K %d dtf %.3f: a2 %.6f +- %.6f slope %.6f\n", al, n, K, dtf, a2, err, sl);
         return 0;
     }
