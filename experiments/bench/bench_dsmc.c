@@ -29,6 +29,7 @@ static void usage(FILE *f)
     fprintf(f,
             "usage: grano bench dsmc [--n N1,N2,...] [--eta E] [--dt F] [--ppc P] [--quick]\n"
             "       grano bench dsmc --compare [--n N1,...] [--rounds R] [--quick]\n"
+            "       grano bench dsmc --threads T1,T2 [--n N1,...] [--rounds R]\n"
             "       grano bench dsmc --rng\n\n"
             "Throughput: disks (d = m = 1, T = 1) in a periodic square box at packing fraction E (default\n"
             "0.01), square lattice start with Gaussian velocities; dt = F mean free times (default 0.2),\n"
@@ -46,6 +47,10 @@ static void usage(FILE *f)
             "--quick 4000), edmd the reference, R seeds each (--rounds, default 3; --quick 2): dsmc with dt\n"
             "0.05 to 2 mean free times, cells of 0.25 to 4 mean free paths, weights W = 1 to 64; per row\n"
             "  SWEEP method=dsmc knob=K value=V n=N cpu_s=C T_over_T0=T stderr=S error=E\n"
+            "--threads T1,T2: the throughput scene on T1 and on T2 threads (default --n 1e5,1e6), advanced\n"
+            "in R alternating rounds (default 3) of 1e7 moves each; wall seconds of each, the speedup, and\n"
+            "whether the two states are the same bits (exit 1 if not):\n"
+            "  SCALING method=dsmc n=N threads=T1,T2 speedup=X identical=1\n"
             "--rng: draws per second of the generators the backend could use (GSL's mt19937 and others\n"
             "through gsl_rng_uniform, Random123's Philox and Threefry).\n");
 }
@@ -129,6 +134,56 @@ static int throughput(long n, double eta, double dtf, double ppc)
     gr_sim_free(s);
     gr_scene_free(sc);
     return 0;
+}
+
+/* The instance's particle state, bit for bit, and its counters, between
+ * two runs of the same scene. */
+static int same_state(const gr_dsmc *a, const gr_dsmc *b)
+{
+    size_t n = a->n;
+    return a->n == b->n && !memcmp(a->x, b->x, n * sizeof *a->x) && !memcmp(a->y, b->y, n * sizeof *a->y) &&
+           !memcmp(a->vx, b->vx, n * sizeof *a->vx) && !memcmp(a->vy, b->vy, n * sizeof *a->vy) &&
+           !memcmp(a->rank, b->rank, n * sizeof *a->rank) && a->pairs == b->pairs && a->cand == b->cand &&
+           a->stand_ins == b->stand_ins && a->virial == b->virial;
+}
+
+/* Threads: the same scene on T1 and on T2 threads, advanced in alternating
+ * rounds (so that both see the same load), wall seconds of each summed;
+ * the states compared bit for bit at the end. */
+static int scaling(long n, double eta, double dtf, double ppc, int T1, int T2, int rounds)
+{
+    gr_err err = {0};
+    double nd = eta * 4.0 / M_PI;
+    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, "no", &err);
+    gr_sim *s[2] = {sc ? bench_sim("dsmc", sc, &err) : NULL, sc ? bench_sim("dsmc", sc, &err) : NULL};
+    int T[2] = {T1, T2}, rc = !s[0] || !s[1];
+    long steps = (long)fmax(2.0, ceil(1e7 / (double)n));
+    double wall[2] = {0, 0};
+    for (int k = 0; k < 2 && !rc; k++) {
+        ((gr_dsmc *)gr_sim_state(s[k]))->par.threads = T[k];
+        rc = gr_sim_advance(s[k], INFINITY, 3, &err);
+    }
+    for (int r = 0; r < rounds && !rc; r++)
+        for (int k = 0; k < 2 && !rc; k++) {
+            double w0 = exp_wall_seconds();
+            rc = gr_sim_advance(s[k], INFINITY, (uint64_t)steps, &err);
+            wall[k] += exp_wall_seconds() - w0;
+        }
+    if (rc)
+        fprintf(stderr, "grano bench dsmc: N = %ld: %s\n", n, err.msg);
+    else {
+        int same = same_state(gr_sim_state(s[0]), gr_sim_state(s[1]));
+        double moves = (double)n * (double)steps * rounds;
+        printf("  %9ld %6ld %3d %9.3f %12.4g %3d %9.3f %12.4g %7.3f %s\n", n, steps * rounds, T1, wall[0],
+               moves / wall[0], T2, wall[1], moves / wall[1], wall[0] / wall[1], same ? "same" : "DIFFERENT");
+        printf("SCALING method=dsmc n=%ld threads=%d,%d speedup=%.3f identical=%d\n", n, T1, T2, wall[0] / wall[1],
+               same);
+        rc = same ? 0 : 1;
+    }
+    fflush(stdout);
+    gr_sim_free(s[0]), gr_sim_free(s[1]);
+    gr_scene_free(sc);
+    return rc ? (err.code ? err.code : 1) : 0;
 }
 
 /* One cooling run (restitution 0.9, packing 0.01) to t_end, where Haff's
@@ -247,6 +302,8 @@ int bench_dsmc(int argc, char **argv)
 {
     double ns[16] = {1e3, 1e4, 1e5, 1e6, 1e7}, eta = 0.01, dtf = 0.2, ppc = 8;
     size_t nn = 5;
+    double th[2] = {0, 0};
+    size_t nth = 0;
     int quick = 0, cmp = 0, rounds = 3, given = 0;
     for (int a = 1; a < argc; a++) {
         int ok = 1;
@@ -272,6 +329,9 @@ int bench_dsmc(int argc, char **argv)
             dtf = atof(argv[++a]), ok = dtf > 0;
         } else if (a + 1 < argc && !strcmp(argv[a], "--ppc")) {
             ppc = atof(argv[++a]), ok = ppc > 0;
+        } else if (a + 1 < argc && !strcmp(argv[a], "--threads")) {
+            ok = !exp_parse_list(argv[++a], th, 2, &nth) && nth == 2 && th[0] >= 1 && th[1] >= 1 && th[0] <= 256 &&
+                 th[1] <= 256;
         } else if (a + 1 < argc && !strcmp(argv[a], "--rounds")) {
             rounds = atoi(argv[++a]), ok = rounds >= 1 && rounds <= 64;
         } else {
@@ -292,6 +352,20 @@ int bench_dsmc(int argc, char **argv)
     }
     if (quick && !given)
         nn = 3;
+    if (nth == 2) {
+        double tn[2] = {1e5, 1e6};
+        const double *list = given ? ns : tn;
+        printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell; wall seconds, %d rounds\n",
+               eta, dtf, ppc, rounds);
+        printf("# %9s %6s %3s %9s %12s %3s %9s %12s %7s %s\n", "N", "steps", "T1", "wall_s", "moves/s", "T2",
+               "wall_s", "moves/s", "speedup", "bits");
+        for (size_t k = 0; k < (given ? nn : 2); k++) {
+            int rc = scaling((long)list[k], eta, dtf, ppc, (int)th[0], (int)th[1], rounds);
+            if (rc)
+                return rc;
+        }
+        return 0;
+    }
     printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell\n", eta, dtf, ppc);
     printf("# %9s %6s %9s %9s %12s %8s %6s %7s\n", "N", "steps", "wall_s", "cpu_s", "moves/cpu_s", "coll/p/s",
            "B/p", "ppc");

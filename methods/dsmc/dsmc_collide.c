@@ -1,110 +1,13 @@
 /* Collisions of one step, cell by cell: Bird's no-time-counter scheme for
  * hard disks of diameter sigma, whose cross-section in 2-D is the width
- * 2 sigma swept by impact parameters b in [-sigma, sigma]. Calls no other
- * file of the backend. */
+ * 2 sigma swept by impact parameters b in [-sigma, sigma]. Calls
+ * dsmc_cells.c (the grid) and dsmc_partner.c (stand-ins). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include <Random123/philox.h>
-
 #include "dsmc_int.h"
-
-/* Steps between permutations of the arrays into cell order (sort_cells):
- * 1, 4, 16 gave 2.7, 3.5, 3.5 x 10^7 moves/s at N = 10^6. */
-#define GR_DSMC_GATHER 8
-
-/* The random numbers of one cell in one step: Philox2x64-10 (Random123)
- * keyed by the run's key, counted by (step, cell, draw), so that a cell's
- * draws depend on nothing but its contents and a restart needs no
- * generator state (docs/methods/dsmc.md: generator). */
-typedef struct {
-    philox2x64_key_t key;
-    philox2x64_ctr_t ctr;
-    uint64_t buf[2];
-    int left;
-} cell_rng;
-
-static void cell_rng_init(cell_rng *r, uint64_t key, uint64_t step, size_t cell)
-{
-    r->key.v[0] = key;
-    r->ctr.v[0] = step, r->ctr.v[1] = (uint64_t)cell << 32;
-    r->left = 0;
-}
-
-static inline uint64_t next64(cell_rng *r)
-{
-    if (!r->left) {
-        philox2x64_ctr_t o = philox2x64(r->ctr, r->key);
-        r->ctr.v[1]++;
-        r->buf[0] = o.v[0], r->buf[1] = o.v[1], r->left = 2;
-    }
-    return r->buf[--r->left];
-}
-
-/* [0, 1) from the top 53 bits. */
-static inline double uniform(cell_rng *r) { return (double)(next64(r) >> 11) * 0x1.0p-53; }
-
-/* [0, m): the bias of the 53-bit product is below m / 2^53. */
-static inline size_t below(cell_rng *r, size_t m)
-{
-    size_t k = (size_t)(uniform(r) * (double)m);
-    return k < m ? k : m - 1;
-}
-
-static uint32_t cell_of(const gr_dsmc *d, double x, double y)
-{
-    int cx = (int)floor(x / d->cw), cy = (int)floor(y / d->ch);
-    cx = cx < 0 ? 0 : cx >= d->nx ? d->nx - 1 : cx;
-    cy = cy < 0 ? 0 : cy >= d->ny ? d->ny - 1 : cy;
-    return (uint32_t)(cy * d->nx + cx);
-}
-
-static void gather(double **a, double **tmp, const uint32_t *restrict order, size_t n)
-{
-    double *restrict src = *a, *restrict dst = *tmp;
-    for (size_t k = 0; k < n; k++)
-        dst[k] = src[order[k]];
-    *tmp = src, *a = dst;
-}
-
-/* Counting sort by cell, the particles gone last (cell nc): order[] lists
- * a cell's particles from start[c], stable (in array order, so that the
- * order within a cell depends on nothing but the state). Every
- * GR_DSMC_GATHER steps the arrays themselves are permuted into that order
- * (order[] then the identity), so that a cell's particles sit together in
- * memory; in between particles mostly stay in their cell and order[] stays
- * nearly sequential, and the permutation (a third of a step's time at
- * N = 10^6) is saved. */
-static void sort_cells(gr_dsmc *d)
-{
-    size_t nc = (size_t)d->nx * (size_t)d->ny, n = d->n;
-    uint32_t *restrict cell = d->cell, *restrict start = d->start, *restrict order = d->order;
-    memset(start, 0, (nc + 2) * sizeof *start);
-    for (size_t i = 0; i < n; i++) {
-        cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : cell_of(d, d->x[i], d->y[i]);
-        start[cell[i] + 1]++;
-    }
-    for (size_t c = 0; c <= nc; c++)
-        start[c + 1] += start[c];
-    for (size_t i = 0; i < n; i++)
-        order[start[cell[i]]++] = (uint32_t)i;
-    for (size_t c = nc + 1; c > 0; c--)
-        start[c] = start[c - 1];
-    start[0] = 0;
-    if (d->step % GR_DSMC_GATHER)
-        return;
-    gather(&d->x, &d->tmp, order, n);
-    gather(&d->y, &d->tmp, order, n);
-    gather(&d->vx, &d->tmp, order, n);
-    gather(&d->vy, &d->tmp, order, n);
-    /* cell[] is spent: it takes the ranks in the new order */
-    for (size_t k = 0; k < n; k++)
-        cell[k] = d->rank[order[k]];
-    d->cell = d->rank, d->rank = cell;
-    for (size_t k = 0; k < n; k++)
-        order[k] = (uint32_t)k;
-}
+#include "dsmc_rng.h"
 
 /* A partner displaced through a wall is put back on it (at a radius from
  * it: the next flight bounces it); through a periodic side, wrapped. */
@@ -146,15 +49,23 @@ static void displace(gr_dsmc *d, size_t i, size_t j, double nx, double ny)
 /* The inelastic smooth-disk rule for equal masses: the normal n makes the
  * angle asin(b / sigma) with the relative velocity, b uniform; the normal
  * relative velocity is reversed and scaled by alpha, momentum is kept. */
-static void collide_pair(gr_dsmc *d, cell_rng *r, size_t i, size_t j, double gx, double gy, double g)
+/* What a block of cells adds to the counters and the virial: summed per
+ * block in cell order, then over the blocks in order, so that the sums
+ * do not depend on the threads. */
+typedef struct {
+    uint64_t pairs, cand, stand_ins;
+    double virial;
+} tally;
+
+static void collide_pair(gr_dsmc *d, gr_dsmc_rng *r, tally *y, size_t i, size_t j, double gx, double gy, double g)
 {
-    double s = 2.0 * uniform(r) - 1.0, c = sqrt(1.0 - s * s);
+    double s = 2.0 * gr_dsmc_uniform(r) - 1.0, c = sqrt(1.0 - s * s);
     double ux = gx / g, uy = gy / g;
     double nx = c * ux - s * uy, ny = c * uy + s * ux;
     double k = 0.5 * (1.0 + d->alpha) * g * c;
     d->vx[i] -= k * nx, d->vy[i] -= k * ny;
     d->vx[j] += k * nx, d->vy[j] += k * ny;
-    d->virial += d->sigma * d->mass * k;
+    y->virial += d->sigma * d->mass * k;
     gr_dsmc_stress_pair(d, i, j, nx, ny, k);
     if (d->par.enskog)
         displace(d, i, j, nx, ny);
@@ -189,56 +100,101 @@ static double cell_bound(const gr_dsmc *d, size_t a, size_t m)
  * cell of 2 x 2 d holding 2 disks is at eta 0.39, chi 2.2, in a gas at
  * eta 0.005); the neighbours' count is independent of it. A single cell
  * has no neighbours and uses its own. */
-static double cell_eta(const gr_dsmc *d, size_t c, size_t m)
+static double cell_eta(const gr_dsmc *d, size_t c, size_t m, double area)
 {
-    int cx = (int)(c % (size_t)d->nx), cy = (int)(c / (size_t)d->nx), k = 0;
+    int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
     size_t cnt = 0;
+    double A = 0;
     for (int y = cy - 1; y <= cy + 1; y++)
         for (int x = cx - 1; x <= cx + 1; x++)
-            if ((x != cx || y != cy) && x >= 0 && x < d->nx && y >= 0 && y < d->ny) {
-                size_t e = (size_t)y * (size_t)d->nx + (size_t)x;
-                cnt += d->start[e + 1] - d->start[e], k++;
+            if ((x != cx || y != cy) && x >= 0 && x < d->gx && y >= 0 && y < d->gy) {
+                size_t e = (size_t)y * (size_t)d->gx + (size_t)x;
+                cnt += d->start[e + 1] - d->start[e], A += gr_dsmc_cell_area(d, e);
             }
-    double per = k ? (double)cnt / k : (double)m;
-    return fmin(0.9, per * d->W * M_PI * d->sigma * d->sigma / 4.0 / (d->cw * d->ch));
+    double per = A > 0 ? (double)cnt / A : (double)m / area;
+    return fmin(0.9, per * d->W * M_PI * d->sigma * d->sigma / 4.0);
 }
 
-static void collide_cell(gr_dsmc *d, size_t c)
+/* The candidates of cell c: N_c = m (m - 1) / 2 W 2 sigma g_max dt / A
+ * (times chi), each accepted with g / g_max; a pair of recent partners
+ * meets a stand-in instead (dsmc_partner.c). A pair alone in its cell
+ * takes its stand-ins from around it, so its bound covers that pool. */
+static void collide_cell(gr_dsmc *d, size_t c, tally *y)
 {
     size_t a = d->start[c], m = d->start[c + 1] - a;
-    if (m < 2)
+    double area = gr_dsmc_cell_area(d, c);
+    if (m < 2 || !(area > 0))
         return;
-    double gmax = cell_bound(d, a, m);
+    gr_dsmc_pool p = {{0, 0}, {0, 0}};
+    double gmax;
+    if (m == 2) {
+        p = gr_dsmc_pool_of(d, c);
+        gmax = gr_dsmc_pool_bound(d, &p, d->order[a], d->order[a + 1]);
+    } else
+        gmax = cell_bound(d, a, m);
     if (!(gmax > 0))
         return;
-    cell_rng r;
-    cell_rng_init(&r, d->key, d->step, c);
-    double area = d->cw * d->ch;
+    gr_dsmc_rng r;
+    gr_dsmc_rng_init(&r, d->key, d->step, c);
     double rate = d->W * 2.0 * d->sigma / area;
     if (d->par.enskog)
-        rate *= gr_dsmc_chi(cell_eta(d, c, m));
+        rate *= gr_dsmc_chi(cell_eta(d, c, m, area));
     double want = 0.5 * (double)m * (double)(m - 1) * rate * gmax * d->par.dt;
-    uint64_t nc = (uint64_t)floor(want + uniform(&r));
-    d->cand += nc;
+    uint64_t nc = (uint64_t)floor(want + gr_dsmc_uniform(&r));
+    y->cand += nc;
     for (uint64_t k = 0; k < nc; k++) {
-        size_t u = below(&r, m), w = below(&r, m - 1);
+        size_t u = gr_dsmc_below(gr_dsmc_uniform(&r), m), w = gr_dsmc_below(gr_dsmc_uniform(&r), m - 1);
         w += w >= u;
         size_t i = d->order[a + u], j = d->order[a + w];
+        if (gr_dsmc_recent(d, i, j)) {
+            size_t l = gr_dsmc_stand_in(d, gr_dsmc_uniform(&r), a, m, &p, i, j);
+            if (l == (size_t)-1)
+                continue;
+            j = gr_dsmc_uniform(&r) < 0.5 ? j : i, i = l;
+            y->stand_ins++;
+        }
         double gx = d->vx[i] - d->vx[j], gy = d->vy[i] - d->vy[j];
         double g = sqrt(gx * gx + gy * gy);
-        if (uniform(&r) * gmax >= g)
+        if (gr_dsmc_uniform(&r) * gmax >= g)
             continue;
-        collide_pair(d, &r, i, j, gx, gy, g);
-        d->pairs++;
+        d->prev[i] = d->last[i], d->prev[j] = d->last[j];
+        d->last[i] = d->rank[j] & GR_DSMC_RANK, d->last[j] = d->rank[i] & GR_DSMC_RANK;
+        collide_pair(d, &r, y, i, j, gx, gy, g);
+        y->pairs++;
     }
 }
 
+/* Cells per block of the tallies. */
+#define BLOCK 256
+
+static inline size_t cell_count(const gr_dsmc *d, size_t c) { return d->start[c + 1] - d->start[c]; }
+
+/* Two passes. The cells of three or more particles touch only their own
+ * (their stand-ins come from the cell), so they run on the threads, in
+ * blocks; then the cells of two, whose stand-ins and bound reach into
+ * the cells around, one after the other in cell order. The stress
+ * window's accumulator is shared: with it open, one thread. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
 {
-    (void)err;
-    sort_cells(d);
-    size_t nc = (size_t)d->nx * (size_t)d->ny;
+    if (gr_dsmc_sort(d, err))
+        return err->code;
+    size_t nc = gr_dsmc_ncells(d), nb = (nc + BLOCK - 1) / BLOCK;
+    int T = d->par.threads > 1 && !d->stress ? d->par.threads : 1;
+    tally *blk = calloc(nb + 1, sizeof *blk);
+    if (!blk)
+        return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(T) if (T > 1)
+    for (size_t b = 0; b < nb; b++)
+        for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
+            if (cell_count(d, c) > 2)
+                collide_cell(d, c, &blk[b]);
     for (size_t c = 0; c < nc; c++)
-        collide_cell(d, c);
+        if (cell_count(d, c) == 2)
+            collide_cell(d, c, &blk[nb]);
+    for (size_t b = 0; b <= nb; b++) {
+        d->pairs += blk[b].pairs, d->cand += blk[b].cand, d->stand_ins += blk[b].stand_ins;
+        d->virial += blk[b].virial;
+    }
+    free(blk);
     return GR_OK;
 }

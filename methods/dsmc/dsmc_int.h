@@ -3,6 +3,7 @@
 #ifndef GR_DSMC_INT_H
 #define GR_DSMC_INT_H
 
+#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -18,7 +19,7 @@
 /* The [dsmc] section (docs/methods/dsmc.md). */
 typedef struct {
     double dt, cell, ppc_min;
-    int enskog, strict;
+    int enskog, strict, threads;
 } gr_dsmc_params;
 
 /* Which validity limits the scene breaks at create (bits). */
@@ -27,13 +28,16 @@ enum {
     GR_DSMC_BAD_CELL = 2,
     GR_DSMC_BAD_PPC = 4,
     GR_DSMC_BAD_ENSKOG_CELL = 8,
-    GR_DSMC_BAD_RECOLLIDE = 16 /* cell side < GR_DSMC_SIDE_PER_W W sigma */
+    GR_DSMC_BAD_RECOLLIDE = 16 /* cell side under the pool limit (GR_DSMC_POOL_K) */
 };
 
-/* The smallest cell side, in W sigma, for which the collisions of partners
- * whose velocities are still correlated (they share the cell) slow the
- * cooling by no more than about 1 % (docs/methods/dsmc.md, validity). */
-#define GR_DSMC_SIDE_PER_W 30.0
+/* The smallest cell side for which partners that shared cells, colliding
+ * again while their velocities are still correlated, slow the cooling by
+ * at most about 1 %: K (1 - alpha^2) min(1, sigma / (L lambda)) W sigma,
+ * from the cell scan of docs/methods/dsmc.md (cells): 20 W sigma at
+ * alpha = 0.8 from packing 0.1 (lambda = 2.8 sigma) up, 4 W sigma at 0.02. */
+#define GR_DSMC_POOL_K 55.0
+#define GR_DSMC_POOL_LAMBDA 0.36
 #define GR_DSMC_NLIMITS 5
 
 /* A particle's rank (the order of its id) with this bit set has left the
@@ -43,7 +47,7 @@ enum {
 
 /* Particles are kept sorted by cell (the counting sort of each step moves
  * them), so that a cell's particles are contiguous in memory: the arrays
- * below are in that order, rank[k] names the grain. About 60 bytes per
+ * below are in that order, rank[k] names the grain. About 68 bytes per
  * particle (docs/methods/dsmc.md, Speed). */
 typedef struct gr_dsmc {
     gr_scene sc;           /* shallow copy: pointers stay the caller's */
@@ -52,18 +56,23 @@ typedef struct gr_dsmc {
     double g, W;           /* gravity; real grains per simulated particle */
     double sigma, mass;    /* the one diameter and mass (monodisperse) */
     double Lx, Ly;         /* domain */
-    int nx, ny;            /* cells */
+    int nx, ny;            /* cells of a side's length */
     double cw, ch;         /* cell sides */
+    int gx, gy;            /* the shifted grid: nx, or nx + 1 along a side that is not periodic */
+    double ox, oy;         /* this step's shift of the grid, in [0, cw) x [0, ch) */
     int walls_any;         /* a side is a wall (else streaming is x += v h) */
     size_t n;              /* particles */
     double *x, *y, *vx, *vy, *tmp; /* tmp: the sort's gather buffer */
     uint32_t *rank, *cell, *order; /* cell: also the gather buffer of rank */
+    uint32_t *last, *prev; /* ranks of the last two collision partners (GR_DSMC_RANK: none) */
     int64_t *ids;          /* ids by rank (sorted) */
-    uint32_t *start;       /* first particle of each cell; nc + 1: the gone */
+    uint32_t *start;       /* first particle of each cell of the shifted grid; then the gone */
+    uint32_t *hist;        /* the threaded sort's histograms, hist_threads x (cells + 1) */
+    int hist_threads;
     uint64_t key;          /* the collisions' counter-based stream (Philox) */
     gr_rng *floor_rng;
     gr_particles *view;    /* grains in id order for output, made when asked */
-    uint64_t step, pairs, walls, cand, lost;
+    uint64_t step, pairs, walls, cand, lost, stand_ins;
     unsigned bad;          /* GR_DSMC_BAD_* at create */
     double lim_val[GR_DSMC_NLIMITS], lim_max[GR_DSMC_NLIMITS]; /* what broke each limit: measured, limit */
     double t;
@@ -76,12 +85,42 @@ typedef struct gr_dsmc {
 extern const gr_param gr_dsmc_param_table[];
 void gr_dsmc_params_from(const gr_param_values *pv, gr_dsmc_params *p);
 
-/* dsmc_stream.c: free flight of particle i over [t, t + h] with gravity,
- * walls and floor as for hard disks, periodic wrap, exit through open
- * sides. */
-void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h);
-/* All particles over one step of length h from time t. */
+/* dsmc_stream.c: the free flight of all particles over one step of
+ * length h from time t, with gravity, walls and floor as for hard disks,
+ * periodic wrap, exit through open sides. */
 void gr_dsmc_stream_all(gr_dsmc *d, double t, double h);
+
+/* dsmc_cells.c: the grid of collision cells, shifted by a random offset
+ * every step. */
+void gr_dsmc_grid(gr_dsmc *d);
+/* This step's offset and the counting sort of the particles by cell. */
+int gr_dsmc_sort(gr_dsmc *d, gr_err *err);
+/* The area of cell c of this step's grid (cells along a wall are cut). */
+double gr_dsmc_cell_area(const gr_dsmc *d, size_t c);
+static inline size_t gr_dsmc_ncells(const gr_dsmc *d) { return (size_t)d->gx * (size_t)d->gy; }
+
+/* dsmc_partner.c: the stand-in for a recent partner. */
+/* i and j are each other's partner in one of the last two collisions of
+ * either. */
+static inline int gr_dsmc_recent(const gr_dsmc *d, size_t i, size_t j)
+{
+    uint32_t ri = d->rank[i] & GR_DSMC_RANK, rj = d->rank[j] & GR_DSMC_RANK;
+    return d->last[i] == rj || d->prev[i] == rj || d->last[j] == ri || d->prev[j] == ri;
+}
+/* The pool of a pair alone in its cell: the smallest square of cells
+ * around it (lo..hi per axis, wrapped across periodic sides) that holds
+ * a third particle, or the whole grid. */
+typedef struct {
+    int lo[2], hi[2];
+} gr_dsmc_pool;
+gr_dsmc_pool gr_dsmc_pool_of(const gr_dsmc *d, size_t c);
+/* A bound of |v_k - v_l| for k = i or j, l anywhere in the pool. */
+double gr_dsmc_pool_bound(const gr_dsmc *d, const gr_dsmc_pool *p, size_t i, size_t j);
+/* The particle that meets i or j in place of the other: a uniform draw u
+ * in [0, 1) picks another particle of the cell (start a, m particles) or,
+ * when the pair is alone in it (m = 2), of the pool; (size_t)-1 when
+ * there is none. */
+size_t gr_dsmc_stand_in(const gr_dsmc *d, double u, size_t a, size_t m, const gr_dsmc_pool *p, size_t i, size_t j);
 
 /* dsmc_collide.c: the collisions of one step, cell by cell. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err);
@@ -150,6 +189,14 @@ static inline void gr_dsmc_stress_wall(gr_dsmc *d, size_t i, double nx, double n
     double r = 0.5 * d->sigma, WJ = d->W * J;
     gr_stress_acc_collision(d->stress, d->x[i], d->y[i], 0, 0, 1.0, r * nx, r * ny, WJ * nx, WJ * ny);
 }
+
+/* The calling thread's number in an OpenMP team (0 without OpenMP). */
+#ifdef _OPENMP
+#include <omp.h>
+static inline int gr_dsmc_thread(void) { return omp_get_thread_num(); }
+#else
+static inline int gr_dsmc_thread(void) { return 0; }
+#endif
 
 /* Henderson's pair correlation at contact for hard disks. */
 static inline double gr_dsmc_chi(double eta) { return (1.0 - 7.0 * eta / 16.0) / ((1.0 - eta) * (1.0 - eta)); }

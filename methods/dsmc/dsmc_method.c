@@ -75,7 +75,7 @@ static void m_reset_window(void *s) { gr_dsmc_reset_window(s); }
 
 /* validity_warnings: the limits of docs/methods/dsmc.md the scene breaks
  * (bits: 1 dt, 2 cell, 4 particles per cell, 8 Enskog cells under 10 d,
- * 16 cells under 30 W d);
+ * 16 cells under the limit of correlated partners);
  * how the user sees them without strict = yes. */
 static size_t m_counters(const void *s, gr_counter *out, size_t cap)
 {
@@ -84,6 +84,7 @@ static size_t m_counters(const void *s, gr_counter *out, size_t cap)
                       {"pair_collisions", d->pairs},
                       {"wall_collisions", d->walls},
                       {"candidates", d->cand},
+                      {"stand_ins", d->stand_ins},
                       {"lost", d->lost},
                       {"validity_warnings", d->bad},
                       {"limit_dt", d->bad & GR_DSMC_BAD_DT ? d->step : 0},
@@ -133,13 +134,14 @@ static const gr_obs_def observables[] = {
     GR_OBS_DEF_COUNTER("pair_collisions", "accepted grain-grain collisions"),
     GR_OBS_DEF_COUNTER("wall_collisions", "grain-wall collisions"),
     GR_OBS_DEF_COUNTER("candidates", "candidate pairs drawn (no-time-counter)"),
+    GR_OBS_DEF_COUNTER("stand_ins", "candidates of two recent partners, one of whom met another particle instead"),
     GR_OBS_DEF_COUNTER("lost", "particles that left through an open side"),
     GR_OBS_DEF_COUNTER("validity_warnings", "the limits broken, as bits: 1 dt, 2 cell, 4 ppc_min, 8 Enskog cell, 16 recollision"),
     GR_OBS_DEF_LIMIT("limit_dt", "dsmc.dt", "steps with dt above half the mean free time"),
     GR_OBS_DEF_LIMIT("limit_cell", "dsmc.cell", "steps with the cell side above the mean free path"),
     GR_OBS_DEF_LIMIT("limit_ppc_min", "dsmc.ppc_min", "steps with fewer mean particles per cell than ppc_min"),
     GR_OBS_DEF_LIMIT("limit_enskog_cell", "dsmc.cell", "steps with enskog = yes and cells under 10 d"),
-    GR_OBS_DEF_LIMIT("limit_recollision", "dsmc.cell", "steps with cells under 30 W d, where partners collide again correlated"),
+    GR_OBS_DEF_LIMIT("limit_recollision", "dsmc.cell", "steps with cells under 55 (1 - alpha^2) min(1, d / (0.36 lambda)) W d, where partners collide again correlated"),
     GR_OBS_DEF_END,
 };
 

@@ -1,6 +1,6 @@
 /* State of the DSMC backend: creation from a scene (the collision rule,
  * the cells, the validity limits), freeing, observables and the
- * wall-pressure window. Calls no other file of the backend. */
+ * wall-pressure window. Calls dsmc_cells.c for the grid. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,8 +13,8 @@ void gr_dsmc_free(gr_dsmc *d)
         return;
     gr_particles_free(d->view);
     free(d->x), free(d->y), free(d->vx), free(d->vy), free(d->tmp);
-    free(d->rank), free(d->cell), free(d->order), free(d->ids);
-    free(d->start);
+    free(d->rank), free(d->cell), free(d->order), free(d->ids), free(d->last), free(d->prev);
+    free(d->start), free(d->hist);
     free(d);
 }
 
@@ -59,7 +59,9 @@ static int alloc_particles(gr_dsmc *d, size_t n, gr_err *err)
     d->vx = malloc(m * sizeof *d->vx), d->vy = malloc(m * sizeof *d->vy), d->tmp = malloc(m * sizeof *d->tmp);
     d->rank = malloc(m * sizeof *d->rank), d->cell = malloc(m * sizeof *d->cell);
     d->order = malloc(m * sizeof *d->order), d->ids = malloc(m * sizeof *d->ids);
-    if (!d->x || !d->y || !d->vx || !d->vy || !d->tmp || !d->rank || !d->cell || !d->order || !d->ids)
+    d->last = malloc(m * sizeof *d->last), d->prev = malloc(m * sizeof *d->prev);
+    if (!d->x || !d->y || !d->vx || !d->vy || !d->tmp || !d->rank || !d->cell || !d->order || !d->ids || !d->last ||
+        !d->prev)
         return gr_fail(err, GR_ERUN, "out of memory for %zu particles", n);
     if (n > GR_DSMC_RANK)
         return gr_fail(err, GR_EINPUT, "dsmc takes at most %u particles, the scene has %zu", GR_DSMC_RANK, n);
@@ -84,6 +86,7 @@ static int load_grains(gr_dsmc *d, const gr_particles *init, gr_err *err)
         double r = init->radius[i], m = init->mass[i];
         d->x[t] = init->x[i], d->y[t] = init->y[i], d->vx[t] = init->vx[i], d->vy[t] = init->vy[i];
         d->ids[t] = init->id[i];
+        d->last[t] = d->prev[t] = GR_DSMC_RANK;
         d->rank[t] = (uint32_t)t | ((init->flags[i] & GR_PF_GONE) ? GR_DSMC_GONE : 0u);
         if (init->flags[i] & GR_PF_FIXED)
             rc = gr_fail(err, GR_EINPUT, "grain id %lld is fixed: dsmc has no wall grains", (long long)init->id[i]);
@@ -130,42 +133,102 @@ static int limit(gr_dsmc *d, int broken, unsigned bit, const char *key, const ch
     return GR_OK;
 }
 
-/* Cells of side `cell` diameters, or half the mean free path
- * lambda = 1 / (2 sqrt 2 n sigma) but at least a diameter; then the
- * limits: dt <= tau / 2 (tau = 1 / nu, nu = 2 sqrt(pi) n sigma sqrt(T/m)),
- * cell <= lambda (both divided by chi in the Enskog mode), mean particles
- * per cell >= ppc_min, with enskog = yes cells of at least 10 d, and
- * cells of at least 30 W d (docs/methods/dsmc.md: correlated partners). */
+/* Cells along one axis of length L: with `cell` given, sides of about
+ * that; else the fewest cells no wider than hi (the mean free path: the
+ * larger the cell, the smaller the cell effects) unless that makes them
+ * narrower than lo (the sides the limits below need), then the most
+ * cells at least lo wide. */
+static int cells_along(double L, double given, double lo, double hi)
+{
+    double k = given > 0 ? floor(L / given) : ceil(L / hi);
+    if (!(given > 0) && L / k < lo)
+        k = floor(L / lo);
+    return (int)fmax(1.0, fmin(4096.0, k));
+}
+
+/* The smallest side, in W sigma, at which the cell effect on the cooling
+ * rate (partners that shared cells collide again while their velocities
+ * are still correlated) stays under 1 % (docs/methods/dsmc.md, cells):
+ * it grows with the dissipation and the density. */
+static double pool_side(const gr_dsmc *d, double lambda)
+{
+    return GR_DSMC_POOL_K * (1.0 - d->alpha * d->alpha) * fmin(1.0, d->sigma / (GR_DSMC_POOL_LAMBDA * lambda));
+}
+
+/* Periodic on every side, no gravity: nothing sets a gradient that cells
+ * must resolve, so their side may exceed the mean free path. */
+static int homogeneous(const gr_dsmc *d)
+{
+    for (int k = 0; k < 4; k++)
+        if (d->sc.side[k] != GR_BC_PERIODIC)
+            return 0;
+    return d->g == 0.0;
+}
+
+/* The cells, then the limits, at the density the grains see: dt <= tau / 2 (tau = 1 / nu,
+ * nu = 2 sqrt(pi) n sigma sqrt(T/m)), cell <= lambda (both divided by chi
+ * in the Enskog mode; where the scene can hold a gradient), mean particles per cell >= ppc_min, with
+ * enskog = yes cells of at least 10 d, and cells of at least pool_side
+ * W d. With cell = 0 the cells meet them all where the scene allows. */
+/* The number density the grains see, sum over bins of N_b (N_b - 1) / A_b
+ * over N (times W): the mean density where the gas is homogeneous (for
+ * grains placed at random), the bed's where grains fill part of the domain
+ * (a bed on a floor, a cluster), where the mean over the domain would
+ * give cells and limits for a gas that is not there. Bins of about 32
+ * grains. */
+static double seen_density(const gr_dsmc *d)
+{
+    size_t live = 0;
+    for (size_t i = 0; i < d->n; i++)
+        live += !(d->rank[i] & GR_DSMC_GONE);
+    double A = d->Lx * d->Ly, side = sqrt(32.0 * A / (double)(live ? live : 1));
+    int bx = (int)fmax(1.0, fmin(256.0, floor(d->Lx / side))), by = (int)fmax(1.0, fmin(256.0, floor(d->Ly / side)));
+    double *cnt = calloc((size_t)bx * (size_t)by, sizeof *cnt), s = 0;
+    if (!cnt || live < 2) {
+        free(cnt);
+        return (double)d->n * d->W / A;
+    }
+    for (size_t i = 0; i < d->n; i++)
+        if (!(d->rank[i] & GR_DSMC_GONE)) {
+            int x = (int)fmin(bx - 1, fmax(0.0, floor(d->x[i] / d->Lx * bx)));
+            int y = (int)fmin(by - 1, fmax(0.0, floor(d->y[i] / d->Ly * by)));
+            cnt[(size_t)y * (size_t)bx + (size_t)x]++;
+        }
+    for (size_t b = 0; b < (size_t)bx * (size_t)by; b++)
+        s += cnt[b] * (cnt[b] - 1.0);
+    free(cnt);
+    double n = s / (A / ((double)bx * by)) / (double)live * d->W;
+    return n > 0 ? n : (double)d->n * d->W / A;
+}
+
 static int make_cells(gr_dsmc *d, gr_err *err)
 {
-    double n = (double)d->n * d->W / (d->Lx * d->Ly);
-    double lambda = 1.0 / (2.0 * M_SQRT2 * n * d->sigma);
-    double side = d->par.cell > 0 ? d->par.cell * d->sigma : fmax(0.5 * lambda, d->sigma);
-    d->nx = (int)fmax(1.0, fmin(4096.0, floor(d->Lx / side)));
-    d->ny = (int)fmax(1.0, fmin(4096.0, floor(d->Ly / side)));
+    double n = seen_density(d);
+    /* the Enskog rate is chi times faster: mean free time and path / chi */
+    double chi = d->par.enskog ? gr_dsmc_chi(fmin(0.9, n * M_PI * d->sigma * d->sigma / 4)) : 1.0;
+    double lambda = 1.0 / (2.0 * M_SQRT2 * n * d->sigma * chi);
+    double enskog_min = d->par.enskog ? 10.0 * d->sigma : 0.0, pool_min = pool_side(d, lambda) * d->W * d->sigma;
+    double ppc_side = sqrt(d->par.ppc_min * d->W / n); /* particles per cell where the grains are */
+    double lo = fmax(fmax(enskog_min, pool_min), fmax(ppc_side, d->sigma));
+    double given = d->par.cell * d->sigma;
+    d->nx = cells_along(d->Lx, given, lo, lambda), d->ny = cells_along(d->Ly, given, lo, lambda);
     d->cw = d->Lx / d->nx, d->ch = d->Ly / d->ny;
-    size_t nc = (size_t)d->nx * (size_t)d->ny;
+    gr_dsmc_grid(d);
+    size_t nc = gr_dsmc_ncells(d);
     d->start = calloc(nc + 2, sizeof *d->start);
     if (!d->start)
         return gr_fail(err, GR_ERUN, "out of memory for %zu cells", nc);
-    /* the Enskog rate is chi times faster: mean free time and path / chi */
-    double chi = d->par.enskog ? gr_dsmc_chi(fmin(0.9, n * M_PI * d->sigma * d->sigma / 4)) : 1.0;
     double T = temperature(d), tau = 1.0 / (2.0 * sqrt(M_PI) * n * d->sigma * chi * sqrt(T / d->mass));
-    double ppc = (double)d->n / (double)nc, side_min = 10.0 * d->sigma;
-    lambda /= chi;
+    double ppc = n / d->W * d->cw * d->ch, side = fmin(d->cw, d->ch);
     if (limit(d, T > 0 && d->par.dt > 0.5 * tau, GR_DSMC_BAD_DT, "dt", "dt", d->par.dt, 0.5 * tau, err) ||
-        limit(d, fmax(d->cw, d->ch) > lambda, GR_DSMC_BAD_CELL, "cell", "the cell side", fmax(d->cw, d->ch),
-              lambda, err) ||
+        limit(d, !homogeneous(d) && fmax(d->cw, d->ch) > lambda, GR_DSMC_BAD_CELL, "cell", "the cell side",
+              fmax(d->cw, d->ch), lambda, err) ||
         limit(d, ppc < d->par.ppc_min, GR_DSMC_BAD_PPC, "ppc_min", "the mean of particles per cell", ppc,
               d->par.ppc_min, err) ||
-        /* the displacement thins the pairs of small cells (Z 3 % low at 5 d) */
-        limit(d, d->par.enskog && fmin(d->cw, d->ch) < side_min, GR_DSMC_BAD_ENSKOG_CELL, "cell",
-              "with enskog = yes, the cell side", fmin(d->cw, d->ch), side_min, err) ||
-        /* the partners of a cell collide again while they share it (their
-         * velocities correlated), with a probability ~ W sigma / side: the
-         * cooling rate at alpha = 0.8 is about 0.33 W sigma / side low */
-        limit(d, fmin(d->cw, d->ch) < GR_DSMC_SIDE_PER_W * d->W * d->sigma, GR_DSMC_BAD_RECOLLIDE, "cell",
-              "the cell side", fmin(d->cw, d->ch), GR_DSMC_SIDE_PER_W * d->W * d->sigma, err))
+        /* the displacement thins the pairs of small cells */
+        limit(d, side < enskog_min, GR_DSMC_BAD_ENSKOG_CELL, "cell", "with enskog = yes, the cell side", side,
+              enskog_min, err) ||
+        limit(d, side < pool_min, GR_DSMC_BAD_RECOLLIDE, "cell", "the cell side", side, pool_min, err))
         return err->code;
     return GR_OK;
 }
@@ -236,7 +299,7 @@ void gr_dsmc_reset_window(gr_dsmc *d)
 
 double gr_dsmc_bytes_per_particle(const gr_dsmc *d)
 {
-    double per = 5.0 * sizeof *d->x + 3.0 * sizeof *d->rank + sizeof *d->ids;
-    double nc = (double)d->nx * (double)d->ny;
+    double per = 5.0 * sizeof *d->x + 5.0 * sizeof *d->rank + sizeof *d->ids;
+    double nc = (double)gr_dsmc_ncells(d);
     return per * (double)(d->n + 1) / (double)d->n + (nc + 2) * sizeof *d->start / (double)d->n;
 }

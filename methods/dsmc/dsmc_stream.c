@@ -3,6 +3,7 @@
  * v'_n = (1 + e) V_p - e v_n with the floor's velocity V_p), so that DSMC
  * and edmd see the same boundaries. Calls no other file of the backend. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "dsmc_int.h"
 #include "geom.h"
@@ -108,9 +109,15 @@ static void fly(gr_dsmc *d, size_t i, double h)
     d->vy[i] -= d->g * h;
 }
 
+/* What the flights of a slice give the counters and the wall pressure. */
+typedef struct {
+    uint64_t walls, lost;
+    double wall_mom;
+} wall_tally;
+
 /* The wall's impulse, with infinite mass; its normal part feeds the wall
  * pressure (times W: each particle stands for W grains). */
-static void bounce(gr_dsmc *d, size_t i, int w, double t)
+static void bounce(gr_dsmc *d, wall_tally *y, size_t i, int w, double t)
 {
     double nx = w == GR_LEFT ? 1 : w == GR_RIGHT ? -1 : 0, ny = w == GR_BOTTOM ? 1 : w == GR_TOP ? -1 : 0;
     double Vn = w == GR_BOTTOM ? floor_velocity(d, t, d->vy[i]) : 0.0;
@@ -120,13 +127,14 @@ static void bounce(gr_dsmc *d, size_t i, int w, double t)
     double J = -(1.0 + d->alpha_w) * d->mass * gn;
     d->vx[i] += J * nx / d->mass;
     d->vy[i] += J * ny / d->mass;
-    d->wall_mom += J * d->W;
-    d->walls++;
+    y->wall_mom += J * d->W;
+    y->walls++;
     gr_dsmc_stress_wall(d, i, nx, ny, J);
 }
 
-/* Periodic wrap and exit through an open side (the centre leaves). */
-static void boundaries(gr_dsmc *d, size_t i)
+/* Periodic wrap and exit through an open side (the centre leaves): 1
+ * when it left. */
+static int boundaries(gr_dsmc *d, size_t i)
 {
     const gr_bc *s = d->sc.side;
     if (s[GR_LEFT] == GR_BC_PERIODIC)
@@ -137,8 +145,9 @@ static void boundaries(gr_dsmc *d, size_t i)
     if ((x < 0 && s[GR_LEFT] == GR_BC_OPEN) || (x > d->Lx && s[GR_RIGHT] == GR_BC_OPEN) ||
         (y < 0 && s[GR_BOTTOM] == GR_BC_OPEN) || (y > d->Ly && s[GR_TOP] == GR_BC_OPEN)) {
         d->rank[i] |= GR_DSMC_GONE;
-        d->lost++;
+        return 1;
     }
+    return 0;
 }
 
 /* Too many bounces in one step: the particle rests on the wall (its normal
@@ -155,7 +164,7 @@ static void settle(gr_dsmc *d, size_t i, int w, double left)
     d->y[i] = fmin(fmax(d->y[i], r), d->Ly - r);
 }
 
-void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h)
+static void stream(gr_dsmc *d, wall_tally *y, size_t i, double t, double h)
 {
     if (d->rank[i] & GR_DSMC_GONE)
         return;
@@ -171,34 +180,79 @@ void gr_dsmc_stream(gr_dsmc *d, size_t i, double t, double h)
             settle(d, i, w, left);
             break;
         }
-        bounce(d, i, w, t);
+        bounce(d, y, i, w, t);
     }
-    boundaries(d, i);
+    y->lost += (uint64_t)boundaries(d, i);
+}
+
+/* The walls' share of a slice of particles: summed per slice, then over
+ * the slices in order (the slices fixed, not the threads' count), so
+ * that the sums do not depend on the threads. */
+#define SLICE 4096
+
+static int stream_slices(gr_dsmc *d, double t, double h, int T)
+{
+    size_t n = d->n, ns = (n + SLICE - 1) / SLICE;
+    wall_tally sum = {0, 0, 0.0};
+    if (T == 1) {
+        for (size_t k = 0; k < ns; k++) {
+            wall_tally y = {0, 0, 0.0};
+            for (size_t i = k * SLICE; i < n && i < (k + 1) * SLICE; i++)
+                stream(d, &y, i, t, h);
+            sum.walls += y.walls, sum.lost += y.lost, sum.wall_mom += y.wall_mom;
+        }
+    } else {
+        wall_tally *ys = calloc(ns, sizeof *ys);
+        if (!ys)
+            return stream_slices(d, t, h, 1);
+#pragma omp parallel for schedule(static) num_threads(T)
+        for (size_t k = 0; k < ns; k++)
+            for (size_t i = k * SLICE; i < n && i < (k + 1) * SLICE; i++)
+                stream(d, &ys[k], i, t, h);
+        for (size_t k = 0; k < ns; k++)
+            sum.walls += ys[k].walls, sum.lost += ys[k].lost, sum.wall_mom += ys[k].wall_mom;
+        free(ys);
+    }
+    d->walls += sum.walls, d->lost += sum.lost, d->wall_mom += sum.wall_mom;
+    return GR_OK;
 }
 
 /* Without walls nor gravity a flight is a straight line: the loop the
- * compiler vectorises, then the periodic wrap and the open sides. */
+ * compiler vectorises, then the periodic wrap and the open sides. Each
+ * particle's flight is its own: on the threads, but for a floor that
+ * draws its phase from the instance's sequential stream (sine-hf) and
+ * the open stress window (its accumulator is shared). */
 void gr_dsmc_stream_all(gr_dsmc *d, double t, double h)
 {
+    int T = d->par.threads > 1 ? d->par.threads : 1;
+    size_t n = d->n;
     if (d->walls_any || d->g != 0.0) {
-        for (size_t i = 0; i < d->n; i++)
-            gr_dsmc_stream(d, i, t, h);
+        if (d->stress || d->sc.floor.motion == GR_FLOOR_SINE_HF)
+            T = 1;
+        (void)stream_slices(d, t, h, T);
         return;
     }
     double *restrict x = d->x, *restrict y = d->y;
     const double *restrict vx = d->vx, *restrict vy = d->vy;
-    for (size_t i = 0; i < d->n; i++)
-        x[i] += vx[i] * h, y[i] += vy[i] * h;
     const gr_bc *s = d->sc.side;
     int torus = s[GR_LEFT] == GR_BC_PERIODIC && s[GR_BOTTOM] == GR_BC_PERIODIC;
     double Lx = d->Lx, Ly = d->Ly;
-    for (size_t i = 0; i < d->n; i++) {
-        /* the common case of a torus: at most one box length per step */
-        if (torus && x[i] >= -Lx && x[i] < 2 * Lx && y[i] >= -Ly && y[i] < 2 * Ly) {
-            x[i] += x[i] < 0 ? Lx : x[i] >= Lx ? -Lx : 0.0;
-            y[i] += y[i] < 0 ? Ly : y[i] >= Ly ? -Ly : 0.0;
-        } else if (!(d->rank[i] & GR_DSMC_GONE)) {
-            boundaries(d, i);
+    uint64_t lost = 0;
+#pragma omp parallel num_threads(T) if (T > 1) reduction(+ : lost)
+    {
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++)
+            x[i] += vx[i] * h, y[i] += vy[i] * h;
+#pragma omp for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            /* the common case of a torus: at most one box length per step */
+            if (torus && x[i] >= -Lx && x[i] < 2 * Lx && y[i] >= -Ly && y[i] < 2 * Ly) {
+                x[i] += x[i] < 0 ? Lx : x[i] >= Lx ? -Lx : 0.0;
+                y[i] += y[i] < 0 ? Ly : y[i] >= Ly ? -Ly : 0.0;
+            } else if (!(d->rank[i] & GR_DSMC_GONE)) {
+                lost += (uint64_t)boundaries(d, i);
+            }
         }
     }
+    d->lost += lost;
 }

