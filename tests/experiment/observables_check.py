@@ -6,18 +6,19 @@ broken validity limit reaches the user.
   no NaN anywhere, no particle quantity the lattice does not model; the mass
   equals m (moving + resting) in every sample and is conserved (the pipe
   reinserts what leaves, FHP collisions conserve particles).
-- dsmc with its default cells on a dilute gas: the mean of particles per
-  cell is 1024 / 4096 = 0.25 < ppc_min = 2, so stderr names the limit, the
-  value 0.25 and the key ppc_min, the file counts every step in
-  limit_ppc_min (with its key as an attribute), and [run] strict = yes stops
-  the run with exit 1, its checkpoint holding the state before the first
-  step (t = 0).
+- dsmc with cells of 4 d on compare's dilute gas (1024 grains, n = 0.127)
+  and ppc_min = 4: some 2.1 particles per cell < 4, so stderr names the
+  limit, the value measured and the key ppc_min, the file counts every step
+  in limit_ppc_min (with its key as an attribute), and [run] strict = yes
+  stops the run with exit 1, its checkpoint holding the state before the
+  first step (t = 0).
 - dsmc on a gas dilute enough for every limit (cells of 100 d, lambda = 278 d,
   16 per cell): no warning, every limit counter 0.
 
 usage: observables_check.py GRANO SOURCE_ROOT WORKDIR
 """
 import os
+import re
 import subprocess
 import sys
 
@@ -62,10 +63,12 @@ def lattice(t, grano, root, work):
 def dsmc_limits(t, grano, root, work):
     scene = os.path.join(root, "experiments/scenes/compare/cooling-dilute.ini")
     out = os.path.join(work, "dilute.h5")
-    r = run(grano, scene, "dsmc", out, "run.until=0.5", "dsmc.enskog=no")
-    t.check(r.returncode == 0, "dsmc with default cells runs (exit 0)", r.stderr)
+    small = ("dsmc.enskog=no", "dsmc.cell=4", "dsmc.ppc_min=4")
+    r = run(grano, scene, "dsmc", out, "run.until=0.5", *small)
+    t.check(r.returncode == 0, "dsmc with cells of 4 d runs (exit 0)", r.stderr)
     first = [l for l in r.stderr.splitlines() if "limit_ppc_min broken at" in l]
-    t.check(len(first) == 1 and "is 0.25, below ppc_min = 2" in first[0] and "key 'ppc_min'" in first[0],
+    m = re.search(r"is ([0-9.]+), below ppc_min = 4", first[0]) if len(first) == 1 else None
+    t.check(m is not None and 1.8 < float(m.group(1)) < 2.4 and "key 'ppc_min'" in first[0],
             "stderr says once: limit, value measured, the key that changes it", r.stderr)
     t.check(any("limit_ppc_min counted 50 in 50 steps of the run" in l for l in r.stderr.splitlines()),
             "the run's summary counts the steps that broke it", r.stderr)
@@ -77,7 +80,7 @@ def dsmc_limits(t, grano, root, work):
         info = subprocess.run([grano, "info", out], capture_output=True, text=True)
         t.check("limit_ppc_min      50  <- validity limit broken" in info.stdout, "grano info marks it", info.stdout)
     out = os.path.join(work, "strict.h5")
-    r = run(grano, scene, "dsmc", out, "run.until=0.5", "dsmc.enskog=no", "run.strict=yes")
+    r = run(grano, scene, "dsmc", out, "run.until=0.5", *small, "run.strict=yes")
     t.check(r.returncode == 1 and "limit_ppc_min" in r.stderr and "stopped" in r.stderr,
             "[run] strict = yes stops the run, exit 1", (r.returncode, r.stderr))
     ck = os.path.join(work, "strict.ckpt")
