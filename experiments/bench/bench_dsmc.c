@@ -47,10 +47,11 @@ static void usage(FILE *f)
             "--quick 4000), edmd the reference, R seeds each (--rounds, default 3; --quick 2): dsmc with dt\n"
             "0.05 to 2 mean free times, cells of 0.25 to 4 mean free paths, weights W = 1 to 64; per row\n"
             "  SWEEP method=dsmc knob=K value=V n=N cpu_s=C T_over_T0=T stderr=S error=E\n"
-            "--threads T1,T2: the throughput scene on T1 and on T2 threads (default --n 1e5,1e6), advanced\n"
-            "in R alternating rounds (default 3) of 1e7 moves each; wall seconds of each, the speedup, and\n"
-            "whether the two states are the same bits (exit 1 if not):\n"
-            "  SCALING method=dsmc n=N threads=T1,T2 speedup=X identical=1\n"
+            "--threads T1,T2: the throughput scene on T1 and on T2 threads (default --n 1e5,1e6), and T2\n"
+            "independent one-thread runs of it at once (the machine's ceiling), advanced in R alternating\n"
+            "rounds (default 3) of 1e7 moves each; wall seconds of each, the speedup, the ceiling's, the\n"
+            "fraction of it, and whether the T1 and T2 states are the same bits (exit 1 if not):\n"
+            "  SCALING method=dsmc n=N threads=T1,T2 speedup=X ceiling=C of_ceiling=F identical=1\n"
             "--rng: draws per second of the generators the backend could use (GSL's mt19937 and others\n"
             "through gsl_rng_uniform, Random123's Philox and Threefry).\n");
 }
@@ -147,41 +148,59 @@ static int same_state(const gr_dsmc *a, const gr_dsmc *b)
            a->stand_ins == b->stand_ins && a->virial == b->virial;
 }
 
-/* Threads: the same scene on T1 and on T2 threads, advanced in alternating
- * rounds (so that both see the same load), wall seconds of each summed;
- * the states compared bit for bit at the end. */
+/* Threads: the same scene on T1 and on T2 threads, and, as the machine's
+ * ceiling for T2 threads, T2 independent one-thread runs of it at once on
+ * the same cores; advanced in alternating rounds (so that all see the same
+ * load), wall seconds of each summed. The T1 and T2 states are compared
+ * bit for bit at the end. */
+enum { MAXC = 64 };
+
 static int scaling(long n, double eta, double dtf, double ppc, int T1, int T2, int rounds)
 {
     gr_err err = {0};
     double nd = eta * 4.0 / M_PI;
     gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, "no", &err);
-    gr_sim *s[2] = {sc ? bench_sim("dsmc", sc, &err) : NULL, sc ? bench_sim("dsmc", sc, &err) : NULL};
-    int T[2] = {T1, T2}, rc = !s[0] || !s[1];
+    int nc = T2 < MAXC ? T2 : MAXC, ns = 2 + nc, rc = !sc;
+    gr_sim *s[2 + MAXC] = {NULL};
+    for (int k = 0; k < ns && !rc; k++)
+        rc = !(s[k] = bench_sim("dsmc", sc, &err));
     long steps = (long)fmax(2.0, ceil(1e7 / (double)n));
-    double wall[2] = {0, 0};
-    for (int k = 0; k < 2 && !rc; k++) {
-        ((gr_dsmc *)gr_sim_state(s[k]))->par.threads = T[k];
+    double wall[3] = {0, 0, 0};
+    for (int k = 0; k < ns && !rc; k++) {
+        ((gr_dsmc *)gr_sim_state(s[k]))->par.threads = k == 0 ? T1 : k == 1 ? T2 : 1;
         rc = gr_sim_advance(s[k], INFINITY, 3, &err);
     }
-    for (int r = 0; r < rounds && !rc; r++)
+    for (int r = 0; r < rounds && !rc; r++) {
         for (int k = 0; k < 2 && !rc; k++) {
             double w0 = exp_wall_seconds();
             rc = gr_sim_advance(s[k], INFINITY, (uint64_t)steps, &err);
             wall[k] += exp_wall_seconds() - w0;
         }
+        int bad = 0;
+        double w0 = exp_wall_seconds();
+#pragma omp parallel for num_threads(nc) schedule(static, 1) reduction(+ : bad)
+        for (int k = 0; k < nc; k++) {
+            gr_err e = {0};
+            bad += gr_sim_advance(s[2 + k], INFINITY, (uint64_t)steps, &e) != 0;
+        }
+        wall[2] += exp_wall_seconds() - w0;
+        rc = rc || bad;
+    }
     if (rc)
-        fprintf(stderr, "grano bench dsmc: N = %ld: %s\n", n, err.msg);
+        fprintf(stderr, "grano bench dsmc: N = %ld: %s\n", n, err.code ? err.msg : "a ceiling run failed");
     else {
         int same = same_state(gr_sim_state(s[0]), gr_sim_state(s[1]));
-        double moves = (double)n * (double)steps * rounds;
-        printf("  %9ld %6ld %3d %9.3f %12.4g %3d %9.3f %12.4g %7.3f %s\n", n, steps * rounds, T1, wall[0],
-               moves / wall[0], T2, wall[1], moves / wall[1], wall[0] / wall[1], same ? "same" : "DIFFERENT");
-        printf("SCALING method=dsmc n=%ld threads=%d,%d speedup=%.3f identical=%d\n", n, T1, T2, wall[0] / wall[1],
-               same);
+        double moves = (double)n * (double)steps * rounds, ceil_x = nc * wall[0] / wall[2];
+        printf("  %9ld %6ld %3d %9.3f %12.4g %3d %9.3f %12.4g %7.3f %7.3f %6.2f %s\n", n, steps * rounds, T1,
+               wall[0], moves / wall[0], T2, wall[1], moves / wall[1], wall[0] / wall[1], ceil_x,
+               wall[0] / wall[1] / ceil_x, same ? "same" : "DIFFERENT");
+        printf("SCALING method=dsmc n=%ld threads=%d,%d speedup=%.3f ceiling=%.3f of_ceiling=%.3f identical=%d\n", n,
+               T1, T2, wall[0] / wall[1], ceil_x, wall[0] / wall[1] / ceil_x, same);
         rc = same ? 0 : 1;
     }
     fflush(stdout);
-    gr_sim_free(s[0]), gr_sim_free(s[1]);
+    for (int k = 0; k < ns; k++)
+        gr_sim_free(s[k]);
     gr_scene_free(sc);
     return rc ? (err.code ? err.code : 1) : 0;
 }
@@ -357,8 +376,8 @@ int bench_dsmc(int argc, char **argv)
         const double *list = given ? ns : tn;
         printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell; wall seconds, %d rounds\n",
                eta, dtf, ppc, rounds);
-        printf("# %9s %6s %3s %9s %12s %3s %9s %12s %7s %s\n", "N", "steps", "T1", "wall_s", "moves/s", "T2",
-               "wall_s", "moves/s", "speedup", "bits");
+        printf("# %9s %6s %3s %9s %12s %3s %9s %12s %7s %7s %6s %s\n", "N", "steps", "T1", "wall_s", "moves/s", "T2",
+               "wall_s", "moves/s", "speedup", "ceiling", "of_it", "bits");
         for (size_t k = 0; k < (given ? nn : 2); k++) {
             int rc = scaling((long)list[k], eta, dtf, ppc, (int)th[0], (int)th[1], rounds);
             if (rc)

@@ -184,10 +184,13 @@ int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
     if (!blk)
         return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(T) if (T > 1)
-    for (size_t b = 0; b < nb; b++)
+    for (size_t b = 0; b < nb; b++) {
+        tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
         for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
             if (cell_count(d, c) > 2)
-                collide_cell(d, c, &blk[b]);
+                collide_cell(d, c, &y);
+        blk[b] = y;
+    }
     for (size_t c = 0; c < nc; c++)
         if (cell_count(d, c) == 2)
             collide_cell(d, c, &blk[nb]);

@@ -47,7 +47,7 @@ def compare(grano):
 
 def threads(grano):
     out = run([grano, "bench", "dsmc", "--threads", "1,2", "--n", "20000", "--rounds", "1"])
-    m = re.search(r"^SCALING method=dsmc n=20000 threads=1,2 speedup=(\S+) identical=(\d)$", out, re.M)
+    m = re.search(r"^SCALING method=dsmc n=20000 threads=1,2 speedup=(\S+) ceiling=\S+ of_ceiling=\S+ identical=(\d)$", out, re.M)
     bad = check(m is not None, "bench dsmc --threads prints its SCALING line")
     if m:
         bad += check(m.group(2) == "1", "one and two threads give the same bits")
