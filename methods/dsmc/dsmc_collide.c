@@ -169,18 +169,52 @@ static void collide_cell(gr_dsmc *d, size_t c, tally *y)
 
 static inline size_t cell_count(const gr_dsmc *d, size_t c) { return d->start[c + 1] - d->start[c]; }
 
-/* Two passes. The cells of three or more particles touch only their own
+/* A cell of two whose pool is the square of 3 x 3 cells around it, inside
+ * the grid (no wrap): such cells of one colour (cx mod 3, cy mod 3) touch
+ * disjoint particles. */
+static int local_pair(const gr_dsmc *d, int cx, int cy)
+{
+    if (cx < 1 || cy < 1 || cx > d->gx - 2 || cy > d->gy - 2)
+        return 0;
+    size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx, tot = 0;
+    if (cell_count(d, c) != 2)
+        return 0;
+    for (int y = cy - 1; y <= cy + 1; y++)
+        tot += d->start[(size_t)y * (size_t)d->gx + (size_t)(cx + 2)] - d->start[(size_t)y * (size_t)d->gx + (size_t)(cx - 1)];
+    return tot > 2;
+}
+
+/* The cells of two whose pool is local, colour by colour, a colour's rows
+ * on the threads; each row's tally its own (rt: 9 x gy). */
+static void pairs_local(gr_dsmc *d, int T, tally *rt)
+{
+    for (int k = 0; k < 9; k++) {
+#pragma omp parallel for schedule(dynamic, 4) num_threads(T) if (T > 1)
+        for (int cy = 1 + (k / 3 + 2) % 3; cy <= d->gy - 2; cy += 3) {
+            tally y = {0, 0, 0, 0.0};
+            for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3)
+                if (local_pair(d, cx, cy))
+                    collide_cell(d, (size_t)cy * (size_t)d->gx + (size_t)cx, &y);
+            rt[(size_t)k * (size_t)d->gy + (size_t)cy] = y;
+        }
+    }
+}
+
+/* Three passes. The cells of three or more particles touch only their own
  * (their stand-ins come from the cell), so they run on the threads, in
- * blocks; then the cells of two, whose stand-ins and bound reach into
- * the cells around, one after the other in cell order. The stress
- * window's accumulator is shared: with it open, one thread. */
+ * blocks. The cells of two, whose stand-ins and bound reach into the
+ * cells around: those whose pool is the 3 x 3 square inside the grid
+ * colour by colour on the threads, then the others one after the other
+ * in cell order. The order is the same on any number of threads, and so
+ * are the sums (per block or row, then in order). The stress window's
+ * accumulator is shared: with it open, one thread. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
 {
     if (gr_dsmc_sort(d, err))
         return err->code;
-    size_t nc = gr_dsmc_ncells(d), nb = (nc + BLOCK - 1) / BLOCK;
+    size_t nc = gr_dsmc_ncells(d), nb = (nc + BLOCK - 1) / BLOCK, nr = 9 * (size_t)d->gy;
     int T = d->par.threads > 1 && !d->stress ? d->par.threads : 1;
-    tally *blk = calloc(nb + 1, sizeof *blk);
+    tally *blk = calloc(nb + nr + 1, sizeof *blk);
     if (!blk)
         return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(T) if (T > 1)
@@ -191,10 +225,12 @@ int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
                 collide_cell(d, c, &y);
         blk[b] = y;
     }
+    pairs_local(d, T, blk + nb);
+    tally *rest = blk + nb + nr;
     for (size_t c = 0; c < nc; c++)
-        if (cell_count(d, c) == 2)
-            collide_cell(d, c, &blk[nb]);
-    for (size_t b = 0; b <= nb; b++) {
+        if (cell_count(d, c) == 2 && !local_pair(d, (int)(c % (size_t)d->gx), (int)(c / (size_t)d->gx)))
+            collide_cell(d, c, rest);
+    for (size_t b = 0; b <= nb + nr; b++) {
         d->pairs += blk[b].pairs, d->cand += blk[b].cand, d->stand_ins += blk[b].stand_ins;
         d->virial += blk[b].virial;
     }
