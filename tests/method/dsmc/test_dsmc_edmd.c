@@ -254,11 +254,11 @@ static void cell_sweep_bed(int R, int K, const char *enskog, double *dep)
 /* In slow only: how far the results depend on the cell side (docs/methods/
  * dsmc.md, cells). The dilute gas (lambda = 13.5 d), Boltzmann rate: from
  * lambda/2 to 2 lambda within 1 % of the default's cells (lambda; measured
- * 0.70 % at most), lambda/4 (0.3 particles per cell) within 2 % (1.37 %);
+ * 0.67 % at most), lambda/4 (0.3 particles per cell) within 2 % (1.15 %);
  * Enskog mode: lambda and 2 lambda within 1 % (0.80 %); below 10 d the
  * displacement's thinning, which the validity limit flags (13 % at
  * lambda/4). The bed (lambda about 8 d where it is densest), Boltzmann:
- * cells of 4 and 8 d within 1.5 % of the default's (1.0 %, 0.1 %). */
+ * cells of 4 and 8 d within 1.5 % of the default's (0.72 %, 0.39 %). */
 static void test_cell_sweep(void **st)
 {
     (void)st;
