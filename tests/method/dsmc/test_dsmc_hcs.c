@@ -43,10 +43,13 @@ static void test_hcs_a2(void **st)
     }
 }
 
-/* Free cooling, not rescaled, at packing 0.005 (Boltzmann), 2000 disks:
+/* Free cooling, not rescaled, at packing 0.005 (chi 1.008), 2000 disks:
  * a2 from snapshots at every collision per particle from 11 to 30, four
- * seeds (slow: 16), dsmc against edmd within 3 combined standard errors
- * (blocks of 20 snapshots). */
+ * seeds (slow: 16), blocks of 20 snapshots. dsmc's a2 + 1/N within 3
+ * standard errors + the Sonine band + 0.3/N of the Boltzmann a2, as for
+ * the scaled HCS; edmd's beside it, not asserted: its free cooling in a box
+ * of 20 mean free paths departs from the Boltzmann HCS by more than its
+ * error bar at alpha = 0.6 (5.5 standard errors, docs/methods/dsmc.md). */
 static void free_a2(const char *method, double alpha, int n, int seeds, double *a2, double *err)
 {
     enum { KMAX = 400 };
@@ -92,10 +95,12 @@ static void test_free_a2_edmd(void **st)
         double a, ae, b, be;
         free_a2("dsmc", al[k], n, seeds, &a, &ae);
         free_a2("edmd", al[k], n, seeds, &b, &be);
-        print_message("# free cooling alpha %.2f, eta 0.005: a2 dsmc %.5f +- %.5f, edmd %.5f +- %.5f, first Sonine "
-                      "%.5f\n",
-                      al[k], a, ae, b, be, exp_sonine_a2(al[k]));
-        assert_true(fabs(a - b) < 3 * sqrt(ae * ae + be * be));
+        double best = NAN, band = NAN;
+        ds_sonine_best(al[k], &best, &band);
+        print_message("# free cooling alpha %.2f, eta 0.005: a2 dsmc %.5f +- %.5f, edmd %.5f +- %.5f, Boltzmann "
+                      "%.5f (dsmc + 1/N off by %.1f sigma), first Sonine %.5f\n",
+                      al[k], a, ae, b, be, best, (a + 1.0 / n - best) / ae, exp_sonine_a2(al[k]));
+        assert_true(fabs(a + 1.0 / n - best) < 3 * ae + band + 0.3 / n);
     }
 }
 
