@@ -99,15 +99,15 @@ static void permute(gr_dsmc *d, int T)
         o[k] = (uint32_t)k;
 }
 
-/* Counting sort on T threads, each over its slice of the particles: a
- * histogram per slice, the cells' starts by one pass over the cells, each
+/* Counting sort on T threads (one alike), each over its slice of the
+ * particles: a histogram per slice, the cells' starts by one pass over the cells, each
  * slice's places within a cell after the slices before it, so that the
  * order is the serial sort's (stable in array order) for every T. */
 static void sort_threads(gr_dsmc *d, int T)
 {
     size_t nc = gr_dsmc_ncells(d), n = d->n, w = nc + 1;
     uint32_t *restrict cell = d->cell, *restrict start = d->start, *restrict order = d->order, *hist = d->hist;
-#pragma omp parallel num_threads(T)
+#pragma omp parallel num_threads(T) if (T > 1)
     {
         int t = gr_dsmc_thread();
         size_t lo = n * (size_t)t / (size_t)T, hi = n * (size_t)(t + 1) / (size_t)T;
@@ -145,31 +145,15 @@ int gr_dsmc_sort(gr_dsmc *d, gr_err *err)
     gr_dsmc_rng r;
     gr_dsmc_rng_init(&r, d->key, d->step, GR_DSMC_RNG_GRID);
     d->ox = gr_dsmc_uniform(&r) * d->cw, d->oy = gr_dsmc_uniform(&r) * d->ch;
-    size_t nc = gr_dsmc_ncells(d), n = d->n;
+    size_t nc = gr_dsmc_ncells(d);
     int T = d->par.threads > 1 ? d->par.threads : 1;
-    if (T > 1 && d->hist_threads < T) {
+    if (d->hist_threads < T) {
         uint32_t *h = realloc(d->hist, (size_t)T * (nc + 1) * sizeof *h);
         if (!h)
             return gr_fail(err, GR_ERUN, "out of memory for the sort's histograms of %d threads", T);
         d->hist = h, d->hist_threads = T;
     }
-    if (T > 1)
-        sort_threads(d, T);
-    else {
-        uint32_t *restrict cell = d->cell, *restrict start = d->start, *restrict order = d->order;
-        memset(start, 0, (nc + 2) * sizeof *start);
-        for (size_t i = 0; i < n; i++) {
-            cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : cell_of(d, d->x[i], d->y[i]);
-            start[cell[i] + 1]++;
-        }
-        for (size_t c = 0; c <= nc; c++)
-            start[c + 1] += start[c];
-        for (size_t i = 0; i < n; i++)
-            order[start[cell[i]]++] = (uint32_t)i;
-        for (size_t c = nc + 1; c > 0; c--)
-            start[c] = start[c - 1];
-        start[0] = 0;
-    }
+    sort_threads(d, T);
     if (d->step % GR_DSMC_GATHER == 0)
         permute(d, T);
     return GR_OK;

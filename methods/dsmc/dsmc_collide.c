@@ -46,9 +46,6 @@ static void displace(gr_dsmc *d, size_t i, size_t j, double nx, double ny)
     keep_inside(d, j);
 }
 
-/* The inelastic smooth-disk rule for equal masses: the normal n makes the
- * angle asin(b / sigma) with the relative velocity, b uniform; the normal
- * relative velocity is reversed and scaled by alpha, momentum is kept. */
 /* What a block of cells adds to the counters and the virial: summed per
  * block in cell order, then over the blocks in order, so that the sums
  * do not depend on the threads. */
@@ -56,6 +53,10 @@ typedef struct {
     uint64_t pairs, cand, stand_ins;
     double virial;
 } tally;
+
+/* The inelastic smooth-disk rule for equal masses: the normal n makes the
+ * angle asin(b / sigma) with the relative velocity, b uniform; the normal
+ * relative velocity is reversed and scaled by alpha, momentum is kept. */
 
 static void collide_pair(gr_dsmc *d, gr_dsmc_rng *r, tally *y, size_t i, size_t j, double gx, double gy, double g)
 {
@@ -118,20 +119,15 @@ static double cell_eta(const gr_dsmc *d, size_t c, size_t m, double area)
 /* The candidates of cell c: N_c = m (m - 1) / 2 W 2 sigma g_max dt / A
  * (times chi), each accepted with g / g_max; a pair of recent partners
  * meets a stand-in instead (dsmc_partner.c). A pair alone in its cell
- * takes its stand-ins from around it, so its bound covers that pool. */
-static void collide_cell(gr_dsmc *d, size_t c, tally *y)
+ * takes its stand-ins from around it (p, its pool; NULL for a cell of
+ * three or more), so its bound covers that pool. */
+static void collide_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, tally *y)
 {
     size_t a = d->start[c], m = d->start[c + 1] - a;
     double area = gr_dsmc_cell_area(d, c);
     if (m < 2 || !(area > 0))
         return;
-    gr_dsmc_pool p = {{0, 0}, {0, 0}};
-    double gmax;
-    if (m == 2) {
-        p = gr_dsmc_pool_of(d, c);
-        gmax = gr_dsmc_pool_bound(d, &p, d->order[a], d->order[a + 1]);
-    } else
-        gmax = cell_bound(d, a, m);
+    double gmax = m == 2 ? gr_dsmc_pool_bound(d, p, d->order[a], d->order[a + 1]) : cell_bound(d, a, m);
     if (!(gmax > 0))
         return;
     gr_dsmc_rng r;
@@ -147,7 +143,7 @@ static void collide_cell(gr_dsmc *d, size_t c, tally *y)
         w += w >= u;
         size_t i = d->order[a + u], j = d->order[a + w];
         if (gr_dsmc_recent(d, i, j)) {
-            size_t l = gr_dsmc_stand_in(d, gr_dsmc_uniform(&r), a, m, &p, i, j);
+            size_t l = gr_dsmc_stand_in(d, gr_dsmc_uniform(&r), a, m, p, i, j);
             if (l == (size_t)-1)
                 continue;
             j = gr_dsmc_uniform(&r) < 0.5 ? j : i, i = l;
@@ -169,19 +165,14 @@ static void collide_cell(gr_dsmc *d, size_t c, tally *y)
 
 static inline size_t cell_count(const gr_dsmc *d, size_t c) { return d->start[c + 1] - d->start[c]; }
 
-/* A cell of two whose pool is the square of 3 x 3 cells around it, inside
+/* Pool p of cell c (of two) is the square of 3 x 3 cells around it, inside
  * the grid (no wrap): such cells of one colour (cx mod 3, cy mod 3) touch
  * disjoint particles. */
-static int local_pair(const gr_dsmc *d, int cx, int cy)
+static int local_pool(const gr_dsmc *d, size_t c, const gr_dsmc_pool *p)
 {
-    if (cx < 1 || cy < 1 || cx > d->gx - 2 || cy > d->gy - 2)
-        return 0;
-    size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx, tot = 0;
-    if (cell_count(d, c) != 2)
-        return 0;
-    for (int y = cy - 1; y <= cy + 1; y++)
-        tot += d->start[(size_t)y * (size_t)d->gx + (size_t)(cx + 2)] - d->start[(size_t)y * (size_t)d->gx + (size_t)(cx - 1)];
-    return tot > 2;
+    int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
+    return cx >= 1 && cy >= 1 && cx <= d->gx - 2 && cy <= d->gy - 2 && p->lo[0] == cx - 1 && p->hi[0] == cx + 1 &&
+           p->lo[1] == cy - 1 && p->hi[1] == cy + 1;
 }
 
 /* The cells of two whose pool is local, colour by colour, a colour's rows
@@ -192,9 +183,14 @@ static void pairs_local(gr_dsmc *d, int T, tally *rt)
 #pragma omp parallel for schedule(dynamic, 4) num_threads(T) if (T > 1)
         for (int cy = 1 + (k / 3 + 2) % 3; cy <= d->gy - 2; cy += 3) {
             tally y = {0, 0, 0, 0.0};
-            for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3)
-                if (local_pair(d, cx, cy))
-                    collide_cell(d, (size_t)cy * (size_t)d->gx + (size_t)cx, &y);
+            for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3) {
+                size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
+                if (cell_count(d, c) != 2)
+                    continue;
+                gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
+                if (local_pool(d, c, &p))
+                    collide_cell(d, c, &p, &y);
+            }
             rt[(size_t)k * (size_t)d->gy + (size_t)cy] = y;
         }
     }
@@ -222,14 +218,17 @@ int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
         tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
         for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
             if (cell_count(d, c) > 2)
-                collide_cell(d, c, &y);
+                collide_cell(d, c, NULL, &y);
         blk[b] = y;
     }
     pairs_local(d, T, blk + nb);
     tally *rest = blk + nb + nr;
     for (size_t c = 0; c < nc; c++)
-        if (cell_count(d, c) == 2 && !local_pair(d, (int)(c % (size_t)d->gx), (int)(c / (size_t)d->gx)))
-            collide_cell(d, c, rest);
+        if (cell_count(d, c) == 2) {
+            gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
+            if (!local_pool(d, c, &p))
+                collide_cell(d, c, &p, rest);
+        }
     for (size_t b = 0; b <= nb + nr; b++) {
         d->pairs += blk[b].pairs, d->cand += blk[b].cand, d->stand_ins += blk[b].stand_ins;
         d->virial += blk[b].virial;
