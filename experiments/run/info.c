@@ -6,7 +6,9 @@
 
 #include "cmd.h"
 #include "h5md.h"
+#include "method.h"
 #include "opts.h"
+#include "scene.h"
 
 static void usage(FILE *f)
 {
@@ -33,14 +35,48 @@ static size_t count_lines(const char *s)
     return n;
 }
 
+/* The sides as the scene states them (wall, periodic, open), with the
+ * scene's wall segments; H5MD's per-axis boundary ("none" for anything
+ * not periodic) alone would call a box with walls unbounded. */
+static void describe_sides(const gr_h5md_info *in, char *buf, size_t n)
+{
+    static const char *const bc[] = {"wall", "periodic", "open"};
+    const char *names[GR_MAX_METHODS + 1];
+    gr_method_names(names, GR_MAX_METHODS + 1);
+    gr_err e = {0};
+    gr_scene *sc = in->scene_text ? gr_scene_parse(in->scene_text, in->path, names, &e) : NULL;
+    /* a scene changed after parsing (a test's) is told by the file's axes */
+    if (sc && ((sc->side[GR_LEFT] == GR_BC_PERIODIC) != !!in->periodic[0] ||
+               (sc->side[GR_BOTTOM] == GR_BC_PERIODIC) != !!in->periodic[1])) {
+        gr_scene_free(sc);
+        sc = NULL;
+    }
+    if (!sc) {
+        snprintf(buf, n, "boundaries x %s, y %s (H5MD)", in->periodic[0] ? "periodic" : "not periodic",
+                 in->periodic[1] ? "periodic" : "not periodic");
+        return;
+    }
+    const gr_bc *s = sc->side;
+    if (s[GR_LEFT] == s[GR_RIGHT] && s[GR_BOTTOM] == s[GR_TOP])
+        snprintf(buf, n, "sides x %s, y %s", bc[s[GR_LEFT]], bc[s[GR_BOTTOM]]);
+    else
+        snprintf(buf, n, "sides left %s, right %s, bottom %s, top %s", bc[s[GR_LEFT]], bc[s[GR_RIGHT]],
+                 bc[s[GR_BOTTOM]], bc[s[GR_TOP]]);
+    size_t k = strlen(buf);
+    if (sc->nsegments > 0 && k < n)
+        snprintf(buf + k, n - k, ", %d wall segment%s", sc->nsegments, sc->nsegments > 1 ? "s" : "");
+    gr_scene_free(sc);
+}
+
 static int print_frames(gr_h5md_reader *r, const gr_h5md_info *in, gr_err *err)
 {
     if (!in->nframes && !(isfinite(in->box[0]) && isfinite(in->box[1]))) {
         printf("trajectory   none: a file of result tables (below): grano course, grano compare\n");
         return GR_OK;
     }
-    printf("box          %g x %g d; boundaries x %s, y %s\n", in->box[0], in->box[1],
-           in->periodic[0] ? "periodic" : "none", in->periodic[1] ? "periodic" : "none");
+    char sides[160];
+    describe_sides(in, sides, sizeof sides);
+    printf("box          %g x %g d; %s\n", in->box[0], in->box[1], sides);
     if (!in->nframes) {
         printf("particles    no trajectory frames\n");
         return GR_OK;

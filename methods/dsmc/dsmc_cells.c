@@ -100,38 +100,62 @@ static void permute(gr_dsmc *d, int T)
 }
 
 /* Counting sort on T threads (one alike), each over its slice of the
- * particles: a histogram per slice, the cells' starts by one pass over the cells, each
- * slice's places within a cell after the slices before it, so that the
- * order is the serial sort's (stable in array order) for every T. */
-static void sort_threads(gr_dsmc *d, int T)
+ * particles: a histogram per slice, the cells' starts by one pass over the
+ * cells, each slice's places within a cell after the slices before it, so
+ * that the order is the serial sort's (stable in array order) for every T.
+ * One thread calls the three passes without a parallel region: a region,
+ * even one an if clause turns off, costs microseconds a step, which is a
+ * small gas's whole step. */
+static void sort_count(gr_dsmc *d, int t, int T)
 {
     size_t nc = gr_dsmc_ncells(d), n = d->n, w = nc + 1;
-    uint32_t *restrict cell = d->cell, *restrict start = d->start, *restrict order = d->order, *hist = d->hist;
-#pragma omp parallel num_threads(T) if (T > 1)
+    size_t lo = n * (size_t)t / (size_t)T, hi = n * (size_t)(t + 1) / (size_t)T;
+    uint32_t *restrict cell = d->cell, *h = d->hist + (size_t)t * w;
+    memset(h, 0, w * sizeof *h);
+    for (size_t i = lo; i < hi; i++) {
+        cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : cell_of(d, d->x[i], d->y[i]);
+        h[cell[i]]++;
+    }
+}
+
+static void sort_starts(gr_dsmc *d, int T)
+{
+    size_t w = gr_dsmc_ncells(d) + 1;
+    uint32_t *restrict start = d->start, *hist = d->hist, sum = 0;
+    for (size_t c = 0; c < w; c++) {
+        start[c] = sum;
+        for (int u = 0; u < T; u++) {
+            uint32_t k = hist[(size_t)u * w + c];
+            hist[(size_t)u * w + c] = sum, sum += k;
+        }
+    }
+    start[w] = sum;
+}
+
+static void sort_place(gr_dsmc *d, int t, int T)
+{
+    size_t n = d->n, w = gr_dsmc_ncells(d) + 1;
+    size_t lo = n * (size_t)t / (size_t)T, hi = n * (size_t)(t + 1) / (size_t)T;
+    const uint32_t *restrict cell = d->cell;
+    uint32_t *restrict order = d->order, *h = d->hist + (size_t)t * w;
+    for (size_t i = lo; i < hi; i++)
+        order[h[cell[i]]++] = (uint32_t)i;
+}
+
+static void sort_threads(gr_dsmc *d, int T)
+{
+    if (T == 1) {
+        sort_count(d, 0, 1), sort_starts(d, 1), sort_place(d, 0, 1);
+        return;
+    }
+#pragma omp parallel num_threads(T)
     {
         int t = gr_dsmc_thread();
-        size_t lo = n * (size_t)t / (size_t)T, hi = n * (size_t)(t + 1) / (size_t)T;
-        uint32_t *h = hist + (size_t)t * w;
-        memset(h, 0, w * sizeof *h);
-        for (size_t i = lo; i < hi; i++) {
-            cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : cell_of(d, d->x[i], d->y[i]);
-            h[cell[i]]++;
-        }
+        sort_count(d, t, T);
 #pragma omp barrier
 #pragma omp single
-        {
-            uint32_t sum = 0;
-            for (size_t c = 0; c < w; c++) {
-                start[c] = sum;
-                for (int u = 0; u < T; u++) {
-                    uint32_t k = hist[(size_t)u * w + c];
-                    hist[(size_t)u * w + c] = sum, sum += k;
-                }
-            }
-            start[w] = sum;
-        }
-        for (size_t i = lo; i < hi; i++)
-            order[h[cell[i]]++] = (uint32_t)i;
+        sort_starts(d, T);
+        sort_place(d, t, T);
     }
 }
 

@@ -175,25 +175,49 @@ static int local_pool(const gr_dsmc *d, size_t c, const gr_dsmc_pool *p)
            p->lo[1] == cy - 1 && p->hi[1] == cy + 1;
 }
 
+/* Row cy of colour k's cells of two whose pool is local. */
+static void pairs_row(gr_dsmc *d, int k, int cy, tally *out)
+{
+    tally y = {0, 0, 0, 0.0};
+    for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3) {
+        size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
+        if (cell_count(d, c) != 2)
+            continue;
+        gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
+        if (local_pool(d, c, &p))
+            collide_cell(d, c, &p, &y);
+    }
+    *out = y;
+}
+
 /* The cells of two whose pool is local, colour by colour, a colour's rows
- * on the threads; each row's tally its own (rt: 9 x gy). */
+ * on the threads; each row's tally its own (rt: 9 x gy). One thread runs
+ * the rows without a parallel region: nine regions a step, even turned
+ * off by an if clause, cost more than a small gas's collisions. */
 static void pairs_local(gr_dsmc *d, int T, tally *rt)
 {
     for (int k = 0; k < 9; k++) {
-#pragma omp parallel for schedule(dynamic, 4) num_threads(T) if (T > 1)
-        for (int cy = 1 + (k / 3 + 2) % 3; cy <= d->gy - 2; cy += 3) {
-            tally y = {0, 0, 0, 0.0};
-            for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3) {
-                size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
-                if (cell_count(d, c) != 2)
-                    continue;
-                gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
-                if (local_pool(d, c, &p))
-                    collide_cell(d, c, &p, &y);
-            }
-            rt[(size_t)k * (size_t)d->gy + (size_t)cy] = y;
+        int cy0 = 1 + (k / 3 + 2) % 3;
+        tally *r = rt + (size_t)k * (size_t)d->gy;
+        if (T == 1) {
+            for (int cy = cy0; cy <= d->gy - 2; cy += 3)
+                pairs_row(d, k, cy, &r[cy]);
+            continue;
         }
+#pragma omp parallel for schedule(dynamic, 4) num_threads(T)
+        for (int cy = cy0; cy <= d->gy - 2; cy += 3)
+            pairs_row(d, k, cy, &r[cy]);
     }
+}
+
+/* Block b's cells of three or more. */
+static void crowded_block(gr_dsmc *d, size_t b, size_t nc, tally *out)
+{
+    tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
+    for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
+        if (cell_count(d, c) > 2)
+            collide_cell(d, c, NULL, &y);
+    *out = y;
 }
 
 /* Three passes. The cells of three or more particles touch only their own
@@ -213,13 +237,13 @@ int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
     tally *blk = calloc(nb + nr + 1, sizeof *blk);
     if (!blk)
         return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(T) if (T > 1)
-    for (size_t b = 0; b < nb; b++) {
-        tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
-        for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
-            if (cell_count(d, c) > 2)
-                collide_cell(d, c, NULL, &y);
-        blk[b] = y;
+    if (T == 1) {
+        for (size_t b = 0; b < nb; b++)
+            crowded_block(d, b, nc, &blk[b]);
+    } else {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(T)
+        for (size_t b = 0; b < nb; b++)
+            crowded_block(d, b, nc, &blk[b]);
     }
     pairs_local(d, T, blk + nb);
     tally *rest = blk + nb + nr;

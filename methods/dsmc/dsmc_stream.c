@@ -218,10 +218,34 @@ static int stream_slices(gr_dsmc *d, double t, double h, int T)
 }
 
 /* Without walls nor gravity a flight is a straight line: the loop the
- * compiler vectorises, then the periodic wrap and the open sides. Each
- * particle's flight is its own: on the threads, but for a floor that
- * draws its phase from the instance's sequential stream (sine-hf) and
- * the open stress window (its accumulator is shared). */
+ * compiler vectorises over particles [lo, hi), then the periodic wrap and
+ * the open sides; the particles lost. */
+static uint64_t straight_flights(gr_dsmc *d, size_t lo, size_t hi, double h)
+{
+    double *restrict x = d->x, *restrict y = d->y;
+    const double *restrict vx = d->vx, *restrict vy = d->vy;
+    const gr_bc *s = d->sc.side;
+    int torus = s[GR_LEFT] == GR_BC_PERIODIC && s[GR_BOTTOM] == GR_BC_PERIODIC;
+    double Lx = d->Lx, Ly = d->Ly;
+    uint64_t lost = 0;
+    for (size_t i = lo; i < hi; i++)
+        x[i] += vx[i] * h, y[i] += vy[i] * h;
+    for (size_t i = lo; i < hi; i++) {
+        /* the common case of a torus: at most one box length per step */
+        if (torus && x[i] >= -Lx && x[i] < 2 * Lx && y[i] >= -Ly && y[i] < 2 * Ly) {
+            x[i] += x[i] < 0 ? Lx : x[i] >= Lx ? -Lx : 0.0;
+            y[i] += y[i] < 0 ? Ly : y[i] >= Ly ? -Ly : 0.0;
+        } else if (!(d->rank[i] & GR_DSMC_GONE)) {
+            lost += (uint64_t)boundaries(d, i);
+        }
+    }
+    return lost;
+}
+
+/* Each particle's flight is its own: on the threads (one thread without a
+ * parallel region, whose fixed cost is a small gas's whole step), but for
+ * a floor that draws its phase from the instance's sequential stream
+ * (sine-hf) and the open stress window (its accumulator is shared). */
 void gr_dsmc_stream_all(gr_dsmc *d, double t, double h)
 {
     int T = d->par.threads > 1 ? d->par.threads : 1;
@@ -232,27 +256,15 @@ void gr_dsmc_stream_all(gr_dsmc *d, double t, double h)
         (void)stream_slices(d, t, h, T);
         return;
     }
-    double *restrict x = d->x, *restrict y = d->y;
-    const double *restrict vx = d->vx, *restrict vy = d->vy;
-    const gr_bc *s = d->sc.side;
-    int torus = s[GR_LEFT] == GR_BC_PERIODIC && s[GR_BOTTOM] == GR_BC_PERIODIC;
-    double Lx = d->Lx, Ly = d->Ly;
+    if (T == 1) {
+        d->lost += straight_flights(d, 0, n, h);
+        return;
+    }
     uint64_t lost = 0;
-#pragma omp parallel num_threads(T) if (T > 1) reduction(+ : lost)
+#pragma omp parallel num_threads(T) reduction(+ : lost)
     {
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++)
-            x[i] += vx[i] * h, y[i] += vy[i] * h;
-#pragma omp for schedule(static)
-        for (size_t i = 0; i < n; i++) {
-            /* the common case of a torus: at most one box length per step */
-            if (torus && x[i] >= -Lx && x[i] < 2 * Lx && y[i] >= -Ly && y[i] < 2 * Ly) {
-                x[i] += x[i] < 0 ? Lx : x[i] >= Lx ? -Lx : 0.0;
-                y[i] += y[i] < 0 ? Ly : y[i] >= Ly ? -Ly : 0.0;
-            } else if (!(d->rank[i] & GR_DSMC_GONE)) {
-                lost += (uint64_t)boundaries(d, i);
-            }
-        }
+        int k = gr_dsmc_thread();
+        lost += straight_flights(d, n * (size_t)k / (size_t)T, n * (size_t)(k + 1) / (size_t)T, h);
     }
     d->lost += lost;
 }
