@@ -40,28 +40,69 @@ static int require_pairs(const course_opts *o, const char *ex, gr_err *err)
 
 static void usage(FILE *f)
 {
-    fprintf(f, "usage: grano course EXERCISE [--method M] [--quick] [--out DIR] [--naive|--tree]\n"
-               "                    [--alpha A] [--seed S] [--force] [--help] [--version]\n\n"
+    fprintf(f, "usage: grano course EXERCISE [--method M] [--quick] [--out DIR] [--naive|--tree] [--seed S]\n"
+               "                    [--n N] [--eta ETA | --box L] [--alpha A] [--collisions C] [--time T]\n"
+               "                    [--runs R] [--force] [--help] [--version]\n\n"
                "The exercises of the lecture slides on event-driven hard disks (docs/course.md):\n"
-               "  maxwell    speed histograms after N/2, N, 2N, 3N, 10N collisions against Maxwell's law\n"
+               "  maxwell    speed histograms after N/2, N, 2N, 3N, C N collisions against Maxwell's law\n"
+               "             (--n, --eta or --box, --collisions C (> 3, default 10), --runs)\n"
                "  pressure   wall pressure against the density n = N/L^2 and against V0\n"
-               "  cooling    homogeneous cooling of inelastic disks against Haff's law (--alpha, default 0.9)\n"
-               "  all        the three in turn\n"
+               "             (--box, --n of the sweep against V0, --time of the measurement)\n"
+               "  cooling    homogeneous cooling of inelastic disks against Haff's law\n"
+               "             (--n, --eta or --box, --alpha, --collisions)\n"
+               "  all        the three in turn (each takes the flags it uses)\n"
                "--method M: the method (default edmd); every exercise counts disk-disk collisions, so\n"
                "the method must give the counter 'pair_collisions'. --out DIR: where the .h5, .dat\n"
                "and .png files go (default course-out); --quick: small runs for tests; --naive: the\n"
                "slides' algorithm v1.0 (edmd's algorithm = naive, the default for maxwell) instead\n"
-               "of the event tree; --tree forces the tree. An exercise's existing result file\n"
-               "DIR/EXERCISE.h5 is replaced only with --force.\n");
+               "of the event tree; --tree forces the tree; --seed S: the first start's seed.\n"
+               "--n N: disks (2 .. 10^7); --eta ETA: packing fraction N pi d^2/(4 L^2) in (0, 0.75);\n"
+               "--box L: the square box's side in d; --alpha A: restitution in (0, 1]; --collisions C:\n"
+               "run length in collisions per disk; --time T: pressure's measurement in L/V0; --runs R:\n"
+               "independent starts pooled. A flag an exercise does not use is refused by name.\n"
+               "An exercise's existing result file DIR/EXERCISE.h5 is replaced only with --force.\n");
 }
 
 enum { O_QUICK = 'Q', O_NAIVE = 0x100, O_TREE, O_OUT = 'o', O_METHOD = 'm', O_ALPHA = 0x103, O_SEED = 's',
-       O_FORCE = 'f' };
+       O_FORCE = 'f', O_N = 0x110, O_ETA, O_BOX, O_COLL, O_TIME, O_RUNS };
 
 typedef struct {
     course_opts *o;
     const char *method;
 } parse_ctx;
+
+/* The parameters' flags, their bits, and the exercises that use them. */
+static const struct {
+    const char *flag;
+    unsigned bit;
+    const char *used_by; /* space-separated exercises */
+} params[] = {
+    {"--n", COURSE_N, "maxwell pressure cooling"},       {"--eta", COURSE_ETA, "maxwell cooling"},
+    {"--box", COURSE_BOX, "maxwell pressure cooling"},   {"--alpha", COURSE_ALPHA, "cooling"},
+    {"--collisions", COURSE_COLLISIONS, "maxwell cooling"}, {"--time", COURSE_TIME, "pressure"},
+    {"--runs", COURSE_RUNS, "maxwell"},
+};
+#define NPARAMS (sizeof params / sizeof params[0])
+
+static const char *const ex_params[] = {
+    "maxwell", "--n, --eta or --box, --collisions, --runs",
+    "pressure", "--n, --box, --time",
+    "cooling", "--n, --eta or --box, --alpha, --collisions",
+};
+
+static int real_opt(course_opts *o, unsigned bit, const char *flag, const char *arg, double lo, int lo_open,
+                    double hi, int hi_open, double *v, gr_err *err)
+{
+    o->given |= bit;
+    return exp_opt_interval(flag, arg, lo, lo_open, hi, hi_open, v, err);
+}
+
+static int int_opt(course_opts *o, unsigned bit, const char *flag, const char *arg, long lo, long hi, long *v,
+                   gr_err *err)
+{
+    o->given |= bit;
+    return exp_opt_long(flag, arg, lo, hi, v, err);
+}
 
 static int one_option(void *ctx, int id, const char *arg, gr_err *err)
 {
@@ -75,7 +116,13 @@ static int one_option(void *ctx, int id, const char *arg, gr_err *err)
     case O_FORCE: o->force = 1; return 0;
     case O_OUT: o->out = arg; return 0;
     case O_METHOD: c->method = arg; return 0;
-    case O_ALPHA: return exp_opt_double("--alpha", arg, 1e-9, 1 - 1e-9, &o->alpha, err);
+    case O_ALPHA: return real_opt(o, COURSE_ALPHA, "--alpha", arg, 0, 1, 1, 0, &o->alpha, err);
+    case O_ETA: return real_opt(o, COURSE_ETA, "--eta", arg, 0, 1, 0.75, 1, &o->eta, err);
+    case O_BOX: return real_opt(o, COURSE_BOX, "--box", arg, 0, 1, 1e6, 0, &o->box, err);
+    case O_COLL: return real_opt(o, COURSE_COLLISIONS, "--collisions", arg, 0, 1, 1e4, 0, &o->collisions, err);
+    case O_TIME: return real_opt(o, COURSE_TIME, "--time", arg, 0, 1, 1e6, 0, &o->time, err);
+    case O_N: return int_opt(o, COURSE_N, "--n", arg, 2, 10000000, &o->n, err);
+    case O_RUNS: return int_opt(o, COURSE_RUNS, "--runs", arg, 1, 100000, &o->runs, err);
     case O_SEED:
         if (exp_opt_long("--seed", arg, 0, LONG_MAX, &seed, err))
             return err->code;
@@ -83,6 +130,30 @@ static int one_option(void *ctx, int id, const char *arg, gr_err *err)
         return 0;
     default: return gr_fail(err, GR_EINPUT, "unknown option");
     }
+}
+
+/* A parameter the exercise does not use is refused by name (with `all`,
+ * one that none uses cannot be given). */
+static int check_params(const course_opts *o, const char *ex)
+{
+    if ((o->given & COURSE_ETA) && (o->given & COURSE_BOX)) {
+        fprintf(stderr, "grano course: --eta and --box both set the box; give one\n");
+        return 2;
+    }
+    if (!strcmp(ex, "all"))
+        return 0;
+    for (size_t k = 0; k < NPARAMS; k++) {
+        if (!(o->given & params[k].bit) || strstr(params[k].used_by, ex))
+            continue;
+        const char *mine = "";
+        for (size_t e = 0; e < sizeof ex_params / sizeof *ex_params; e += 2)
+            if (!strcmp(ex_params[e], ex))
+                mine = ex_params[e + 1];
+        fprintf(stderr, "grano course %s: %s is not a parameter of this exercise (%s takes %s, --seed, --method)\n",
+                ex, params[k].flag, ex, mine);
+        return 2;
+    }
+    return 0;
 }
 
 /* Options into o and the exercise; 0, -1 (help or version printed: exit
@@ -94,6 +165,9 @@ static int parse(int argc, char **argv, course_opts *o, const char **ex)
         {"tree", no_argument, NULL, O_TREE},          {"out", required_argument, NULL, O_OUT},
         {"method", required_argument, NULL, O_METHOD}, {"alpha", required_argument, NULL, O_ALPHA},
         {"seed", required_argument, NULL, O_SEED},    {"force", no_argument, NULL, O_FORCE},
+        {"n", required_argument, NULL, O_N},          {"eta", required_argument, NULL, O_ETA},
+        {"box", required_argument, NULL, O_BOX},      {"collisions", required_argument, NULL, O_COLL},
+        {"time", required_argument, NULL, O_TIME},    {"runs", required_argument, NULL, O_RUNS},
         {NULL, 0, NULL, 0}};
     parse_ctx c = {o, "edmd"};
     gr_err err = {0};
@@ -150,14 +224,16 @@ int cmd_course(int argc, char **argv)
         usage(stderr);
         return 2;
     }
+    if ((rc = check_params(&o, ex)))
+        return rc;
     gsl_set_error_handler_off();
     gr_err err = {0};
     if ((rc = require_pairs(&o, ex, &err))) {
         fprintf(stderr, "grano course %s: %s\n", ex, err.msg);
         return rc;
     }
-    if (mkdir(o.out, 0777) && errno != EEXIST) {
-        fprintf(stderr, "grano course: cannot create %s: %s\n", o.out, strerror(errno));
+    if (exp_mkdirs(o.out, &err)) {
+        fprintf(stderr, "grano course: --out %s\n", err.msg);
         return 2;
     }
     if ((rc = check_results(&o, ex, all)))

@@ -13,15 +13,34 @@
 #include "progress.h"
 #include "scene.h"
 
+/* The flags that set an exercise's parameters, as bits of course_opts.given:
+ * an exercise refuses by name a flag it does not use. */
+enum {
+    COURSE_N = 1u << 0,
+    COURSE_ETA = 1u << 1,
+    COURSE_BOX = 1u << 2,
+    COURSE_ALPHA = 1u << 3,
+    COURSE_COLLISIONS = 1u << 4,
+    COURSE_TIME = 1u << 5,
+    COURSE_RUNS = 1u << 6
+};
+
 typedef struct {
     const char *out;
     int quick;
     int naive;     /* [edmd] algorithm = naive (v1.0 of the slides) instead of the tree */
-    double alpha;  /* cooling */
     unsigned long seed;
     int force;     /* replace existing result files */
     const gr_method_type *m;
     gr_progress *pg; /* the exercise's progress line on a terminal (NULL: none) */
+    unsigned given;  /* COURSE_* bits of the flags given; the values below */
+    long n;          /* --n: disks (pressure: of the sweep against V0) */
+    double eta;      /* --eta: packing fraction N pi d^2 / (4 L^2) */
+    double box;      /* --box: side L of the square box / d */
+    double alpha;    /* --alpha: restitution (cooling) */
+    double collisions; /* --collisions: run length in collisions per disk */
+    double time;     /* --time: pressure's measurement window in L / V0 */
+    long runs;       /* --runs: independent starts pooled (maxwell) */
 } course_opts;
 
 /* The scene of text (the keys of a scene file) with the method's section,
@@ -40,8 +59,28 @@ int course_advance_pairs(gr_sim *s, uint64_t target, gr_err *err);
  * "algorithm tree" for edmd, the method's name for the others. */
 const char *course_how(const course_opts *o);
 
+/* The side of a square box of n disks: --box, or from --eta, or from the
+ * exercise's packing fraction eta0; GR_EINPUT naming the flag when the
+ * disks do not fit on the starting square lattice (spacing below 1 d). */
+int course_box(const course_opts *o, long n, double eta0, double *L, gr_err *err);
+
 /* The exercise's HDF5 result file at <out>/<name>, labelled with the method. */
 gr_h5md *course_h5(const course_opts *o, const char *name, const gr_scene *sc, gr_err *err);
+
+/* Whether a cooling gas is still homogeneous (course_hcs.c): its box
+ * against the shear instability's length L_c, and the momentum and number
+ * density modes of wavelength above L_c (the first shell when L < L_c)
+ * against a homogeneous gas's (1 each). */
+typedef struct {
+    double lc;      /* L_c / d */
+    int modes;      /* wave vectors averaged over */
+    double flow;    /* <|j_k|^2> / (2 N T): vortices when well above 1 */
+    double density; /* <|rho_k|^2> / N: clusters when well above 1 */
+} course_hcs;
+double course_hcs_lc(double n, double chi, double alpha);
+int course_hcs_measure(const gr_particles *p, double L, double alpha, double chi, course_hcs *h);
+/* The number density of cells as a map, their mean velocities as arrows. */
+int course_hcs_plot(const char *png, const gr_particles *p, double L, double t, const char *title, gr_err *err);
 
 int course_maxwell(const course_opts *o, gr_err *err);
 int course_pressure(const course_opts *o, gr_err *err);

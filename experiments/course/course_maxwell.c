@@ -1,6 +1,7 @@
 /* grano course maxwell: elastic disks started at one speed relax to
  * Maxwell's speed distribution within a few collisions per disk; the
- * distance to it after C/N = 0.5, 1, 2, 3, 10 collisions per disk. */
+ * distance to it after C/N = 0.5, 1, 2, 3 and --collisions (10) collisions
+ * per disk. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,11 +14,11 @@
 
 #define NSTAGE 5
 #define NBIN 24
-static const double stage[NSTAGE] = {0.5, 1, 2, 3, 10};
 
 typedef struct {
     long n, runs;
     double L, v0;
+    double stage[NSTAGE];     /* collisions per disk at each histogram */
     double *speeds;           /* [stage][run * n + i] */
     gr_hist *hist[NSTAGE];
     gr_scene *sc0;            /* the first run's scene, for the result file */
@@ -49,7 +50,7 @@ static int one_run(const course_opts *o, maxwell *w, long r, gr_err *err)
     gr_particles *p = gr_particles_create((size_t)n, err);
     int rc = !p ? err->code : course_pairs(s, "grano course maxwell", &pairs, err);
     for (int k = 0; k < NSTAGE && !rc; k++) {
-        if ((rc = course_advance_pairs(s, (uint64_t)(stage[k] * n), err)) || (rc = gr_sim_snapshot(s, p, err)))
+        if ((rc = course_advance_pairs(s, (uint64_t)(w->stage[k] * n), err)) || (rc = gr_sim_snapshot(s, p, err)))
             break;
         for (long i = 0; i < n; i++) {
             double v = hypot(p->vx[i], p->vy[i]);
@@ -78,7 +79,7 @@ static int distances(maxwell *w, gr_err *err)
             gr_hist_chi2(w->hist[k], maxwell_cdf, &v0, 5, &chi2, &dof, &pv, err))
             return err->code ? err->code : GR_ERUN;
         gr_hist_density(w->hist[k], centre, dens[k], NULL);
-        double row[5] = {stage[k], w->ks[k], chi2, dof, pv};
+        double row[5] = {w->stage[k], w->ks[k], chi2, dof, pv};
         memcpy(w->tab + 5 * k, row, sizeof row);
     }
     for (int b = 0; b < NBIN; b++) {
@@ -110,15 +111,18 @@ static int write_results(const course_opts *o, const maxwell *w, gr_err *err)
     if (!f)
         return gr_fail(err, GR_ERUN, "%s: cannot append", path);
     /* Two blank lines end a data set for gnuplot's `index`. */
-    fprintf(f, "\n\n# v f(v) at C/N = 0.5 1 2 3 10, Maxwell 2v/V0^2 exp(-v^2/V0^2)   (data set 1)\n");
+    fprintf(f, "\n\n# v f(v) at C/N = 0.5 1 2 3 %g, Maxwell 2v/V0^2 exp(-v^2/V0^2)   (data set 1)\n", w->stage[NSTAGE - 1]);
     print_rows(f, w->htab, NBIN, NSTAGE + 2);
     if (fclose(f))
         return gr_fail(err, GR_ERUN, "%s: write failed", path);
+    char what[128];
+    snprintf(what, sizeof what, "speed, density at C/N = 0.5 1 2 3 %g, Maxwell 2v/V0^2 exp(-v^2/V0^2)",
+             w->stage[NSTAGE - 1]);
     gr_h5md *h = course_h5(o, "maxwell.h5", w->sc0, err);
     int rc = !h || exp_put_result(h, "maxwell/distance", NSTAGE, 5, "collisions_per_grain,ks,chi2,dof,pvalue",
                                   "distance to Maxwell after C/N collisions", w->tab, err) ||
              exp_put_result(h, "maxwell/histograms", NBIN, NSTAGE + 2, NULL,
-                            "speed, density at C/N = 0.5 1 2 3 10, Maxwell 2v/V0^2 exp(-v^2/V0^2)", w->htab, err);
+                            what, w->htab, err);
     if (h)
         rc = gr_h5md_close(h, err) || rc;
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
@@ -137,16 +141,17 @@ static int plot(const course_opts *o, const maxwell *w, gr_err *err)
             fprintf(gp, "%.6g%c", w->htab[b * (NSTAGE + 2) + c], c + 1 < NSTAGE + 2 ? ' ' : '\n');
     fprintf(gp, "EOD\n$k << EOD\n");
     for (int k = 0; k < NSTAGE; k++)
-        fprintf(gp, "%g %g\n", stage[k], w->ks[k]);
+        fprintf(gp, "%g %g\n", w->stage[k], w->ks[k]);
     fprintf(gp, "EOD\nset multiplot layout 1,2\n");
     fprintf(gp, "set title 'Speed histograms, %ld disks x %ld runs'\nset xlabel 'v / V_0'\n"
                 "set ylabel 'f(v) / V_0^{-1}'\nset key top right\n", w->n, w->runs);
-    fprintf(gp, "plot for [k=2:6] $h u 1:k w histeps lw 2 t sprintf('C/N = %%s', word('0.5 1 2 3 10', k-1)), "
-                "2*x*exp(-x*x) w l lw 3 dt 2 lc 'black' t 'Maxwell'\n");
+    fprintf(gp, "plot for [k=2:6] $h u 1:k w histeps lw 2 t sprintf('C/N = %%s', word('0.5 1 2 3 %g', k-1)), "
+                "2*x*exp(-x*x) w l lw 3 dt 2 lc 'black' t 'Maxwell'\n", w->stage[NSTAGE - 1]);
     fprintf(gp, "set title 'Kolmogorov-Smirnov distance to Maxwell'\nset xlabel 'collisions per disk C/N'\n"
-                "set ylabel 'KS distance D (dimensionless)'\nset logscale xy\nunset key\n");
-    fprintf(gp, "plot $k w lp pt 7 lw 2, %g w l dt 2 lc 'black'\nunset multiplot\n",
-            0.87 / sqrt((double)(w->n * w->runs)));
+                "set ylabel 'KS distance D (dimensionless)'\nset logscale xy\nset key top right\n");
+    fprintf(gp, "plot $k w lp pt 7 lw 2 t 'measured', %g w l dt 2 lc 'black' t 'noise of %ld exact Maxwell samples'\n"
+                "unset multiplot\n",
+            0.87 / sqrt((double)(w->n * w->runs)), w->n * w->runs);
     return gr_plot_close(gp, path, err);
 }
 
@@ -166,7 +171,17 @@ static void report(const course_opts *o, const maxwell *w)
 
 int course_maxwell(const course_opts *o, gr_err *err)
 {
-    maxwell w = {.n = o->quick ? 100 : 400, .runs = o->quick ? 4 : 25, .L = o->quick ? 20 : 40, .v0 = 1.0};
+    maxwell w = {.n = (o->given & COURSE_N) ? o->n : o->quick ? 100 : 400,
+                 .runs = (o->given & COURSE_RUNS) ? o->runs : o->quick ? 4 : 25,
+                 .v0 = 1.0,
+                 .stage = {0.5, 1, 2, 3, (o->given & COURSE_COLLISIONS) ? o->collisions : 10}};
+    /* the slides' box: packing fraction pi/16 (400 disks in 40 x 40) */
+    if (course_box(o, w.n, M_PI / 16, &w.L, err))
+        return err->code;
+    if (!(w.stage[NSTAGE - 1] > w.stage[NSTAGE - 2]))
+        return gr_fail(err, GR_EINPUT, "--collisions: maxwell's last histogram (%g collisions per disk) must come "
+                                       "after its fourth, at 3",
+                       w.stage[NSTAGE - 1]);
     size_t ns = (size_t)(w.n * w.runs);
     w.speeds = malloc(NSTAGE * ns * sizeof *w.speeds);
     int rc = w.speeds ? GR_OK : gr_fail(err, GR_ERUN, "out of memory");

@@ -12,12 +12,15 @@
 #include "plot.h"
 #include "table.h"
 
-static const double L = 20.0;
-#define NFIX 100
+/* The densities of the sweep, as disks in the default 20 x 20 box (--box
+ * scales them with the area). */
 static const long ns_full[] = {4, 8, 16, 32, 64, 100, 144, 196, 256, 324}, ns_quick[] = {4, 16, 64, 196};
 static const double v0s[] = {0.5, 1, 1.5, 2, 3};
 
 typedef struct {
+    double L, t_meas; /* box side; measurement window in L / V0 */
+    long nfix;        /* disks of the sweep against V0 */
+    long ns[10];      /* disks of the sweep against n */
     int nn, nv;
     double A[10 * 6]; /* N n p nT ideal_box eos_box */
     double B[5 * 3];  /* V0 p p/V0^2 */
@@ -27,22 +30,22 @@ typedef struct {
 /* Mean wall pressure p of n elastic disks of speed v0 in an L x L box, the
  * kinetic energy per disk T, and the disk-disk collisions per disk of the
  * measurement. */
-static int wall_pressure(const course_opts *o, unsigned long seed, long n, double v0, double *p, double *T,
-                         double *cpn, gr_err *err)
+static int wall_pressure(const course_opts *o, const pressure *w, unsigned long seed, long n, double v0, double *p,
+                         double *T, double *cpn, gr_err *err)
 {
     char text[1024];
     snprintf(text, sizeof text,
              "[scene]\nname = course-pressure\nseed = %lu\n[domain]\nwidth = %g\nheight = %g\n"
              "[material]\nrestitution = 1\n[species]\ndiameter = 1\ncount = %ld\n"
              "[init]\nkind = lattice\nspacing = %g\nvelocity = speed\nv0 = %g\n",
-             seed, L, L, n, fmin(10.0, 0.99 * L / ceil(sqrt((double)n))), v0);
+             seed, w->L, w->L, n, fmin(10.0, 0.99 * w->L / ceil(sqrt((double)n))), v0);
     gr_scene *sc;
     gr_sim *s;
     if (course_sim(text, o, NULL, &sc, &s, err))
         return err->code;
     /* relax (the speeds reach Maxwell's law in a few collisions per disk),
      * then average over a time with many wall hits per disk */
-    double t_relax = 20 * L / v0, t_meas = (o->quick ? 200 : 500) * L / v0;
+    double t_relax = 20 * w->L / v0, t_meas = w->t_meas * w->L / v0;
     uint64_t c0 = 0, c1 = 0;
     int rc = course_pairs(s, "grano course pressure", &c0, err);
     if (!rc)
@@ -66,11 +69,12 @@ static int wall_pressure(const course_opts *o, unsigned long seed, long n, doubl
 
 static int against_density(const course_opts *o, pressure *w, gr_err *err)
 {
-    const long *ns = o->quick ? ns_quick : ns_full;
+    const long *ns = w->ns;
+    double L = w->L;
     printf("  N      n=N/L^2   p          n T        p/(nT)   hard-disk EOS p/(nT)   collisions/N\n");
     for (int k = 0; k < w->nn; k++) {
         double p = NAN, T = NAN, cpn = NAN;
-        if (wall_pressure(o, o->seed, ns[k], 1.0, &p, &T, &cpn, err))
+        if (wall_pressure(o, w, o->seed, ns[k], 1.0, &p, &T, &cpn, err))
             return err->code;
         double nd = ns[k] / (L * L), eta = nd * M_PI / 4;
         /* centres stay sigma/2 from the walls: the ideal gas of the box
@@ -90,11 +94,11 @@ static int against_density(const course_opts *o, pressure *w, gr_err *err)
 static int against_v0(const course_opts *o, pressure *w, gr_err *err)
 {
     gr_progress_finish(o->pg);
-    printf("  N = %d, against V0:\n  V0     p          p / V0^2\n", NFIX);
+    printf("  N = %ld, against V0:\n  V0     p          p / V0^2\n", w->nfix);
     for (int k = 0; k < w->nv; k++) {
         double p = NAN, T = NAN, cpn = NAN;
         /* a different start for each V0: the law holds on average, not by scaling */
-        if (wall_pressure(o, o->seed + 1 + (unsigned long)k, NFIX, v0s[k], &p, &T, &cpn, err))
+        if (wall_pressure(o, w, o->seed + 1 + (unsigned long)k, w->nfix, v0s[k], &p, &T, &cpn, err))
             return err->code;
         double row[3] = {v0s[k], p, p / (v0s[k] * v0s[k])};
         memcpy(w->B + 3 * k, row, sizeof row);
@@ -123,13 +127,15 @@ static int write_results(const course_opts *o, const pressure *w, gr_err *err)
     if (exp_write_dat(path, "V0 p p/V0^2", w->B, (size_t)w->nv, 3, err))
         return err->code;
     /* the scenes differ by N; the file records the box */
-    gr_scene *sc = gr_scene_parse("[domain]\nwidth = 20\nheight = 20\n[species]\ncount = 1\n", "(course pressure)",
-                                  NULL, err);
+    char text[128], vdesc[64];
+    snprintf(text, sizeof text, "[domain]\nwidth = %.17g\nheight = %.17g\n[species]\ncount = 1\n", w->L, w->L);
+    snprintf(vdesc, sizeof vdesc, "wall pressure against V0, N = %ld", w->nfix);
+    gr_scene *sc = gr_scene_parse(text, "(course pressure)", NULL, err);
     gr_h5md *h = sc ? course_h5(o, "pressure.h5", sc, err) : NULL;
     int rc = !h || exp_put_result(h, "pressure/density", (size_t)w->nn, 6, "N,n,p,nT,ideal_box,eos_box",
                                   "wall pressure against n = N/L^2, V0 = 1", w->A, err) ||
              exp_put_result(h, "pressure/v0", (size_t)w->nv, 3, "V0,p,p_over_V0sq",
-                            "wall pressure against V0, N = 100", w->B, err);
+                            vdesc, w->B, err);
     if (h)
         rc = gr_h5md_close(h, err) || rc;
     gr_scene_free(sc);
@@ -155,19 +161,43 @@ static int plot(const course_opts *o, const pressure *w, int f, gr_err *err)
                     "set ylabel 'wall pressure p / (m V_0^2 d^{-2})'\n"
                     "plot $d u 2:3 w p pt 7 ps 1.5 t 'measured', $d u 2:4 w l lw 2 t 'ideal gas n T', "
                     "$d u 2:5 w l dt 2 lw 2 t 'ideal gas, walls', $d u 2:6 w l lw 2 t 'hard disks (Luding), walls'\n",
-                L);
+                w->L);
     else
-        fprintf(gp, "set title 'Wall pressure against V_0, N = %d, L = %g d'\nset xlabel 'V_0 / u (u: the speed unit, V_0 of the density sweep)'\n"
+        fprintf(gp, "set title 'Wall pressure against V_0, N = %ld, L = %g d'\nset xlabel 'V_0 / u (u: the speed unit, V_0 of the density sweep)'\n"
                     "set ylabel 'wall pressure p / (m u^2 d^{-2})'\n"
                     "plot $d u 1:2 w p pt 7 ps 1.5 t 'measured', %.8g*x*x w l lw 2 t 'p = %.4g V_0^2'\n",
-                NFIX, L, w->c, w->c);
+                w->nfix, w->L, w->c, w->c);
     return gr_plot_close(gp, path, err);
+}
+
+/* The sweep's disks, scaled from the 20 x 20 box to L x L, each on its
+ * starting lattice (spacing at most 10 d, above 1 d). */
+static int sweep_counts(const course_opts *o, pressure *w, gr_err *err)
+{
+    const long *base = o->quick ? ns_quick : ns_full;
+    for (int k = 0; k < w->nn; k++) {
+        long n = lround((double)base[k] * w->L * w->L / 400.0);
+        w->ns[k] = n < 1 ? 1 : n;
+        if (!(0.99 * w->L / ceil(sqrt((double)w->ns[k])) > 1.0))
+            return gr_fail(err, GR_EINPUT, "--box: %ld disks do not fit on the starting lattice of a %g d box",
+                           w->ns[k], w->L);
+    }
+    if (!(0.99 * w->L / ceil(sqrt((double)w->nfix)) > 1.0))
+        return gr_fail(err, GR_EINPUT, "--n: %ld disks do not fit on the starting lattice of a %g d box", w->nfix,
+                       w->L);
+    return GR_OK;
 }
 
 int course_pressure(const course_opts *o, gr_err *err)
 {
-    pressure w = {.nn = o->quick ? 4 : 10, .nv = o->quick ? 3 : 5};
-    printf("pressure: elastic disks in a %g x %g box with walls, %s\n", L, L, course_how(o));
+    pressure w = {.nn = o->quick ? 4 : 10,
+                  .nv = o->quick ? 3 : 5,
+                  .L = (o->given & COURSE_BOX) ? o->box : 20.0,
+                  .nfix = (o->given & COURSE_N) ? o->n : 100,
+                  .t_meas = (o->given & COURSE_TIME) ? o->time : o->quick ? 200 : 500};
+    if (sweep_counts(o, &w, err))
+        return err->code;
+    printf("pressure: elastic disks in a %g x %g box with walls, %s\n", w.L, w.L, course_how(o));
     int rc = against_density(o, &w, err) || against_v0(o, &w, err) || write_results(o, &w, err) ||
              plot(o, &w, 0, err) || plot(o, &w, 1, err);
     if (rc)

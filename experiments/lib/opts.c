@@ -28,11 +28,19 @@ int exp_parse_list(const char *s, double *v, size_t cap, size_t *n)
 
 int exp_opt_double(const char *flag, const char *s, double lo, double hi, double *out, gr_err *err)
 {
+    return exp_opt_interval(flag, s, lo, 0, hi, 0, out, err);
+}
+
+int exp_opt_interval(const char *flag, const char *s, double lo, int lo_open, double hi, int hi_open, double *out,
+                     gr_err *err)
+{
     char *end;
     errno = 0;
     double v = strtod(s, &end);
-    if (end == s || *end || errno || !isfinite(v) || v < lo || v > hi)
-        return gr_fail(err, GR_EINPUT, "%s: '%s' is not a number in [%g, %g]", flag, s, lo, hi);
+    if (end == s || *end || errno || !isfinite(v) || v < lo || v > hi || (lo_open && v == lo) ||
+        (hi_open && v == hi))
+        return gr_fail(err, GR_EINPUT, "%s: '%s' is not a number in %c%g, %g%c", flag, s, lo_open ? '(' : '[', lo,
+                       hi, hi_open ? ')' : ']');
     *out = v;
     return GR_OK;
 }

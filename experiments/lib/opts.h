@@ -15,6 +15,10 @@ int exp_parse_list(const char *s, double *v, size_t cap, size_t *n);
 
 /* The whole of s a number in [lo, hi]; GR_EINPUT naming flag otherwise. */
 int exp_opt_double(const char *flag, const char *s, double lo, double hi, double *out, gr_err *err);
+/* The same with each bound open or closed, as the message states it:
+ * exp_opt_interval("--alpha", s, 0, 1, 1, 0, ...) takes (0, 1]. */
+int exp_opt_interval(const char *flag, const char *s, double lo, int lo_open, double hi, int hi_open, double *out,
+                     gr_err *err);
 int exp_opt_long(const char *flag, const char *s, long lo, long hi, long *out, gr_err *err);
 
 /* exp_getopt's answers besides GR_OK and GR_EINPUT. */
