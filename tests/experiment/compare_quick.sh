@@ -130,5 +130,11 @@ grep -v "^#" "$tmp/j1/compare.txt" | awk '{$5=""; print}' >"$tmp/b"
 diff <(grep -v "^ *$" "$tmp/a") <(grep -v "^ *$" "$tmp/b") >"$tmp/err"
 check $? "results independent of -j"
 
+# every figure's axes fit its data (the scripts replayed by gnuplot)
+if command -v gnuplot >/dev/null && [ -x /usr/bin/python3 ]; then
+    /usr/bin/python3 "$(dirname "$0")/figure_axes.py" "$tmp/q" >"$tmp/err" 2>&1
+    check $? "compare's figures: no axis five times wider than its data"
+fi
+
 echo "1..$n"
 [ $fails = 0 ]

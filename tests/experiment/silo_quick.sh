@@ -178,6 +178,12 @@ assert len(r["D"]) == len(D) * cfg["realisations"][0] and (r["steps_run"] > 0).a
 PY
 check $? "silo-flow: every fit converges (density law: or stops at a bound), Beverloo C > 0, flow rises with D, packing physical"
 
+# every figure's axes fit its data (the scripts replayed by gnuplot)
+if command -v gnuplot >/dev/null && [ -x /usr/bin/python3 ]; then
+    /usr/bin/python3 "$(dirname "$0")/figure_axes.py" "$S" "$F" >"$tmp/err" 2>&1
+    check $? "silo-start's and silo-flow's figures: no axis five times wider than its data"
+fi
+
 # --- without gnuplot on PATH: the data are written, the figures are not,
 # grano says so and exits 0 (the quick runs' parts are reused)
 mkdir -p "$tmp/nognu"
