@@ -7,6 +7,7 @@
 
 #include "cmd.h"
 #include "h5md.h"
+#include "stop.h"
 
 typedef struct {
     const char *name;
@@ -66,8 +67,14 @@ int main(int argc, char **argv)
         return stdout_checked(0);
     }
     for (size_t i = 0; i < NCOMMANDS; i++)
-        if (!strcmp(argv[1], commands[i].name))
-            return stdout_checked(commands[i].main(argc - 1, argv + 1));
+        if (!strcmp(argv[1], commands[i].name)) {
+            int rc = stdout_checked(commands[i].main(argc - 1, argv + 1));
+            /* a command that caught a stop signal has said what it kept;
+             * the program then ends as the signal would have ended it */
+            if (exp_stop_signal())
+                exp_stop_exit(exp_stop_signal());
+            return rc;
+        }
     fprintf(stderr, "grano: unknown command '%s'\n", argv[1]);
     usage(stderr);
     return 2;

@@ -44,13 +44,17 @@ int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_er
     if (!rc)
         rc = gr_sim_save(sim, ck, err);
     if (!rc && m->snapshot) {
-        /* The H5MD part makes a checkpoint readable by grano info and h5py;
-         * its frame carries the time and the run's sample count as step. */
+        /* The H5MD part makes a checkpoint readable by grano info, h5py and
+         * grano export; its frame carries the time and, as the result's
+         * frames do, the method's steps (events for an event-driven one). */
         gr_particles *p = gr_particles_create(0, err);
         gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .version = GRANO_VERSION};
+        uint64_t step = 0;
+        if (!gr_sim_counter(sim, "steps", &step) && !gr_sim_counter(sim, "events", &step))
+            step = 0;
         rc = !p ? GR_ERUN : gr_sim_snapshot(sim, p, err);
         if (!rc)
-            rc = gr_ckpt_put_h5md(ck, sc, &ho, counters[0], gr_sim_time(sim), p, err);
+            rc = gr_ckpt_put_h5md(ck, sc, &ho, step, gr_sim_time(sim), p, err);
         gr_particles_free(p);
     }
     if (rc) {

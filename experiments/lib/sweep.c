@@ -4,6 +4,7 @@
 #include "sweep.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +16,7 @@
 #include "files.h"
 #include "parts.h"
 #include "progress.h"
+#include "stop.h"
 
 /* Shared with the children (mmap'd before fork): their progress and, on
  * failure, their message. */
@@ -67,9 +69,10 @@ static size_t plan_units(const exp_sweep *sw, exp_label_fn label, exp_label_fn k
 static pid_t start_unit(exp_unit_fn fn, size_t u, char **paths, char **keys, void *ctx, unit_slot *slot)
 {
     fflush(NULL);
-    pid_t c = fork();
+    pid_t me = getpid(), c = fork();
     if (c != 0)
         return c;
+    exp_stop_worker(me);
     gr_err e = {0};
     int st = paths[u] && keys[u] ? fn(u, paths[u], keys[u], ctx, &slot[u].progress, &e)
                                  : gr_fail(&e, GR_ERUN, "out of memory");
@@ -120,6 +123,45 @@ static void free_run(unit_slot *slot, pid_t *pid, char **keys, unsigned char *to
     munmap(slot, (n + 1) * sizeof *slot);
 }
 
+/* A stop signal: the running workers are ended (a part is written whole
+ * or not at all, so theirs are simply missing) and waited for; the
+ * finished parts stay for the same command to resume from. */
+static int stop_workers(const exp_sweep *sw, pid_t *pid, size_t n, size_t finished, size_t ntodo, gr_err *err)
+{
+    size_t stopped = 0;
+    for (size_t u = 0; u < n; u++)
+        if (pid[u] > 0)
+            kill(pid[u], SIGTERM), stopped++;
+    for (size_t u = 0; u < n; u++)
+        if (pid[u] > 0) {
+            int status;
+            waitpid(pid[u], &status, 0);
+            pid[u] = 0;
+        }
+    return gr_fail(err, GR_ERUN,
+                   "stopped by %s: %zu of the %zu units to run finished (their parts kept in %s), %zu workers "
+                   "ended; the same command resumes the sweep from the finished parts",
+                   exp_stop_name(exp_stop_signal()), finished, ntodo, sw->dir, stopped);
+}
+
+int exp_sweep_and_report(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
+                          exp_label_fn key, exp_report_fn report, void *ctx, char *summary,
+                          size_t nsum, double *seconds, size_t *reused, gr_err *err)
+{
+    char **parts = calloc(sw->nunits, sizeof *parts);
+    if (!parts)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    double t0 = gr_wall_seconds();
+    int rc = exp_sweep_run(sw, fn, label, key, ctx, parts, reused, err);
+    *seconds = gr_wall_seconds() - t0;
+    if (!rc)
+        rc = report(ctx, parts, summary, nsum, err);
+    for (size_t u = 0; u < sw->nunits; u++)
+        free(parts[u]);
+    free(parts);
+    return rc;
+}
+
 int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                    exp_label_fn keyf, void *ctx, char **paths, size_t *done_before, gr_err *err)
 {
@@ -140,12 +182,17 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
         return gr_fail(err, GR_ERUN, "out of memory");
     }
     size_t ntodo = plan_units(sw, label, keyf, ctx, paths, keys, slot, todo, done_before);
+    exp_stop_install();
     gr_progress *pg = sw->progress && ntodo ? gr_progress_create(stderr, 0, (double)ntodo, 1.0) : NULL;
     gr_progress_label(pg, "units");
     size_t next = 0, running = 0, finished = 0;
     int rc = GR_OK;
     int jobs = sw->jobs > 0 ? sw->jobs : 1;
     while (finished < ntodo) {
+        if (exp_stop_signal()) {
+            rc = stop_workers(sw, pid, n, finished, ntodo, err);
+            break;
+        }
         while (running < (size_t)jobs && next < n) {
             if (!todo[next]) {
                 next++;
@@ -183,23 +230,5 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
     gr_progress_finish(pg);
     gr_progress_free(pg);
     free_run(slot, pid, keys, todo, n);
-    return rc;
-}
-
-int exp_sweep_and_report(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
-                          exp_label_fn key, exp_report_fn report, void *ctx, char *summary,
-                          size_t nsum, double *seconds, size_t *reused, gr_err *err)
-{
-    char **parts = calloc(sw->nunits, sizeof *parts);
-    if (!parts)
-        return gr_fail(err, GR_ERUN, "out of memory");
-    double t0 = gr_wall_seconds();
-    int rc = exp_sweep_run(sw, fn, label, key, ctx, parts, reused, err);
-    *seconds = gr_wall_seconds() - t0;
-    if (!rc)
-        rc = report(ctx, parts, summary, nsum, err);
-    for (size_t u = 0; u < sw->nunits; u++)
-        free(parts[u]);
-    free(parts);
     return rc;
 }
