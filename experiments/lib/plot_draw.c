@@ -58,13 +58,35 @@ void gr_plot_scale_label(const char *label, const double pct[2], char *buf, size
  * not a clipped line. */
 static void title_line(FILE *f, const char *title, double t, int w)
 {
-    char full[600], q[1220];
-    int len = snprintf(full, sizeof full, "%s, t = %.4g τ", title, t) - 1;
+    char esc[600], full[700], q[1420];
+    /* a scene's name is text: enhanced mode's marks in it are escaped */
+    size_t k = 0, extra = 0;
+    for (const char *c = title; *c && k + 3 < sizeof esc; c++) {
+        if (strchr("_^@&{}~", *c))
+            esc[k++] = '\\', extra++;
+        esc[k++] = *c;
+    }
+    esc[k] = '\0';
+    int len = snprintf(full, sizeof full, "%s, t = %.4g τ", esc, t) - 1 - (int)extra;
     gr_plot_quote(full, q, sizeof q);
     /* τ and the like as UTF-8: the GIF terminal has no Symbol font */
     fprintf(f, "set encoding utf8\n");
     double fs = 11.0, fit = 1.7 * (double)w / (double)(len > 1 ? len : 1);
     fprintf(f, "set title %s font ',%.3g'\n", q, fit < fs ? (fit > 6 ? fit : 6) : fs);
+}
+
+/* Tics at 1, 2 or 5 times a power of ten, at least 45 pixels apart, so
+ * that a narrow box does not crowd its numbers. */
+static void tics(FILE *f, double width, double height, double px_per_d)
+{
+    const char *axis[2] = {"x", "y"};
+    double len[2] = {width, height};
+    for (int a = 0; a < 2; a++) {
+        double want = 45.0 / px_per_d, step = pow(10, floor(log10(want)));
+        step *= want <= step ? 1 : want <= 2 * step ? 2 : want <= 5 * step ? 5 : 10;
+        if (len[a] > 0 && isfinite(step) && step > 0)
+            fprintf(f, "set %stics %g\n", axis[a], step);
+    }
 }
 
 void gr_plot_disks_size(double width, double height, int *w, int *h)
@@ -73,9 +95,18 @@ void gr_plot_disks_size(double width, double height, int *w, int *h)
     *w = (int)(width * s) + 230, *h = (int)(height * s) + 60;
 }
 
-static void lines_body(FILE *f, const gr_plot_disks *d)
+/* One datablock per width class that has lines (gnuplot warns of an empty
+ * one); the classes drawn into has. */
+static void lines_body(FILE *f, const gr_plot_disks *d, int has[GR_PLOT_LINE_CLASSES + 1])
 {
+    for (int c = 0; c <= GR_PLOT_LINE_CLASSES; c++)
+        has[c] = 0;
+    for (size_t k = 0; k < d->nlines; k++)
+        if (d->lines[k].cls >= 1 && d->lines[k].cls <= GR_PLOT_LINE_CLASSES)
+            has[d->lines[k].cls] = 1;
     for (int c = 1; c <= GR_PLOT_LINE_CLASSES; c++) {
+        if (!has[c])
+            continue;
         fprintf(f, "$net%d << EOD\n", c);
         for (size_t k = 0; k < d->nlines; k++)
             if (d->lines[k].cls == c)
@@ -88,12 +119,14 @@ static void lines_body(FILE *f, const gr_plot_disks *d)
 void gr_plot_disks_body(FILE *f, const gr_plot_disks *d)
 {
     const gr_particles *p = d->p;
-    int w, h, nfixed = 0;
+    int w, h, nfixed = 0, nmobile = 0, has[GR_PLOT_LINE_CLASSES + 1] = {0};
     gr_plot_disks_size(d->width, d->height, &w, &h);
     fprintf(f, "$mobile << EOD\n");
     for (size_t i = 0; i < p->n; i++)
-        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))) {
             fprintf(f, "%.6g %.6g %.6g %.9g\n", p->x[i], p->y[i], p->radius[i], d->value[i]);
+            nmobile++;
+        }
     fprintf(f, "EOD\n$fixed << EOD\n");
     for (size_t i = 0; i < p->n; i++)
         if ((p->flags[i] & GR_PF_FIXED) && !(p->flags[i] & GR_PF_GONE)) {
@@ -102,22 +135,27 @@ void gr_plot_disks_body(FILE *f, const gr_plot_disks *d)
         }
     fprintf(f, "EOD\n");
     if (d->lines)
-        lines_body(f, d);
+        lines_body(f, d, has);
     char q[1100];
     title_line(f, d->title, d->t, w);
     gr_plot_quote(d->label, q, sizeof q);
     fprintf(f, "set size ratio -1\nset xrange [0:%g]\nset yrange [0:%g]\n", d->width, d->height);
+    tics(f, d->width, d->height, 800.0 / fmax(d->width, d->height));
     fprintf(f, "set xlabel 'x / d'\nset ylabel 'y / d'\n");
     fprintf(f, "set cblabel %s\nset cbrange [%.17g:%.17g]\n", q, d->lo, d->hi);
     fprintf(f, "set palette defined (0 '#1a2a6c', 0.5 '#b21f1f', 1 '#fdbb2d')\n");
     /* under a network the grains fade, so that the lines stand out */
     fprintf(f, "set style fill %s noborder\n", d->lines ? "transparent solid 0.35" : "solid 1.0");
+    /* the mobile grains always, even none (a NaN point), so that the
+     * colour bar and the plot command are there */
+    if (!nmobile)
+        fprintf(f, "$mobile << EOD\nNaN NaN NaN NaN\nEOD\n");
     fprintf(f, "plot $mobile using 1:2:3:4 with circles lc palette notitle");
     if (nfixed)
         fprintf(f, ", $fixed using 1:2:3 with circles lc rgb '#808080' notitle");
-    for (int c = 1; d->lines && c <= GR_PLOT_LINE_CLASSES; c++)
-        fprintf(f, ", $net%d using 1:2:3:4 with vectors nohead lw %g lc rgb '#000000' notitle", c,
-                0.6 * c);
+    for (int c = 1; c <= GR_PLOT_LINE_CLASSES; c++)
+        if (has[c])
+            fprintf(f, ", $net%d using 1:2:3:4 with vectors nohead lw %g lc rgb '#000000' notitle", c, 0.6 * c);
     fprintf(f, "\n");
 }
 
@@ -188,6 +226,8 @@ void gr_plot_field_body(FILE *f, const gr_plot_grid *g, double width, double hei
     title_line(f, title, t, w);
     gr_plot_quote(g->label, q, sizeof q);
     fprintf(f, "%sset xrange [0:%g]\nset yrange [0:%g]\n", square ? "set size ratio -1\n" : "", width, height);
+    if (square)
+        tics(f, width, height, 800.0 / fmax(width, height));
     fprintf(f, "set xlabel 'x / d'\nset ylabel 'y / d'\nset cblabel %s\n", q);
     fprintf(f, "set cbrange [%.17g:%.17g]\n", g->lo, g->hi);
     fprintf(f, "set palette defined (0 '#ffffff', 0.3 '#fdbb2d', 0.7 '#b21f1f', 1 '#1a2a6c')\n");
