@@ -75,11 +75,16 @@ FILE *gr_plot_open(const char *path, int w, int h, gr_err *err)
 
 int gr_plot_have_gnuplot(void)
 {
+    return gr_plot_on_path("gnuplot");
+}
+
+int gr_plot_on_path(const char *prog)
+{
     const char *path = getenv("PATH");
     char dir[1100];
     while (path && *path) {
         size_t l = strcspn(path, ":");
-        snprintf(dir, sizeof dir, "%.*s/gnuplot", (int)(l < 1000 ? l : 1000), path);
+        snprintf(dir, sizeof dir, "%.*s/%s", (int)(l < 900 ? l : 900), path, prog);
         if (l && access(dir, X_OK) == 0)
             return 1;
         path += l + (path[l] == ':');

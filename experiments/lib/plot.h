@@ -22,6 +22,8 @@ int gr_plot_close(FILE *gp, const char *path, gr_err *err);
 /* Whether gnuplot is on PATH: a study whose data are written but whose
  * figures cannot be drawn says so and still succeeds. */
 int gr_plot_have_gnuplot(void);
+/* Whether program prog (e.g. "ffmpeg") is on PATH. */
+int gr_plot_on_path(const char *prog);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf; text
  * from users (scene names, paths) goes through it. */
 void gr_plot_quote(const char *s, char *buf, size_t n);
