@@ -97,7 +97,9 @@ static int scales(vw_view *v, const vw_opts *o, const size_t *sel, size_t m, dou
     for (size_t s = 0; need && s < m && !rc; s++) {
         const double *x, *f;
         size_t nx, nf;
-        if (!(rc = vw_load(v, sel[s], err))) {
+        if (mv_caught())
+            rc = gr_fail(err, GR_ERUN, "interrupted");
+        else if (!(rc = vw_load(v, sel[s], err))) {
             vw_values(v, &x, &nx);
             vw_forces(v, &f, &nf);
             rc = (o->has_range ? 0 : pool_add(&val, x, nx, err)) || pool_add(&fn, f, nf, err) ? err->code : 0;
@@ -144,7 +146,9 @@ static int write_script(vw_view *v, const vw_opts *o, const size_t *sel, size_t 
     }
     int rc = GR_OK;
     for (size_t s = 0; s < m && !rc; s++) {
-        if ((rc = vw_load(v, sel[s], err)))
+        if (mv_caught())
+            rc = gr_fail(err, GR_ERUN, "interrupted");
+        if (rc || (rc = vw_load(v, sel[s], err)))
             break;
         if (!gif) {
             snprintf(f, sizeof f, "%s/f%06zu.png", dir, s);
@@ -216,9 +220,11 @@ int cmd_movie(int argc, char **argv)
     const char *out = argv[first + 1];
     size_t m = 0;
     vw_view *v = check_out(out, &gif, &e) ? NULL : vw_open(argv[first], &o, &e);
+    mv_catch();
     if (v)
         make_movie(v, &o, out, gif, &m, &e);
     vw_free(v);
+    mv_release();
     if (e.code) {
         fprintf(stderr, "grano movie: %s\n", e.msg);
         return e.code;

@@ -3,11 +3,42 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+static volatile sig_atomic_t caught;
+static const int catch_signals[] = {SIGINT, SIGTERM, SIGHUP};
+
+static void on_signal(int sig)
+{
+    caught = sig;
+}
+
+void mv_catch(void)
+{
+    struct sigaction sa = {0};
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (size_t k = 0; k < sizeof catch_signals / sizeof *catch_signals; k++)
+        sigaction(catch_signals[k], &sa, NULL);
+}
+
+int mv_caught(void)
+{
+    return caught != 0;
+}
+
+void mv_release(void)
+{
+    for (size_t k = 0; k < sizeof catch_signals / sizeof *catch_signals; k++)
+        signal(catch_signals[k], SIG_DFL);
+    if (caught)
+        raise(caught);
+}
 
 /* The last non-empty line of a log, for an error message. */
 static void last_line(const char *log, char *buf, size_t n)
@@ -40,10 +71,15 @@ int mv_run(char *const argv[], const char *log, gr_err *err)
         execvp(argv[0], argv);
         _exit(127);
     }
-    int st;
-    while (waitpid(pid, &st, 0) < 0)
+    int st, told = 0;
+    while (waitpid(pid, &st, 0) < 0) {
         if (errno != EINTR)
             return gr_fail(err, GR_ERUN, "%s: lost: %s", argv[0], strerror(errno));
+        if (caught && !told++)
+            kill(pid, SIGTERM);
+    }
+    if (caught)
+        return gr_fail(err, GR_ERUN, "interrupted");
     if (WIFEXITED(st) && WEXITSTATUS(st) == 0)
         return GR_OK;
     char why[400];

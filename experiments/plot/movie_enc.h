@@ -6,8 +6,14 @@
 
 #include "err.h"
 
+/* An interrupt (SIGINT, SIGTERM, SIGHUP) while a movie is made is held
+ * until the frames and the part file are removed: mv_catch at the start,
+ * mv_caught to stop early, mv_release at the end (which then dies of it). */
+void mv_catch(void);
+int mv_caught(void);
+void mv_release(void);
 /* Run argv (argv[0] looked up on PATH), its output and errors into log:
- * GR_ERUN quoting the log's last line when it fails. */
+ * GR_ERUN quoting the log's last line when it fails; an interrupt ends it. */
 int mv_run(char *const argv[], const char *log, gr_err *err);
 /* A new folder beside out ("<out>.frames-XXXXXX") into dir. */
 int mv_tmpdir(const char *out, char *dir, size_t n, gr_err *err);
