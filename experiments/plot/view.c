@@ -106,6 +106,9 @@ static int pick_component(vw_view *v, const char *comp, gr_err *err)
     int nc = v->fd.ncomp;
     const char *const *names = nc == 2 ? vec : ten;
     v->comp = -1;
+    if (nc != 1 && nc != 2 && nc != 4)
+        return gr_fail(err, GR_EINPUT, "--field %s: %d components per cell; a scalar, a vector or a 2 x 2 "
+                       "tensor is drawn", v->field, nc);
     for (int c = 0; comp && (nc == 2 || nc == 4) && c < nc; c++)
         if (!strcmp(comp, names[c]))
             v->comp = c;
