@@ -143,9 +143,14 @@ void gr_plot_disks_body(FILE *f, const gr_plot_disks *d)
     tics(f, d->width, d->height, 800.0 / fmax(d->width, d->height));
     fprintf(f, "set xlabel 'x / d'\nset ylabel 'y / d'\n");
     fprintf(f, "set cblabel %s\nset cbrange [%.17g:%.17g]\n", q, d->lo, d->hi);
-    fprintf(f, "set palette defined (0 '#1a2a6c', 0.5 '#b21f1f', 1 '#fdbb2d')\n");
-    /* under a network the grains fade, so that the lines stand out */
-    fprintf(f, "set style fill %s noborder\n", d->lines ? "transparent solid 0.35" : "solid 1.0");
+    /* under a network the grains take the palette halfway to white, so that
+     * the lines stand out (not transparency: the GIF terminal fills
+     * transparent disks grey) */
+    if (d->lines)
+        fprintf(f, "set palette defined (0 '#8d95b6', 0.5 '#d98f8f', 1 '#fedd96')\n");
+    else
+        fprintf(f, "set palette defined (0 '#1a2a6c', 0.5 '#b21f1f', 1 '#fdbb2d')\n");
+    fprintf(f, "set style fill solid 1.0 noborder\n");
     /* the mobile grains always, even none (a NaN point), so that the
      * colour bar and the plot command are there */
     if (!nmobile)
