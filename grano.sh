@@ -10,9 +10,10 @@ SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libcmocka-dev gnuplot-nox python3-h5py python3-numpy
           libsiconos-numerics-dev librandom123-dev python3-ase python3-pandas)
-# optional peers, installed by `deps --optional` only: lammps (lmp) for
-# `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`
-OPTIONAL=(lammps)
+# optional, installed by `deps --optional` only: lammps (lmp) for
+# `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`;
+# ffmpeg for `grano movie` to MP4 (a GIF needs only gnuplot)
+OPTIONAL=(lammps ffmpeg)
 
 say() { printf 'grano.sh: %s\n' "$*" >&2; }
 
@@ -93,7 +94,7 @@ usage() {
     cat <<USAGE
 usage: ./grano.sh COMMAND
   deps [--optional]  install the Debian packages grano needs (only the missing ones);
-                  --optional adds the peers (lammps, for --peer lammps)
+                  --optional adds lammps (for --peer lammps) and ffmpeg (grano movie to MP4)
   build           deps, then configure and build into $BUILD/
   demo            build, then run the silo discharge demo (results/demo.h5, results/demo.png)
   test [--slow]   build, then the meson suites (unit, method, experiment; slow with --slow),

@@ -12,6 +12,8 @@ int cmd_silo_flow(int argc, char **argv);
 int cmd_course(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_plot(int argc, char **argv);
+int cmd_movie(int argc, char **argv);
 
 /* Backend-specific benchmarks, called by cmd_bench with argv[0] = method. */
 int bench_cd(int argc, char **argv);

@@ -23,6 +23,8 @@ static const subcommand commands[] = {
     {"silo-start", "start of a silo discharge (thesis chapter 3)", cmd_silo_start},
     {"silo-flow", "silo outflow against orifice size (thesis chapter 4)", cmd_silo_flow},
     {"course", "the event-driven course exercises (Maxwell, pressure, cooling)", cmd_course},
+    {"plot", "a picture of one frame of a result: grains coloured by a quantity, or a field", cmd_plot},
+    {"movie", "a result's frames as a movie (MP4 through ffmpeg, or GIF)", cmd_movie},
     {"export", "a result's trajectory for LAMMPS, OVITO, VMD, ASE (dump, extxyz, csv)", cmd_export},
     {"compare", "the same scenes on every method: speed against error", cmd_compare},
 };

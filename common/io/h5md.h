@@ -176,6 +176,11 @@ int gr_h5md_obs_last(gr_h5md_reader *r, const char *name, double v[2], int *ncom
 int gr_h5md_series_info(gr_h5md_reader *r, const char *path, size_t *samples,
                         double *t0, double *t1, gr_err *err);
 
+/* The times of the first n samples of a series: a field ("fields/NAME"),
+ * the contact networks ("contacts"), an observable; n from
+ * gr_h5md_series_info, gr_h5md_field_info or gr_h5md_contact_frames. */
+int gr_h5md_series_times(gr_h5md_reader *r, const char *path, size_t n, double *time, gr_err *err);
+
 /* Field grid (name and unit of f are left untouched) and sample count. */
 int gr_h5md_field_info(gr_h5md_reader *r, const char *name, gr_field_desc *f,
                        size_t *samples, gr_err *err);

@@ -519,6 +519,24 @@ int gr_h5md_series_info(gr_h5md_reader *r, const char *path, size_t *samples, do
     return rc;
 }
 
+static int series_times_impl(gr_h5md_reader *r, const char *path, size_t n, double *time, gr_err *err)
+{
+    char p[512];
+    snprintf(p, sizeof p, "%s/time", path);
+    if (!gr_h5_exists(r->file, p))
+        return gr_fail(err, GR_EINPUT, "%s has no time series %s", r->info.path, path);
+    if (n && gr_h5_read_path(r->file, p, GR_T_F64, 0, n, time))
+        return gr_h5_fail(err, GR_ERUN, "%s: cannot read %zu times of %s", r->info.path, n, p);
+    return GR_OK;
+}
+
+int gr_h5md_series_times(gr_h5md_reader *r, const char *path, size_t n, double *time, gr_err *err)
+{
+    int rc;
+    GR_H5_GUARD(err, rc, rc = series_times_impl(r, path, n, time, err));
+    return rc;
+}
+
 hid_t gr_h5md_reader_file(const gr_h5md_reader *r)
 {
     return r->file;

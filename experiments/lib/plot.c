@@ -1,18 +1,27 @@
 #include "plot.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-/* "<png without .png>.<ext>" */
-static void sibling(const char *png, const char *ext, char *buf, size_t n)
+const char *gr_plot_format_of(const char *path)
 {
-    size_t l = strlen(png);
-    if (l > 4 && !strcmp(png + l - 4, ".png"))
+    size_t l = strlen(path);
+    if (l > 4 && !strcmp(path + l - 4, ".svg"))
+        return "svg";
+    if (l > 4 && !strcmp(path + l - 4, ".pdf"))
+        return "pdf";
+    return "png";
+}
+
+/* "<path without .png/.svg/.pdf>.<ext>" */
+static void sibling(const char *path, const char *ext, char *buf, size_t n)
+{
+    size_t l = strlen(path);
+    if (l > 4 && (!strcmp(path + l - 4, ".png") || !strcmp(path + l - 4, ".svg") || !strcmp(path + l - 4, ".pdf")))
         l -= 4;
-    snprintf(buf, n, "%.*s.%s", (int)l, png, ext);
+    snprintf(buf, n, "%.*s.%s", (int)l, path, ext);
 }
 
 void gr_plot_quote(const char *s, char *buf, size_t n)
@@ -33,8 +42,7 @@ void gr_plot_quote(const char *s, char *buf, size_t n)
     buf[k] = '\0';
 }
 
-/* The terminal lines of a script: PNG (what the saved script makes), or
- * SVG / PDF of the same size. */
+/* The terminal lines of a script: PNG, SVG or PDF of the same size. */
 static void terminal(FILE *f, const char *fmt, const char *out, int w, int h)
 {
     char q[1300];
@@ -48,27 +56,35 @@ static void terminal(FILE *f, const char *fmt, const char *out, int w, int h)
     fprintf(f, "set output %s\n", q);
 }
 
-FILE *gr_plot_open(const char *png, int w, int h, gr_err *err)
+/* The script is written as <script>.part and renamed at close, so that a
+ * script under its name is always whole. */
+FILE *gr_plot_open(const char *path, int w, int h, gr_err *err)
 {
-    char gp_path[1200];
-    sibling(png, "gp", gp_path, sizeof gp_path);
-    FILE *gp = fopen(gp_path, "w");
+    char gp_path[1200], part[1300];
+    sibling(path, "gp", gp_path, sizeof gp_path);
+    snprintf(part, sizeof part, "%s.part", gp_path);
+    FILE *gp = fopen(part, "w");
     if (!gp) {
         gr_fail(err, GR_ERUN, "%s: cannot write the figure's script", gp_path);
         return NULL;
     }
-    fprintf(gp, "# %s: gnuplot %s remakes it (data inline)\n# size %d %d\n", png, gp_path, w, h);
-    terminal(gp, "png", png, w, h);
+    fprintf(gp, "# %s: gnuplot %s remakes it (data inline)\n# size %d %d\n", path, gp_path, w, h);
+    terminal(gp, gr_plot_format_of(path), path, w, h);
     return gp;
 }
 
 int gr_plot_have_gnuplot(void)
 {
+    return gr_plot_on_path("gnuplot");
+}
+
+int gr_plot_on_path(const char *prog)
+{
     const char *path = getenv("PATH");
     char dir[1100];
     while (path && *path) {
         size_t l = strcspn(path, ":");
-        snprintf(dir, sizeof dir, "%.*s/gnuplot", (int)(l < 1000 ? l : 1000), path);
+        snprintf(dir, sizeof dir, "%.*s/%s", (int)(l < 900 ? l : 900), path, prog);
         if (l && access(dir, X_OK) == 0)
             return 1;
         path += l + (path[l] == ':');
@@ -76,23 +92,26 @@ int gr_plot_have_gnuplot(void)
     return 0;
 }
 
-/* Run gnuplot on the saved script, its terminal lines replaced for fmt. */
+/* Run gnuplot on the saved script, its terminal lines replaced by those of
+ * fmt writing <out>.part, which becomes out once gnuplot has succeeded. */
 static int render(const char *gp_path, const char *fmt, const char *out, gr_err *err)
 {
     FILE *in = fopen(gp_path, "r");
     if (!in)
         return gr_fail(err, GR_ERUN, "%s: cannot read the figure's script", gp_path);
-    char line[4096];
+    char line[4096], part[1300];
+    snprintf(part, sizeof part, "%s.part", out);
     int w = 800, h = 600, skip = 0;
     /* gnuplot writes the picture to its standard output when it cannot
      * open the file: never onto grano's results. */
     FILE *gp = popen("gnuplot >/dev/null", "w");
     while (gp && fgets(line, sizeof line, in)) {
-        if (sscanf(line, "# size %d %d", &w, &h) == 2 && strcmp(fmt, "png")) {
-            terminal(gp, fmt, out, w, h);
-            skip = 2; /* the PNG terminal lines that follow */
-        } else if (skip && !strncmp(line, "set ", 4)) {
-            skip--;
+        if (!skip && sscanf(line, "# size %d %d", &w, &h) == 2) {
+            fputs(line, gp);
+            terminal(gp, fmt, part, w, h);
+            skip = 2; /* the script's own terminal lines that follow */
+        } else if (skip && !strncmp(line, "set ", 4) && skip--) {
+            continue;
         } else {
             fputs(line, gp);
         }
@@ -103,104 +122,41 @@ static int render(const char *gp_path, const char *fmt, const char *out, gr_err 
     fprintf(gp, "unset output\n");
     int st = pclose(gp);
     if (st == -1 || !WIFEXITED(st) || WEXITSTATUS(st) != 0) {
-        unlink(out);
+        unlink(part);
         return gr_fail(err, GR_ERUN, "%s: gnuplot failed (status %d; the script is %s)", out, st, gp_path);
+    }
+    if (rename(part, out)) {
+        unlink(part);
+        return gr_fail(err, GR_ERUN, "%s: cannot rename %s to it", out, part);
     }
     return GR_OK;
 }
 
-int gr_plot_close(FILE *gp, const char *png, gr_err *err)
+int gr_plot_close(FILE *gp, const char *path, gr_err *err)
 {
-    char gp_path[1200], other[1200];
-    sibling(png, "gp", gp_path, sizeof gp_path);
-    if (fclose(gp))
+    char gp_path[1200], part[1300], other[1200];
+    sibling(path, "gp", gp_path, sizeof gp_path);
+    snprintf(part, sizeof part, "%s.part", gp_path);
+    if (ferror(gp) | fclose(gp)) {
+        unlink(part);
         return gr_fail(err, GR_ERUN, "%s: write failed", gp_path);
+    }
+    if (rename(part, gp_path)) {
+        unlink(part);
+        return gr_fail(err, GR_ERUN, "%s: cannot rename %s to it", gp_path, part);
+    }
     if (!gr_plot_have_gnuplot())
         return gr_fail(err, GR_ERUN,
                        "gnuplot is not installed, so %s was not drawn (its script is saved as %s): install "
-                       "it with 'apt-get install gnuplot-nox' (./grano.sh deps does)", png, gp_path);
-    int rc = render(gp_path, "png", png, err);
+                       "it with 'apt-get install gnuplot-nox' (./grano.sh deps does)", path, gp_path);
+    const char *fmt = gr_plot_format_of(path);
+    int rc = render(gp_path, fmt, path, err);
     /* GRANO_FIGURES=svg,pdf: the same figure in those formats too */
     const char *more = getenv("GRANO_FIGURES");
     for (const char *f = "svg\0pdf\0"; !rc && more && *f; f += strlen(f) + 1)
-        if (strstr(more, f)) {
-            sibling(png, f, other, sizeof other);
+        if (strstr(more, f) && strcmp(f, fmt)) {
+            sibling(path, f, other, sizeof other);
             rc = render(gp_path, f, other, err);
         }
     return rc;
-}
-
-int gr_plot_snapshot(const char *png, const gr_particles *p, double width, double height,
-                     double t, const char *title, gr_err *err)
-{
-    /* Pixels follow the box's aspect ratio, about 800 on the long side. */
-    double s = 800.0 / (width > height ? width : height);
-    int w = (int)(width * s) + 230, h = (int)(height * s) + 60; /* room for the colour bar label */
-    FILE *gp = gr_plot_open(png, w, h, err);
-    if (!gp)
-        return err->code;
-    double vmax = 0;
-    fprintf(gp, "$mobile << EOD\n");
-    for (size_t i = 0; i < p->n; i++) {
-        if (p->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
-            continue;
-        double v = hypot(p->vx[i], p->vy[i]);
-        vmax = v > vmax ? v : vmax;
-        fprintf(gp, "%.6g %.6g %.6g %.6g\n", p->x[i], p->y[i], p->radius[i], v);
-    }
-    fprintf(gp, "EOD\n$fixed << EOD\n");
-    int nfixed = 0;
-    for (size_t i = 0; i < p->n; i++)
-        if ((p->flags[i] & GR_PF_FIXED) && !(p->flags[i] & GR_PF_GONE)) {
-            fprintf(gp, "%.6g %.6g %.6g\n", p->x[i], p->y[i], p->radius[i]);
-            nfixed++;
-        }
-    fprintf(gp, "EOD\n");
-    char full[300], q[620];
-    int len = snprintf(full, sizeof full, "%s, t = %.4g {/Symbol t}", title, t) - 10;
-    gr_plot_quote(full, q, sizeof q);
-    /* a long title in a narrow figure: a smaller font, not a clipped line */
-    double fs = 11.0, fit = 1.7 * (double)w / (double)(len > 1 ? len : 1);
-    fprintf(gp, "set title %s font ',%.3g'\n", q, fit < fs ? (fit > 6 ? fit : 6) : fs);
-    fprintf(gp, "set size ratio -1\nset xrange [0:%g]\nset yrange [0:%g]\n", width, height);
-    fprintf(gp, "set xlabel 'x / d'\nset ylabel 'y / d'\n");
-    fprintf(gp, "set cblabel '|v| / (g d)^{1/2}'\nset cbrange [0:%g]\n", vmax > 0 ? vmax : 1);
-    fprintf(gp, "set palette defined (0 '#1a2a6c', 0.5 '#b21f1f', 1 '#fdbb2d')\n");
-    fprintf(gp, "set style fill solid 1.0 noborder\n");
-    fprintf(gp, "plot $mobile using 1:2:3:4 with circles lc palette notitle");
-    if (nfixed)
-        fprintf(gp, ", $fixed using 1:2:3 with circles lc rgb '#808080' notitle");
-    fprintf(gp, "\n");
-    return gr_plot_close(gp, png, err);
-}
-
-int gr_plot_field(const char *png, const gr_plot_grid *g, double width, double height, double t,
-                  const char *title, gr_err *err)
-{
-    /* true proportions unless the domain is a long thin strip (a pipe) */
-    int square = width < 5 * height && height < 5 * width;
-    double s = 800.0 / (width > height ? width : height);
-    int w = square ? (int)(width * s) + 200 : width < height ? 400 : 1000;
-    int h = square ? (int)(height * s) + 60 : width < height ? 1000 : 400;
-    FILE *gp = gr_plot_open(png, w, h, err);
-    if (!gp)
-        return err->code;
-    double vmax = 0;
-    fprintf(gp, "$field << EOD\n");
-    for (int iy = 0; iy < g->ny; iy++) {
-        for (int ix = 0; ix < g->nx; ix++) {
-            double v = g->v[(size_t)iy * (size_t)g->nx + (size_t)ix];
-            vmax = v > vmax ? v : vmax;
-            fprintf(gp, "%.6g %.6g %.6g\n", g->x0 + (ix + 0.5) * g->cx, g->y0 + (iy + 0.5) * g->cy, v);
-        }
-        fprintf(gp, "\n");
-    }
-    fprintf(gp, "EOD\n");
-    fprintf(gp, "set title '%s, t = %.4g {/Symbol t}'\n", title, t);
-    fprintf(gp, "%sset xrange [0:%g]\nset yrange [0:%g]\n", square ? "set size ratio -1\n" : "", width, height);
-    fprintf(gp, "set xlabel 'x / d'\nset ylabel 'y / d'\nset cblabel '%s'\n", g->label);
-    fprintf(gp, "set cbrange [0:%g]\n", vmax > 0 ? vmax : 1);
-    fprintf(gp, "set palette defined (0 '#ffffff', 0.3 '#fdbb2d', 0.7 '#b21f1f', 1 '#1a2a6c')\n");
-    fprintf(gp, "plot $field using 1:2:3 with image notitle\n");
-    return gr_plot_close(gp, png, err);
 }

@@ -421,7 +421,8 @@ static int plot_density(const char *png, gr_sim *st, gr_err *err)
                         : gr_sim_fields(st, f, 1.0, err);
     if (!rc) {
         gr_field_packing(f, phi);
-        gr_plot_grid g = {nx, ny, 0, 0, f->cx, f->cy, phi, "packing fraction (lattice: occupied channels / 7)"};
+        /* lo = hi: the percentile scale */
+        gr_plot_grid g = {nx, ny, 0, 0, f->cx, f->cy, phi, "packing fraction (lattice: occupied channels / 7)", 0, 0};
         rc = gr_plot_field(png, &g, sc->width, sc->height, gr_sim_time(st), sc->name, err);
     }
     free(phi);

@@ -259,6 +259,10 @@ static void fields_and_results(void **state)
     assert_int_equal(gr_h5md_read_field(r, "velocity", 2, back, &st, &t, &e), GR_OK);
     assert_memory_equal(back, v[2], sizeof back);
     assert_true(st == 20 && t == 0.2);
+    double times[3];
+    assert_int_equal(gr_h5md_series_times(r, "fields/velocity", 3, times, &e), GR_OK);
+    assert_true(times[0] == 0.0 && times[1] == 0.1 && times[2] == 0.2);
+    assert_int_equal(gr_h5md_series_times(r, "fields/nothing", 1, times, &e), GR_EINPUT);
     size_t rows, ncol;
     double *data;
     assert_int_equal(gr_h5md_read_result(r, "beverloo/flow", &rows, &ncol, &data, &e), GR_OK);

@@ -63,6 +63,10 @@ static void networks_round_trip_and_restart(void **state)
     gr_h5md_reader *r = gr_h5md_open(path, &e);
     for (int f = 0; f < NFR; f++)
         assert_net(r, f);
+    double times[NFR];
+    assert_int_equal(gr_h5md_series_times(r, "contacts", NFR, times, &e), GR_OK);
+    for (int f = 0; f < NFR; f++)
+        assert_true(times[f] == 0.5 * f);
     assert_int_equal(gr_h5md_read_contacts(r, NFR, NULL, NULL, NULL, &e), GR_EINPUT);
     gr_h5md_reader_free(r);
 
