@@ -16,6 +16,7 @@
 #include "progress.h"
 #include "stress.h"
 #include "restart.h"
+#include "stop.h"
 
 void gr_run_ckpt_path(const char *out, char *buf, size_t n)
 {
@@ -162,6 +163,8 @@ typedef struct {
     room out_room, ckpt_room;
     uint64_t warned;   /* the validity limits already told, by declaration position */
     int strict_stop;   /* stopped by [run] strict = yes: the state is not a good one */
+    int stopped;       /* the stop signal that ended the loop (0: none) */
+    double last_frame; /* time of this run's last frame (-1: none yet) */
     gr_h5md *h;
     gr_field *field;
     gr_particles *snap;
@@ -333,6 +336,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 (frames && (status = gr_sim_snapshot(st, io->snap, err))) ||
                 (frames && (status = gr_h5md_write_frame(io->h, obs.steps, t, io->snap, err))))
                 break;
+            io->last_frame = t;
             if ((io->net && ((status = gr_sim_contacts(st, io->net, err)) ||
                              (sc->run.contacts &&
                               (status = gr_h5md_write_contacts(io->h, obs.steps, t, io->net, err))))) ||
@@ -350,6 +354,12 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
         }
         if (t >= rc->until - eps)
             break;
+        /* a stop signal is read here, the samples of t written: the state
+         * saved then restarts onto the same sample times */
+        if ((io->stopped = exp_stop_signal())) {
+            status = GR_ERUN;
+            break;
+        }
         double target = rc->until;
         for (int j = 0; j < 3; j++) {
             double every = j == 0 ? rc->observe_every : j == 1 ? rc->output_every : rc->checkpoint_every;
@@ -408,6 +418,23 @@ static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io
     return GR_OK;
 }
 
+/* A stop signal ended the loop between samples: the state is a good one,
+ * saved as the checkpoint, and the message says what the files hold. */
+static void said_stop(const run_io *io, const gr_run_opts *o, gr_sim *st, const uint64_t k[3], gr_err *err)
+{
+    gr_err e2 = {0};
+    int saved = o->ckpt && gr_run_save(o->ckpt, st, k, &e2) == GR_OK;
+    char frames[128] = "";
+    if (io->last_frame >= 0)
+        snprintf(frames, sizeof frames, " up to t = %g", io->last_frame);
+    gr_fail(err, GR_ERUN, "stopped by %s at t = %g: %s holds %zu frames%s; %s%s%s", exp_stop_name(io->stopped),
+            gr_sim_time(st), o->out, gr_h5md_frames(io->h), frames,
+            saved ? "the checkpoint " : o->ckpt ? "the checkpoint could not be saved: " : "no checkpoint",
+            saved ? o->ckpt : o->ckpt ? e2.msg : "",
+            saved ? " holds the state at that time (the same command with --restart CHECKPOINT continues the run)"
+                  : "");
+}
+
 /* A method without snapshots (a lattice): the picture of the final state is
  * its packing field on cells of about one grain diameter. */
 static int plot_density(const char *png, gr_sim *st, gr_err *err)
@@ -432,7 +459,7 @@ static int plot_density(const char *png, gr_sim *st, gr_err *err)
 
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err)
 {
-    run_io io = {.out_room = {o->out, 0, 0}, .ckpt_room = {o->ckpt, 0, 0}};
+    run_io io = {.out_room = {o->out, 0, 0}, .ckpt_room = {o->ckpt, 0, 0}, .last_frame = -1};
     gr_sim *st = NULL;
     int rc = GR_OK;
     gr_particles *init = gr_particles_create(0, err);
@@ -489,10 +516,13 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = err->code;
         goto done;
     }
+    exp_stop_install();
     rc = at_end ? GR_OK : loop(sc, st, &io, o, k, t0, err);
     if (!io.strict_stop)
         sum_limits(st, o);
-    if (rc == GR_ERUN && o->ckpt && !io.strict_stop) {
+    if (io.stopped) {
+        said_stop(&io, o, st, k, err);
+    } else if (rc == GR_ERUN && o->ckpt && !io.strict_stop) {
         /* The backend stopped at its last good step: keep that state. */
         gr_err e2 = {0};
         if (gr_run_save(o->ckpt, st, k, &e2) == GR_OK)

@@ -1,6 +1,7 @@
 /* Stop signals as a request (stop.h). The flag is the program's one
- * static variable: a signal handler can only pass a value through a
- * volatile sig_atomic_t. */
+ * static state: a signal handler can only pass a value through a volatile
+ * sig_atomic_t. A worker marks itself so, and catches nothing: its parent
+ * ends it with SIGTERM and it should die at once. */
 #include "stop.h"
 
 #include <signal.h>
@@ -11,7 +12,7 @@
 #include <sys/prctl.h>
 #endif
 
-static volatile sig_atomic_t stop_sig;
+static volatile sig_atomic_t stop_sig, is_worker;
 
 static void on_stop(int sig) { stop_sig = sig; }
 
@@ -19,6 +20,8 @@ static const int sigs[] = {SIGTERM, SIGINT, SIGHUP};
 
 void exp_stop_install(void)
 {
+    if (is_worker)
+        return;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_stop;
@@ -36,6 +39,7 @@ void exp_stop_worker(int parent)
     for (size_t k = 0; k < sizeof sigs / sizeof *sigs; k++)
         signal(sigs[k], SIG_DFL);
     stop_sig = 0;
+    is_worker = 1;
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     /* the parent may have died before prctl */

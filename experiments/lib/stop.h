@@ -9,9 +9,10 @@
 void exp_stop_install(void);
 /* The stop signal received (0: none). */
 int exp_stop_signal(void);
-/* A forked worker: the default dispositions again, and (Linux) ended by
- * SIGTERM when its parent dies, even by SIGKILL, so that no worker
- * outlives the sweep. parent: the parent's pid before fork. */
+/* A forked worker: the default dispositions again, for good (install does
+ * nothing in it), and (Linux) ended by SIGTERM when its parent dies, even
+ * by SIGKILL, so that no worker outlives the sweep. parent: the parent's
+ * pid before fork. */
 void exp_stop_worker(int parent);
 /* "SIGTERM", "SIGINT", "SIGHUP" or "signal N". */
 const char *exp_stop_name(int sig);
