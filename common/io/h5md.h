@@ -112,6 +112,11 @@ void gr_h5md_free(gr_h5md *h);
 /* Frames written so far. */
 size_t gr_h5md_frames(const gr_h5md *h);
 
+/* Read every object of an HDF5 file back (each dataset to its end): GR_OK
+ * with the datasets and bytes read, or GR_ERUN naming the first damaged
+ * object (a checksum that fails, a header that does not read). */
+int gr_h5_verify(const char *path, size_t *ndsets, unsigned long long *bytes, gr_err *err);
+
 /* ---- reader ---------------------------------------------------------- */
 
 typedef struct gr_h5md_reader gr_h5md_reader;

@@ -74,9 +74,16 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
 int gr_h5_ext_append(hid_t dset, gr_h5_type t, const void *row);
 hsize_t gr_h5_rows(hid_t dset); /* first dimension; 0 on error */
 int gr_h5_read_rows(hid_t dset, gr_h5_type t, hsize_t first, hsize_t count, void *buf);
-/* Fixed dataset of rank 1 or 2 (dims[1] 0 for rank 1). */
+/* Fixed dataset of rank 1 or 2 (dims[1] 0 for rank 1), with a checksum as
+ * the extendible ones have (gr_h5_checked_dcpl). */
 hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_t dims[2],
                          const void *data);
+
+/* A dataset creation list that checksums every chunk (HDF5's Fletcher-32
+ * filter: a read of a damaged chunk fails, naming the dataset), the data
+ * in chunks of about 1 MiB along the first dimension; H5P_DEFAULT for an
+ * empty dataset, which has nothing to damage. Close it with gr_h5_close. */
+hid_t gr_h5_checked_dcpl(int rank, const hsize_t *dims, size_t elsize);
 
 int gr_h5_exists(hid_t loc, const char *path); /* link exists (all components) */
 int gr_h5_is_group(hid_t loc, const char *path);

@@ -384,7 +384,8 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
     hid_t s = H5Screate_simple(item_rank + 1, dims, maxd);
     hid_t p = H5Pcreate(H5P_DATASET_CREATE);
     hid_t d = -1;
-    if (s >= 0 && p >= 0 && H5Pset_chunk(p, item_rank + 1, chunk) >= 0)
+    /* each chunk checksummed: a flipped byte fails its read, named */
+    if (s >= 0 && p >= 0 && H5Pset_chunk(p, item_rank + 1, chunk) >= 0 && H5Pset_fletcher32(p) >= 0)
         d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, H5P_DEFAULT, p, H5P_DEFAULT);
     gr_h5_close(p);
     gr_h5_close(s);
@@ -469,9 +470,12 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
     int rank = dims[1] ? 2 : 1;
     hid_t s = H5Screate_simple(rank, dims, NULL);
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    hid_t dcpl = gr_h5_checked_dcpl(rank, dims, gr_h5_tsize(t));
     hid_t d = -1;
-    if (s >= 0 && lcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0)
-        d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    if (s >= 0 && lcpl >= 0 && dcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0)
+        d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, lcpl, dcpl, H5P_DEFAULT);
+    if (dcpl != H5P_DEFAULT)
+        gr_h5_close(dcpl);
     hsize_t total = dims[0] * (dims[1] ? dims[1] : 1);
     if (d >= 0 && total > 0 &&
         H5Dwrite(d, gr_h5_mtype(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
@@ -482,6 +486,28 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
     gr_h5_close(lcpl);
     gr_h5_close(s);
     return d;
+}
+
+hid_t gr_h5_checked_dcpl(int rank, const hsize_t *dims, size_t elsize)
+{
+    hsize_t chunk[8], rowbytes = elsize;
+    if (rank < 1 || rank > 8)
+        return H5P_DEFAULT;
+    for (int k = 0; k < rank; k++) {
+        if (dims[k] == 0)
+            return H5P_DEFAULT;
+        chunk[k] = dims[k];
+        if (k)
+            rowbytes *= dims[k];
+    }
+    hsize_t rows = (1u << 20) / (rowbytes ? rowbytes : 1);
+    chunk[0] = rows < 1 ? 1 : rows < dims[0] ? rows : dims[0];
+    hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+    if (p >= 0 && (H5Pset_chunk(p, rank, chunk) < 0 || H5Pset_fletcher32(p) < 0)) {
+        H5Pclose(p);
+        return -1;
+    }
+    return p;
 }
 
 int gr_h5_exists(hid_t loc, const char *path)

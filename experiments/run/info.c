@@ -13,7 +13,7 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-        "usage: grano info [--xdmf] FILE\n\n"
+        "usage: grano info [--xdmf] [--verify] FILE\n\n"
         "Describe what a grano result or checkpoint file (H5MD, docs/output-format.md)\n"
         "holds: who wrote it, the scene, method and seed, the particles and frames with\n"
         "their time range, the observables (with the last sample), fields, result\n"
@@ -21,6 +21,9 @@ static void usage(FILE *f)
         "options:\n"
         "  --xdmf       also (re)write the ParaView sidecar FILE.xdmf from what the file\n"
         "               holds (a killed run's sidecar may miss its last frames)\n"
+        "  --verify     first read every dataset back to its end, checking the checksums\n"
+        "               of its chunks and of the file's metadata; a damaged file is named\n"
+        "               with its first damaged dataset (exit 1)\n"
         "  -h, --help   this help\n"
         "  --version    grano's version\n\n"
         "Exit status: 0 on success, 1 if the file cannot be read to the end, 2 for a\n"
@@ -225,20 +228,30 @@ static int print_results(gr_h5md_reader *r, const char *group, int *shown, gr_er
     return rc;
 }
 
+typedef struct {
+    int xdmf, verify;
+} info_flags;
+
 static int info_option(void *ctx, int id, const char *arg, gr_err *err)
 {
     (void)arg;
-    if (id != 'x')
+    info_flags *f = ctx;
+    if (id == 'x')
+        f->xdmf = 1;
+    else if (id == 'V')
+        f->verify = 1;
+    else
         return gr_fail(err, GR_EINPUT, "unknown option");
-    *(int *)ctx = 1;
     return 0;
 }
 
 int cmd_info(int argc, char **argv)
 {
-    static const struct option opts[] = {{"xdmf", no_argument, NULL, 'x'}, {NULL, 0, NULL, 0}};
-    int xdmf = 0, first = 0;
-    int prc = exp_getopt_main("info", argc, argv, opts, info_option, &xdmf, usage, 1, &first);
+    static const struct option opts[] = {
+        {"xdmf", no_argument, NULL, 'x'}, {"verify", no_argument, NULL, 'V'}, {NULL, 0, NULL, 0}};
+    info_flags fl = {0, 0};
+    int first = 0;
+    int prc = exp_getopt_main("info", argc, argv, opts, info_option, &fl, usage, 1, &first);
     if (prc >= 0)
         return prc;
     if (first != argc - 1) {
@@ -248,6 +261,13 @@ int cmd_info(int argc, char **argv)
     }
     const char *file = argv[first];
     gr_err err = {0};
+    size_t nd = 0;
+    unsigned long long nb = 0;
+    /* a damaged file is named before anything of it is described */
+    if (fl.verify && gr_h5_verify(file, &nd, &nb, &err)) {
+        fprintf(stderr, "grano info: %s\n", err.msg);
+        return 1;
+    }
     gr_h5md_reader *r = gr_h5md_open(file, &err);
     if (!r) {
         fprintf(stderr, "grano info: %s\n", err.msg);
@@ -283,8 +303,10 @@ int cmd_info(int argc, char **argv)
             printf("checkpoint   no\n");
         }
     }
-    if (!rc && xdmf && !(rc = gr_h5md_write_xdmf(r, &err)))
+    if (!rc && fl.xdmf && !(rc = gr_h5md_write_xdmf(r, &err)))
         printf("wrote        %s.xdmf\n", in->path);
+    if (!rc && fl.verify)
+        printf("verified     %zu datasets read back, %.3g MB, every checksum good\n", nd, (double)nb / 1e6);
     gr_h5md_reader_free(r);
     if (rc) {
         fprintf(stderr, "grano info: %s\n", err.msg);
