@@ -17,53 +17,65 @@ typedef struct {
     void *buf;
 } walk;
 
-/* Dataset d read slice by slice along its first dimension, as bytes of
- * its own stored type (no conversion: the check is of the stored bytes). */
+/* A scalar or variable-length dataset (small: scene text, names), read
+ * whole; strings through their own type, then their memory given back. */
+static int read_whole(hid_t d, hid_t s, hid_t t, walk *w)
+{
+    int vstr = H5Tis_variable_str(t) > 0;
+    hid_t mt = vstr ? H5Tcopy(t) : H5Tget_native_type(t, H5T_DIR_DEFAULT);
+    hssize_t np = H5Sget_simple_extent_npoints(s);
+    size_t msz = mt >= 0 ? H5Tget_size(mt) : 0;
+    void *b = np >= 0 && msz ? calloc((size_t)np + 1, msz) : NULL;
+    int rc = !b || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0 ? -1 : 0;
+    if (!rc && vstr)
+        H5Dvlen_reclaim(mt, s, H5P_DEFAULT, b);
+    w->bytes += (unsigned long long)(np > 0 ? np : 0) * msz;
+    free(b);
+    if (mt >= 0)
+        H5Tclose(mt);
+    return rc;
+}
+
+/* A fixed-size dataset read slice by slice along its first dimension, as
+ * its stored bytes (no conversion: the check is of what is stored). */
+static int read_slices(hid_t d, hid_t s, hid_t t, int rank, walk *w)
+{
+    hsize_t dims[32], start[32] = {0}, count[32];
+    H5Sget_simple_extent_dims(s, dims, NULL);
+    size_t row = H5Tget_size(t);
+    for (int k = 1; k < rank; k++)
+        row *= (size_t)dims[k], count[k] = dims[k];
+    hsize_t per = row && row < SLICE ? SLICE / row : 1;
+    if (!w->buf && !(w->buf = malloc(per * row > SLICE ? per * row : SLICE)))
+        return -1;
+    if (per * row > SLICE) {
+        void *b = realloc(w->buf, per * row);
+        if (!b)
+            return -1;
+        w->buf = b;
+    }
+    int rc = 0;
+    for (hsize_t r = 0; !rc && r < dims[0]; r += per) {
+        start[0] = r, count[0] = r + per <= dims[0] ? per : dims[0] - r;
+        hid_t ms = H5Screate_simple(rank, count, NULL);
+        rc = ms < 0 || H5Sselect_hyperslab(s, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
+                     H5Dread(d, t, ms, s, H5P_DEFAULT, w->buf) < 0
+                 ? -1
+                 : 0;
+        w->bytes += count[0] * row;
+        if (ms >= 0)
+            H5Sclose(ms);
+    }
+    return rc;
+}
+
 static int read_all(hid_t d, walk *w)
 {
     hid_t s = H5Dget_space(d), t = H5Dget_type(d);
-    int rc = s < 0 || t < 0 ? -1 : 0;
-    int rank = rc ? -1 : H5Sget_simple_extent_ndims(s);
-    size_t el = rc ? 0 : H5Tget_size(t);
-    hsize_t dims[32];
-    if (!rc && (rank < 0 || rank > 32 || el == 0 || H5Tis_variable_str(t) > 0 || H5Tget_class(t) == H5T_VLEN))
-        rank = rank == 0 ? 0 : -2; /* variable-length: read through a string type below */
-    if (rank == -2 || rank == 0) {
-        /* a scalar or variable-length dataset: small, read whole */
-        hid_t mt = H5Tis_variable_str(t) > 0 ? H5Tcopy(t) : H5Tget_native_type(t, H5T_DIR_DEFAULT);
-        hssize_t np = H5Sget_simple_extent_npoints(s);
-        size_t msz = mt >= 0 ? H5Tget_size(mt) : 0;
-        void *b = np >= 0 && msz ? calloc((size_t)np + 1, msz) : NULL;
-        rc = !b || H5Dread(d, mt, H5S_ALL, H5S_ALL, H5P_DEFAULT, b) < 0 ? -1 : 0;
-        if (!rc && H5Tis_variable_str(t) > 0)
-            H5Dvlen_reclaim(mt, s, H5P_DEFAULT, b);
-        w->bytes += (unsigned long long)(np > 0 ? np : 0) * msz;
-        free(b);
-        if (mt >= 0)
-            H5Tclose(mt);
-    } else if (!rc) {
-        H5Sget_simple_extent_dims(s, dims, NULL);
-        size_t row = el;
-        for (int k = 1; k < rank; k++)
-            row *= (size_t)dims[k];
-        hsize_t per = row ? SLICE / row : 1, start[32] = {0}, count[32];
-        per = per < 1 ? 1 : per;
-        for (int k = 1; k < rank; k++)
-            count[k] = dims[k];
-        for (hsize_t r = 0; !rc && r < dims[0]; r += per) {
-            start[0] = r, count[0] = r + per <= dims[0] ? per : dims[0] - r;
-            hid_t ms = H5Screate_simple(rank, count, NULL);
-            void *b = count[0] * row <= SLICE || !w->buf ? realloc(w->buf, count[0] * row + 1) : w->buf;
-            if (b)
-                w->buf = b;
-            rc = ms < 0 || !b || H5Sselect_hyperslab(s, H5S_SELECT_SET, start, NULL, count, NULL) < 0 ||
-                         H5Dread(d, t, ms, s, H5P_DEFAULT, b) < 0
-                     ? -1
-                     : 0;
-            w->bytes += count[0] * row;
-            if (ms >= 0)
-                H5Sclose(ms);
-        }
+    int rank = s >= 0 ? H5Sget_simple_extent_ndims(s) : -1, rc = -1;
+    if (t >= 0 && rank >= 0) {
+        int whole = rank == 0 || rank > 32 || H5Tis_variable_str(t) > 0 || H5Tget_class(t) == H5T_VLEN;
+        rc = whole ? read_whole(d, s, t, w) : read_slices(d, s, t, rank, w);
     }
     if (t >= 0)
         H5Tclose(t);
