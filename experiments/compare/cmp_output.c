@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cmp.h"
+#include "table.h"
 #include "cmp_report.h"
 #include "h5tab.h"
 #include "plot.h"
@@ -248,11 +249,11 @@ static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, F
 static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, int ncases, cmp_point **all,
                   size_t *nall, cmp_refs *refs, int *bad, gr_err *err)
 {
-    char path[2048];
-    snprintf(path, sizeof path, "%s/compare.txt", pl->out);
-    FILE *txt = fopen(path, "w");
+    char path[2048], tpath[2048];
+    snprintf(tpath, sizeof tpath, "%s/compare.txt", pl->out);
+    FILE *txt = exp_dat_open(tpath, err);
     if (!txt)
-        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
+        return err->code;
     fprintf(txt, "# grano compare%s: relative error = |measured - reference| / |reference|; error bars\n"
                  "# from independent seeds (several) or block averages (one run)\n%s",
             pl->quick ? " --quick" : "", pl->notes);
@@ -263,9 +264,14 @@ static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, in
         rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &refs[k], bad, err);
     if (h)
         rc = rc ? (exp_tab_free(h), rc) : exp_tab_close(h, err);
-    if (fclose(txt) && !rc)
-        rc = gr_fail(err, GR_ERUN, "%s/compare.txt: write failed", pl->out);
-    return rc;
+    if (rc) {
+        char part[2100];
+        fclose(txt);
+        snprintf(part, sizeof part, "%s.part", tpath);
+        remove(part);
+        return rc;
+    }
+    return exp_dat_close(txt, tpath, err);
 }
 
 int cmp_report(const cmp_plan *pl, char *const *parts, int *drawn, gr_err *err)

@@ -64,8 +64,12 @@ const char *course_how(const course_opts *o);
  * disks do not fit on the starting square lattice (spacing below 1 d). */
 int course_box(const course_opts *o, long n, double eta0, double *L, gr_err *err);
 
-/* The exercise's HDF5 result file at <out>/<name>, labelled with the method. */
+/* The exercise's HDF5 result file <out>/<name>, labelled with the method:
+ * written as <name>.part and renamed by course_h5_close once whole (rc: the
+ * writes' status; on a failure the part is removed), so that a killed
+ * exercise leaves no half-written result under its name. */
 gr_h5md *course_h5(const course_opts *o, const char *name, const gr_scene *sc, gr_err *err);
+int course_h5_close(gr_h5md *h, const course_opts *o, const char *name, int rc, gr_err *err);
 
 /* Whether a cooling gas is still homogeneous (course_hcs.c): its box
  * against the shear instability's length L_c, and the momentum and number

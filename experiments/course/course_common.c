@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <gsl/gsl_errno.h>
 
@@ -74,9 +75,29 @@ int course_advance_pairs(gr_sim *s, uint64_t target, gr_err *err)
 gr_h5md *course_h5(const course_opts *o, const char *name, const gr_scene *sc, gr_err *err)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/%s", o->out, name);
+    snprintf(path, sizeof path, "%s/%s.part", o->out, name);
     gr_h5md_opts ho = {.method = o->m->name, .seed = o->seed, .force = 1, .no_xdmf = 1};
     return gr_h5md_create(path, sc, &ho, err);
+}
+
+int course_h5_close(gr_h5md *h, const course_opts *o, const char *name, int rc, gr_err *err)
+{
+    char path[1200], part[1300];
+    snprintf(path, sizeof path, "%s/%s", o->out, name);
+    snprintf(part, sizeof part, "%s.part", path);
+    if (!h)
+        return rc ? rc : GR_ERUN;
+    gr_err e2 = {0};
+    int crc = gr_h5md_close(h, rc ? &e2 : err);
+    if (rc || crc) {
+        unlink(part);
+        return rc ? rc : crc;
+    }
+    if (rename(part, path)) {
+        unlink(part);
+        return gr_fail(err, GR_ERUN, "cannot rename %s to %s: %s", part, path, strerror(errno));
+    }
+    return GR_OK;
 }
 
 const char *course_how(const course_opts *o)

@@ -115,8 +115,7 @@ static int report(const course_opts *o, const cooling *w, double *worst_c, doubl
     int rc = !h || exp_put_result(h, "cooling/temperature", NSAMP + 1, NCOL,
                                   "collisions_per_grain,t,T_over_T0,exp_law,haff,tau,vortices,clusters",
                                   "homogeneous cooling against Haff", w->tab, err);
-    if (h)
-        rc = gr_h5md_close(h, err) || rc;
+    rc = course_h5_close(h, o, "cooling.h5", rc ? (err->code ? err->code : GR_ERUN) : GR_OK, err);
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }
 

@@ -104,17 +104,16 @@ static int write_results(const course_opts *o, const maxwell *w, gr_err *err)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/maxwell.dat", o->out);
-    if (exp_write_dat(path, "collisions/N KS chi2 dof p   (data set 0; data set 1, the histograms, follows)",
-                      w->tab, NSTAGE, 5, err))
-        return err->code;
-    FILE *f = fopen(path, "a");
+    FILE *f = exp_dat_open(path, err);
     if (!f)
-        return gr_fail(err, GR_ERUN, "%s: cannot append", path);
+        return err->code;
+    fprintf(f, "# collisions/N KS chi2 dof p   (data set 0; data set 1, the histograms, follows)\n");
+    print_rows(f, w->tab, NSTAGE, 5);
     /* Two blank lines end a data set for gnuplot's `index`. */
     fprintf(f, "\n\n# v f(v) at C/N = 0.5 1 2 3 %g, Maxwell 2v/V0^2 exp(-v^2/V0^2)   (data set 1)\n", w->stage[NSTAGE - 1]);
     print_rows(f, w->htab, NBIN, NSTAGE + 2);
-    if (fclose(f))
-        return gr_fail(err, GR_ERUN, "%s: write failed", path);
+    if (exp_dat_close(f, path, err))
+        return err->code;
     char what[128];
     snprintf(what, sizeof what, "speed, density at C/N = 0.5 1 2 3 %g, Maxwell 2v/V0^2 exp(-v^2/V0^2)",
              w->stage[NSTAGE - 1]);
@@ -123,8 +122,7 @@ static int write_results(const course_opts *o, const maxwell *w, gr_err *err)
                                   "distance to Maxwell after C/N collisions", w->tab, err) ||
              exp_put_result(h, "maxwell/histograms", NBIN, NSTAGE + 2, NULL,
                             what, w->htab, err);
-    if (h)
-        rc = gr_h5md_close(h, err) || rc;
+    rc = course_h5_close(h, o, "maxwell.h5", rc ? (err->code ? err->code : GR_ERUN) : GR_OK, err);
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }
 

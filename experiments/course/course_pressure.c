@@ -136,8 +136,7 @@ static int write_results(const course_opts *o, const pressure *w, gr_err *err)
                                   "wall pressure against n = N/L^2, V0 = 1", w->A, err) ||
              exp_put_result(h, "pressure/v0", (size_t)w->nv, 3, "V0,p,p_over_V0sq",
                             vdesc, w->B, err);
-    if (h)
-        rc = gr_h5md_close(h, err) || rc;
+    rc = course_h5_close(h, o, "pressure.h5", rc ? (err->code ? err->code : GR_ERUN) : GR_OK, err);
     gr_scene_free(sc);
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }

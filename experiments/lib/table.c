@@ -1,8 +1,10 @@
 /* Result tables: to the HDF5 result file and as plain .dat text. */
 #include "table.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 int exp_put_result(gr_h5md *h, const char *name, size_t rows, size_t cols, const char *cols_csv,
                     const char *desc, const double *v, gr_err *err)
@@ -19,15 +21,41 @@ int exp_put_result(gr_h5md *h, const char *name, size_t rows, size_t cols, const
     return gr_h5md_write_result(h, &d, v, err);
 }
 
+FILE *exp_dat_open(const char *path, gr_err *err)
+{
+    char part[1200];
+    snprintf(part, sizeof part, "%s.part", path);
+    FILE *f = fopen(part, "w");
+    if (!f)
+        gr_fail(err, GR_ERUN, "%s: cannot write: %s", part, strerror(errno));
+    return f;
+}
+
+int exp_dat_close(FILE *f, const char *path, gr_err *err)
+{
+    char part[1200];
+    snprintf(part, sizeof part, "%s.part", path);
+    int bad = ferror(f);
+    if (fclose(f) || bad) {
+        unlink(part);
+        return gr_fail(err, GR_ERUN, "%s: write failed", part);
+    }
+    if (rename(part, path)) {
+        unlink(part);
+        return gr_fail(err, GR_ERUN, "cannot rename %s to %s: %s", part, path, strerror(errno));
+    }
+    return GR_OK;
+}
+
 int exp_write_dat(const char *path, const char *header, const double *v, size_t rows, size_t cols,
                    gr_err *err)
 {
-    FILE *f = fopen(path, "w");
+    FILE *f = exp_dat_open(path, err);
     if (!f)
-        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
+        return err->code;
     fprintf(f, "# %s\n", header);
     for (size_t i = 0; i < rows; i++)
         for (size_t j = 0; j < cols; j++)
             fprintf(f, "%.8g%c", v[i * cols + j], j + 1 < cols ? ' ' : '\n');
-    return fclose(f) ? gr_fail(err, GR_ERUN, "%s: write failed", path) : GR_OK;
+    return exp_dat_close(f, path, err);
 }
