@@ -16,6 +16,10 @@ struct gr_progress {
     uint64_t thermo_steps;
     int thermo_lines;
     const char *label; /* name of the progress variable */
+    const char *obs_name; /* the key observable last shown */
+    double obs_value;
+    const char *cost_unit; /* steps (events) per unit time, shown once known */
+    double cost;
 };
 
 double gr_wall_seconds(void)
@@ -71,6 +75,8 @@ void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, doub
 {
     if (!p || !p->tty)
         return;
+    if (obs_name)
+        p->obs_name = obs_name, p->obs_value = obs_value;
     double now = gr_wall_seconds(), el = now - p->wall0;
     if (el < p->delay || now - p->last_draw < 0.25)
         return;
@@ -81,10 +87,20 @@ void gr_progress_update(gr_progress *p, double t_sim, const char *obs_name, doub
     fmt_duration(e, sizeof e, el);
     fmt_duration(r, sizeof r, rem);
     fprintf(p->out, "\r\033[K%5.1f%%  %s = %-10.4g elapsed %s  remaining %s", 100 * frac, p->label, t_sim, e, r);
-    if (obs_name)
-        fprintf(p->out, "  %s = %.4g", obs_name, obs_value);
+    if (p->obs_name)
+        fprintf(p->out, "  %s = %.4g", p->obs_name, p->obs_value);
+    if (p->cost_unit && p->cost > 0)
+        fprintf(p->out, "  %s/tau = %.3g", p->cost_unit, p->cost);
     fflush(p->out);
     p->drawn = 1;
+}
+
+void gr_progress_cost(gr_progress *p, double t_sim, const char *unit, double per_time)
+{
+    if (!p)
+        return;
+    p->cost_unit = unit, p->cost = per_time;
+    gr_progress_update(p, t_sim, NULL, 0);
 }
 
 void gr_progress_finish(gr_progress *p)

@@ -25,6 +25,10 @@ void gr_progress_thermo(gr_progress *p, double every);
 /* One observation: the progress line (key observable E_kin) on a terminal,
  * a thermo line off one when due. */
 void gr_progress_obs(gr_progress *p, const gr_obs *o);
+/* The run's cost, steps (events) per unit of simulated time, shown on the
+ * line from now on, and the line redrawn at t_sim: between samples the
+ * line follows the advance, so a crawl shows. */
+void gr_progress_cost(gr_progress *p, double t_sim, const char *unit, double per_time);
 /* Clear the line, if anything was drawn. */
 void gr_progress_finish(gr_progress *p);
 /* Monotonic wall-clock seconds. */

@@ -114,6 +114,9 @@ typedef struct {
     int contacts;           /* write the contact network with each frame */
     int stress;             /* write the contact stress with each frame */
     int strict;             /* a broken validity limit stops the run */
+    double stall_steps;     /* steps (events) without the time advancing that, */
+    double stall_seconds;   /* ... with as many wall seconds, stop a run */
+    double max_cost_growth; /* steps per unit time over the first unit's that stop a run (0: none) */
 } gr_runctl;
 
 /* Scale limits (docs/reliability.md): a scene beyond them is refused up

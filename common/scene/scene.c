@@ -29,7 +29,8 @@ static const char *const keys_init[] = {"kind", "region", "spacing", "velocity",
                                         "occupation", "rest_occupation", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
-                                       "thermo_every", "stress", "strict", NULL};
+                                       "thermo_every", "stress", "strict", "stall_steps", "stall_seconds",
+                                       "max_cost_growth", NULL};
 
 static const char *const bc_names[] = {"wall", "periodic", "open", NULL};
 static const char *const normal_names[] = {"linear", "hertz", NULL};
@@ -378,8 +379,13 @@ static int read_measure_run(gr_scene *sc, gr_err *err)
         NONNEG("run", "thermo_every", sc->run.output_every, &sc->run.thermo_every) ||
         gr_scene_get_yesno(sc, "run", "contacts", 0, &sc->run.contacts, err) ||
         gr_scene_get_yesno(sc, "run", "stress", 0, &sc->run.stress, err) ||
-        gr_scene_get_yesno(sc, "run", "strict", 0, &sc->run.strict, err))
+        gr_scene_get_yesno(sc, "run", "strict", 0, &sc->run.strict, err) ||
+        POSITIVE("run", "stall_steps", 1e6, &sc->run.stall_steps) ||
+        NONNEG("run", "stall_seconds", 10.0, &sc->run.stall_seconds) ||
+        NONNEG("run", "max_cost_growth", 1000.0, &sc->run.max_cost_growth))
         return err->code;
+    if (sc->run.max_cost_growth > 0 && sc->run.max_cost_growth < 1)
+        return gr_scene_entry_fail(sc, "run", "max_cost_growth", err, "expected 0 (no bound) or at least 1");
     return GR_OK;
 }
 

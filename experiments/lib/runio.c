@@ -17,6 +17,7 @@
 #include "stress.h"
 #include "restart.h"
 #include "stop.h"
+#include "watch.h"
 
 void gr_run_ckpt_path(const char *out, char *buf, size_t n)
 {
@@ -164,6 +165,7 @@ typedef struct {
     uint64_t warned;   /* the validity limits already told, by declaration position */
     int strict_stop;   /* stopped by [run] strict = yes: the state is not a good one */
     int stopped;       /* the stop signal that ended the loop (0: none) */
+    exp_watch watch;   /* the run's cost between samples */
     double last_frame; /* time of this run's last frame (-1: none yet) */
     gr_h5md *h;
     gr_field *field;
@@ -314,6 +316,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
     gr_progress_thermo(pg, rc->thermo_every);
     const double eps = 1e-9 * (rc->until > 1 ? rc->until : 1);
     int status = GR_OK;
+    exp_watch_init(&io->watch, st, rc);
     for (;;) {
         double t = gr_sim_time(st);
         gr_obs obs;
@@ -354,7 +357,8 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
         }
         if (t >= rc->until - eps)
             break;
-        /* a stop signal is read here, the samples of t written: the state
+        /* a stop signal is read here, the samples of t written (or between
+         * two chunks of an advance, when it came during one): the state
          * saved then restarts onto the same sample times */
         if ((io->stopped = exp_stop_signal())) {
             status = GR_ERUN;
@@ -366,7 +370,8 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             double next = t0 + (double)k[j] * every;
             target = next < target ? next : target;
         }
-        if ((status = gr_sim_advance(st, target, 0, err)) || (status = check_limits(io, sc, st, o, err)))
+        if ((status = exp_watch_advance(&io->watch, st, sc, target, pg, err)) ||
+            (status = check_limits(io, sc, st, o, err)))
             break;
     }
     gr_progress_free(pg);
