@@ -13,6 +13,8 @@ int gr_dsmc_step(gr_dsmc *d, gr_err *err)
     gr_dsmc_stress_sample(d, h);
     d->step++;
     d->t = d->par.dt * (double)d->step;
+    if (d->step % GR_DSMC_DENSE_EVERY == 0)
+        gr_dsmc_dense_check(d);
     d->wall_time += h;
     return GR_OK;
 }

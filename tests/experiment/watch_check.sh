@@ -4,7 +4,7 @@
 # diagnostic naming the cause and the keys, its last good state kept,
 # within seconds, under the default collapse model and under threshold;
 # a stop signal during such a crawl is honoured between two chunks of the
-# advance. TAP.
+# advance; dsmc on the bed says it is not a gas. TAP.
 set -u
 . "$(dirname "$0")/tap.sh"
 GRANO=$1
@@ -42,6 +42,19 @@ for model in tc threshold; do
         ok "edmd bed, collapse = $model: stopped in $took s, the cost's growth named, the state kept"
     else notok "edmd bed, collapse = $model (exit $rc, $took s)"; fi
 done
+
+# dsmc on the same bed: not a gas, said with the region, refused under strict
+"$GRANO" run "$tmp/bed.ini" --method dsmc --until 2 --out "$tmp/dsmc.h5" -q 2>"$tmp/err"
+rc=$?
+if [ $rc = 0 ] && grep -q "validity limit limit_dense broken at t = .*: the packing fraction reaches 0\.[5-9][0-9]* in x .* d, above 0.5: not a gas" "$tmp/err"; then
+    ok "dsmc on the bed: 'not a gas' said with the region and the packing fraction"
+else notok "dsmc on the bed says it is not a gas (exit $rc)"; fi
+# (the bed breaks the cells' limits too, which strict meets first)
+"$GRANO" run "$tmp/bed.ini" --method dsmc --until 2 --set run.strict=yes --out "$tmp/dsmc2.h5" -q 2>"$tmp/err"
+rc=$?
+if [ $rc = 1 ] && grep -q "validity limit limit_.* broken at t = 0.5" "$tmp/err" && grep -q "stopped" "$tmp/err"; then
+    ok "dsmc on the bed under [run] strict = yes: refused at the first sample, exit 1"
+else notok "dsmc on the bed under strict (exit $rc)"; fi
 
 # without the bound the bed crawls; SIGTERM stops it at once
 "$GRANO" run "$tmp/bed.ini" --method edmd --set edmd.collapse=threshold --set run.max_cost_growth=0 \
