@@ -131,20 +131,30 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
     if (!gp)
         return err->code;
     int nrow = 0, has[CMP_MAXROWS] = {0};
+    /* the axes fitted to what is drawn: the points, their error bars, the
+     * reference's error bar (the wall time of a quick run can span less
+     * than a decade, which gnuplot's log autoscale would widen to ten) */
+    double x0 = INFINITY, x1 = 0, y0 = INFINITY, y1 = 0;
     for (int r = 0; c->rows[r].method; r++) {
         fprintf(gp, "$r%d << EOD\n", r);
         for (size_t i = 0; i < n; i++)
             if (pts[i].row == &c->rows[r] && pts[i].nok > 0 && c->rows[r].role != CMP_REFERENCE) {
-                double e = fmax(pts[i].error, floor_err);
-                fprintf(gp, "%.6g %.6g %.6g %.6g \"%s\"\n", e, pts[i].wall, fmax(e - pts[i].error_sem, e / 10),
-                        e + pts[i].error_sem, pts[i].value[0] ? pts[i].value : "");
+                double e = fmax(pts[i].error, floor_err), lo = fmax(e - pts[i].error_sem, e / 10);
+                fprintf(gp, "%.6g %.6g %.6g %.6g \"%s\"\n", e, pts[i].wall, lo, e + pts[i].error_sem,
+                        pts[i].value[0] ? pts[i].value : "");
+                x0 = fmin(x0, lo), x1 = fmax(x1, e + pts[i].error_sem);
+                y0 = fmin(y0, pts[i].wall), y1 = fmax(y1, pts[i].wall);
                 has[r] = 1;
             }
         fprintf(gp, "EOD\n");
         nrow++;
     }
     const char *rl = ref_label(c);
-    fprintf(gp, "set title \"%s: %s against %s\"\nset logscale xy\nset format x '10^{%%T}'\n"
+    if (rl && ref->sem > 0)
+        x0 = fmin(x0, ref->sem / fabs(ref->value)), x1 = fmax(x1, ref->sem / fabs(ref->value));
+    gr_plot_log_axis(gp, "x", x0, x1);
+    gr_plot_log_axis(gp, "y", y0, y1);
+    fprintf(gp, "set title \"%s: %s against %s\"\nset logscale xy\n"
                 "set xlabel \"relative error of %s (below 1e-16 drawn at 1e-16)\"\n"
                 "set ylabel 'wall time per run / s'\nset key outside right\nset grid\n",
             c->name, c->quantity, rl ? rl : "the analytic value", c->quantity);
@@ -184,6 +194,8 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
         gr_plot_close(gp, png, err);
         return gr_fail(err, GR_ERUN, "out of memory");
     }
+    /* each panel's log axis fitted to the points it draws */
+    double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
     for (int m = 0; m < nm; m++) {
         fprintf(gp, "$m%d << EOD\n", m);
         for (int k = 0; cs[k].name; k++)
@@ -193,7 +205,10 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
                 if (last && p->nok > 0 && !strcmp(p->row->method, methods[m]->name) &&
                     (p->row->role == CMP_SWEEP || p->row->role == CMP_MODEL) &&
                     !strchr(p->row->label, '-')) {
-                    fprintf(gp, "%d %.6g %.6g\n", k, fmax(p->error, floor_err), p->wall);
+                    double e = fmax(p->error, floor_err);
+                    fprintf(gp, "%d %.6g %.6g\n", k, e, p->wall);
+                    lo[0] = fmin(lo[0], e), hi[0] = fmax(hi[0], e);
+                    lo[1] = fmin(lo[1], p->wall), hi[1] = fmax(hi[1], p->wall);
                     count[m]++;
                 }
             }
@@ -207,9 +222,10 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
     int ncases = 0;
     while (cs[ncases].name)
         ncases++;
-    fprintf(gp, ") rotate by 30 right\nset xrange [-0.5:%g]\nset logscale y\nset grid\nset key top left\n",
+    fprintf(gp, ") rotate by 30 right\nset xrange [-0.5:%g]\nset grid\nset key top left\n",
             ncases - 0.5);
     for (int panel = 0; panel < 2; panel++) {
+        gr_plot_log_axis(gp, "y", lo[panel], hi[panel]);
         fprintf(gp, "set ylabel '%s'\nplot ", panel ? "wall time per run / s" : "relative error");
         for (int m = 0, first = 1; m < nm; m++)
             if (count[m]) {

@@ -119,30 +119,6 @@ static int report(const course_opts *o, const cooling *w, double *worst_c, doubl
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }
 
-/* Labelled tics on a log axis over [lo, hi]: gnuplot labels only the
- * powers of ten, none at all on a range narrower than a decade. The
- * coarsest of three mantissa sets that puts three or more in range. */
-static void log_tics(FILE *gp, char axis, double lo, double hi)
-{
-    static const double sets[3][9] = {{1, 2, 5}, {1, 1.5, 2, 3, 4, 5, 6, 7, 8}, {1, 1.1, 1.2, 1.3, 1.5, 2, 3, 5, 7}};
-    static const int len[3] = {3, 9, 9};
-    for (int k = 0; k < 3; k++) {
-        double v[64];
-        int n = 0;
-        for (double dec = pow(10, floor(log10(lo))); dec <= hi && n < 56; dec *= 10)
-            for (int j = 0; j < len[k]; j++)
-                if (sets[k][j] * dec >= lo && sets[k][j] * dec <= hi)
-                    v[n++] = sets[k][j] * dec;
-        if (n >= 3 || k == 2) {
-            fprintf(gp, "set %ctics (", axis);
-            for (int j = 0; j < n; j++)
-                fprintf(gp, "%s%g", j ? ", " : "", v[j]);
-            fprintf(gp, ")\n");
-            return;
-        }
-    }
-}
-
 /* cooling.png: T against C/N (semi-log) and against 1 + t/tau (log-log,
  * where Haff's law is a line of slope -2; against t when alpha = 1), each
  * axis fitted to its data. */
@@ -154,35 +130,33 @@ static int plot(const course_opts *o, const cooling *w, gr_err *err)
     if (!gp)
         return err->code;
     const double *tab = w->tab, tau = tab[5];
-    double ymin = 1, xmax = tab[NCOL * NSAMP + 1];
+    double ymin = 1, ymax = 1, xmax = tab[NCOL * NSAMP + 1];
     fprintf(gp, "$d << EOD\n");
     for (int k = 0; k <= NSAMP; k++) {
         const double *r = tab + NCOL * k;
         fprintf(gp, "%.6g %.6g %.6g %.6g %.6g\n", r[0], r[1], r[2], r[3], r[4]);
         ymin = fmin(ymin, fmin(r[2], fmin(r[3], r[4])));
+        ymax = fmax(ymax, fmax(r[2], fmax(r[3], r[4])));
     }
-    fprintf(gp, "EOD\nset multiplot layout 1,2\nset logscale y\nset yrange [%.6g:%.6g]\nset key top right\n",
-            ymin / 1.05, 1.05);
-    log_tics(gp, 'y', ymin / 1.05, 1.05);
+    fprintf(gp, "EOD\nset multiplot layout 1,2\nset key top right\n");
+    gr_plot_log_axis(gp, "y", ymin, ymax);
     fprintf(gp, "set title 'Cooling, {/Symbol a} = %g: T against collisions'\nset xlabel 'collisions per disk C/N'\n"
                 "set ylabel 'T / T_0 (T_0: temperature at the quench)'\nset xrange [0:%.6g]\n"
                 "plot $d u 1:3 w p pt 7 t 'measured', $d u 1:4 w l lw 2 t 'exp(-(1-{/Symbol a}^2) C/N)'\n",
             w->alpha, 1.02 * tab[NCOL * NSAMP]);
-    if (isfinite(tau))
-        fprintf(gp, "set title 'Haff law, Enskog {/Symbol t} = %.3g'\nset xlabel '1 + t/{/Symbol t} (t in units of d/V_0)'\n"
-                    "set logscale x\nset xrange [1:%.6g]\n",
-                tau, 1.02 * (1 + xmax / tau));
     if (isfinite(tau)) {
-        log_tics(gp, 'x', 1, 1.02 * (1 + xmax / tau));
+        fprintf(gp, "set title 'Haff law, Enskog {/Symbol t} = %.3g'\nset xlabel '1 + t/{/Symbol t} (t in units of d/V_0)'\n",
+                tau);
+        gr_plot_log_axis(gp, "x", 1, 1 + xmax / tau);
         fprintf(gp, "plot $d u (1+$2/%.8g):3 w p pt 7 t 'measured', $d u (1+$2/%.8g):5 w l lw 2 "
                     "t '(1+t/{/Symbol t})^{-2}'\nunset multiplot\n",
                 tau, tau);
-    }
-    else
+    } else {
         fprintf(gp, "set title 'Elastic: Haff time infinite, T stays T_0'\nset xlabel 't (units of d/V_0)'\n"
                     "set xrange [0:%.6g]\nplot $d u 2:3 w p pt 7 t 'measured', $d u 2:5 w l lw 2 t 'Haff: 1'\n"
                     "unset multiplot\n",
                 1.02 * xmax);
+    }
     return gr_plot_close(gp, path, err);
 }
 

@@ -1,5 +1,6 @@
 #include "plot.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
@@ -159,4 +160,40 @@ int gr_plot_close(FILE *gp, const char *path, gr_err *err)
             rc = render(gp_path, f, other, err);
         }
     return rc;
+}
+
+/* Labelled tics on a log axis over [lo, hi]: the coarsest of three
+ * mantissa sets that puts three or more in range. */
+static void log_tics(FILE *gp, const char *axis, double lo, double hi)
+{
+    static const double sets[3][9] = {{1, 2, 5}, {1, 1.5, 2, 3, 4, 5, 6, 7, 8}, {1, 1.1, 1.2, 1.3, 1.5, 2, 3, 5, 7}};
+    static const int len[3] = {3, 9, 9};
+    for (int k = 0; k < 3; k++) {
+        double v[64];
+        int n = 0;
+        for (double dec = pow(10, floor(log10(lo))); dec <= hi && n < 56; dec *= 10)
+            for (int j = 0; j < len[k]; j++)
+                if (sets[k][j] * dec >= lo && sets[k][j] * dec <= hi)
+                    v[n++] = sets[k][j] * dec;
+        /* many decades: gnuplot's own tics are better */
+        if (n > 12 && k == 0)
+            return;
+        if (n >= 3 || k == 2) {
+            fprintf(gp, "set %stics (", axis);
+            for (int j = 0; j < n; j++)
+                fprintf(gp, "%s%g", j ? ", " : "", v[j]);
+            fprintf(gp, ")\n");
+            return;
+        }
+    }
+}
+
+void gr_plot_log_axis(FILE *gp, const char *axis, double lo, double hi)
+{
+    if (!(lo > 0) || !(hi >= lo) || !isfinite(hi))
+        return;
+    double span = log10(hi / lo), pad = span > 0 ? 0.1 * span : 0.05;
+    double a = lo / pow(10, pad), b = hi * pow(10, pad);
+    fprintf(gp, "set logscale %s\nset %srange [%.8g:%.8g]\n", axis, axis, a, b);
+    log_tics(gp, axis, a, b);
 }

@@ -27,6 +27,12 @@ int gr_plot_on_path(const char *prog);
 /* s as a gnuplot single-quoted string ('' for each quote) into buf; text
  * from users (scene names, paths) goes through it. */
 void gr_plot_quote(const char *s, char *buf, size_t n);
+/* A log axis ("x" or "y") fitted to data in [lo, hi] (both > 0): a margin
+ * of a tenth of the data's span in decades each side (gnuplot's own
+ * autoscale widens a log axis to whole decades, so that data within one
+ * decade sit in a corner), with labelled tics (gnuplot labels only the
+ * powers of ten). Nothing when lo or hi is not finite and positive. */
+void gr_plot_log_axis(FILE *gp, const char *axis, double lo, double hi);
 /* "png", "svg" or "pdf": the format a figure's name asks for. */
 const char *gr_plot_format_of(const char *path);
 
