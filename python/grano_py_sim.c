@@ -307,6 +307,8 @@ int gp_sim_advance(gp_sim *s, double t_end, uint64_t max_steps, int *done, gr_er
 {
     double t = gr_sim_time(s->sim);
     *done = 0;
+    if (!isfinite(t_end))
+        return gr_fail(err, GR_EINPUT, "advance: t = %g is not a finite time", t_end);
     if (t >= t_end - s->eps) {
         *done = 1;
         return GR_OK;

@@ -3,6 +3,7 @@ over the sample times of `grano run` so that its trajectory, observables
 and checkpoints are the CLI's, bit for bit."""
 import contextlib
 import ctypes as C
+import math
 import os
 import sys
 import threading
@@ -35,11 +36,7 @@ class _Particles:
 
     def __init__(self, ptr):
         self.ptr = ptr
-
-    def __del__(self):
-        if self.ptr:
-            lib.gp_particles_free(self.ptr)
-            self.ptr = None
+        weakref.finalize(self, lib.gp_particles_free, ptr)
 
 
 class Snapshot:
@@ -213,6 +210,8 @@ class Sim:
         (the state is the last good one). progress: a bar (tqdm if
         installed). Returns self."""
         t = float(t)
+        if not math.isfinite(t):
+            raise ValueError("advance: t = %r is not a finite time" % t)
         with self._busy() as h:
             now = lib.gp_sim_time(h)
             if t < now - 1e-9 * max(1.0, abs(now)):
