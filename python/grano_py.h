@@ -88,9 +88,9 @@ double gp_sim_time(const gp_sim *s);
  * next sample time or t_end, at most max_steps steps (0: no limit). *done
  * is 1, and nothing moved, once the time has reached t_end. */
 int gp_sim_advance(gp_sim *s, double t_end, uint64_t max_steps, int *done, gr_err *err);
-/* The samples due now, then one step or event (off the sample times: a
- * sample time it jumps over is not taken). */
-int gp_sim_step(gp_sim *s, gr_err *err);
+/* n times: the samples due now, then one step or event (off the sample
+ * times: a sample time a step jumps over is not taken). */
+int gp_sim_step(gp_sim *s, uint64_t n, gr_err *err);
 /* The declared observables now: each k fills val[2k], val[2k+1] (a
  * scalar: the first) or, a count, ival[k]; bit k of *skip: observable k
  * does not exist in this scene. */

@@ -329,15 +329,18 @@ int gp_sim_advance(gp_sim *s, double t_end, uint64_t max_steps, int *done, gr_er
     return GR_OK;
 }
 
-int gp_sim_step(gp_sim *s, gr_err *err)
+int gp_sim_step(gp_sim *s, uint64_t n, gr_err *err)
 {
-    if (take_samples(s, err) || gr_sim_step(s->sim, err) || check_limits(s, err))
-        return named(s, err);
-    double t = gr_sim_time(s->sim);
-    for (int j = 0; j < 3; j++)
-        if (t > s->t0 + (double)s->k[j] * s->every[j] + s->eps)
-            s->k[j] = gr_run_next_index(t - 2 * s->eps, s->t0, s->every[j], s->eps);
-    return GR_OK;
+    for (uint64_t i = 0; i < n; i++) {
+        if (take_samples(s, err) || gr_sim_step(s->sim, err))
+            return named(s, err);
+        double t = gr_sim_time(s->sim);
+        for (int j = 0; j < 3; j++)
+            if (t > s->t0 + (double)s->k[j] * s->every[j] + s->eps)
+                s->k[j] = gr_run_next_index(t - 2 * s->eps, s->t0, s->every[j], s->eps);
+    }
+    /* as the run loop, once a stretch: the diagnostics count every counter */
+    return check_limits(s, err) ? named(s, err) : GR_OK;
 }
 
 int gp_sim_observe(gp_sim *s, double *t, uint64_t *steps, double *val, int64_t *ival, uint64_t *skip,

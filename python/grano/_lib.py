@@ -26,7 +26,7 @@ _P, _D, _U64, _I, _S = C.c_void_p, C.c_double, C.c_uint64, C.c_int, C.c_char_p
 _SZ, _E = C.c_size_t, C.POINTER(Err)
 _PD, _PS = C.POINTER(C.c_double), C.POINTER(C.c_char_p)
 
-# name: (restype, argtypes); the ones in RUN release the GIL.
+# name: (restype, argtypes), on both handles.
 _DECL = {
     "gp_init": (None, []),
     "gp_version": (_S, []),
@@ -65,7 +65,7 @@ _DECL = {
     "gp_sim_scene": (_P, [_P]),
     "gp_sim_time": (_D, [_P]),
     "gp_sim_advance": (_I, [_P, _D, _U64, C.POINTER(_I), _E]),
-    "gp_sim_step": (_I, [_P, _E]),
+    "gp_sim_step": (_I, [_P, _U64, _E]),
     "gp_sim_observe": (_I, [_P, _PD, C.POINTER(_U64), _PD, C.POINTER(C.c_int64), C.POINTER(_U64), _E]),
     "gp_sim_history": (_SZ, [_P, C.POINTER(_PD), C.POINTER(C.POINTER(_U64)), C.POINTER(_PD),
                              C.POINTER(C.POINTER(C.c_int64))]),
@@ -81,7 +81,6 @@ _DECL = {
     "gp_particles_data": (_P, [_P, _I]),
     "gp_particles_free": (None, [_P]),
 }
-RUN = ("gp_sim_advance", "gp_sim_step")
 
 
 def _load():

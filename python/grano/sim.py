@@ -128,6 +128,7 @@ class Sim:
 
     def __init__(self, scene, method="dem", seed=None, init=None, _handle=None):
         self._lock = threading.Lock()
+        self._wbuf = C.create_string_buffer(8192)
         if _handle is not None:
             self._h = _handle
         else:
@@ -197,7 +198,7 @@ class Sim:
             return _lib.s(lib.gp_scene_text(lib.gp_sim_scene(h)))
 
     def _warn(self, h):
-        buf = C.create_string_buffer(8192)
+        buf = self._wbuf
         if lib.gp_sim_warnings(h, buf, len(buf)):
             for line in _lib.s(buf.value).splitlines():
                 warnings.warn(line, errors.ValidityWarning, stacklevel=3)
@@ -235,13 +236,19 @@ class Sim:
         return self
 
     def step(self, n=1):
-        """n steps (or events) of the method, off the sample times."""
+        """n steps (or events) of the method, off the sample times; in calls
+        of about CHUNK_S seconds, as advance."""
         with self._busy() as h:
-            err = _lib.Err()
-            for _ in range(int(n)):
-                rc = run.gp_sim_step(h, C.byref(err))
+            err, left, chunk = _lib.Err(), int(n), 16
+            while left > 0:
+                k = min(left, chunk)
+                w = _time.perf_counter()
+                rc = run.gp_sim_step(h, k, C.byref(err))
+                w = _time.perf_counter() - w
                 self._warn(h)
                 _lib.check(rc, err, errors.RunError)
+                left -= k
+                chunk = chunk * 2 if w < CHUNK_S / 4 else max(1, chunk // 2) if w > CHUNK_S else chunk
         return self
 
     def _raw(self):
