@@ -106,10 +106,6 @@ def s(b):
     return None if b is None else b.decode("utf-8", "replace")
 
 
-def b(v):
-    return None if v is None else os.fsencode(v) if isinstance(v, os.PathLike) else str(v).encode()
-
-
 def check(rc, err, cls=None):
     """Raise the gr_err as a grano error: bad input (GR_EINPUT) as
     SceneError unless told otherwise, a failed run as RunError."""

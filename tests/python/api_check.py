@@ -11,7 +11,6 @@ usage: api_check.py GRANO SOURCE_ROOT WORKDIR (TAP)
 """
 import contextlib
 import io
-import os
 import signal
 import subprocess
 import sys
