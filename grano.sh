@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# grano.sh: the one entry point. deps | build | demo | test | bench | run ...
+# grano.sh: the one entry point. deps | build | demo | test | bench | run | python ...
 # Each command sets up what it needs first, so each works alone on a fresh
 # Debian 12 machine.
 set -euo pipefail
@@ -9,7 +9,7 @@ BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libcmocka-dev gnuplot-nox python3-h5py python3-numpy
-          libsiconos-numerics-dev librandom123-dev python3-ase python3-pandas)
+          libsiconos-numerics-dev librandom123-dev python3-ase python3-pandas python3-matplotlib)
 # optional, installed by `deps --optional` only: lammps (lmp) for
 # `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`;
 # ffmpeg for `grano movie` to MP4 (a GIF needs only gnuplot)
@@ -90,6 +90,13 @@ cmd_bench() {
     "$BUILD/experiments/grano" bench "$@"
 }
 
+# Debian's python3 (numpy, h5py, pandas), not the first on PATH, with the
+# module grano of the build (docs/python.md).
+cmd_python() {
+    cmd_build
+    PYTHONPATH="$PWD/$BUILD/python${PYTHONPATH:+:$PYTHONPATH}" exec /usr/bin/python3 "$@"
+}
+
 usage() {
     cat <<USAGE
 usage: ./grano.sh COMMAND
@@ -103,6 +110,8 @@ usage: ./grano.sh COMMAND
                   --peer lammps, Debian's lammps package is installed if missing
   run ARGS        build, then grano ARGS (e.g. ./grano.sh run methods,
                   ./grano.sh run info results/demo.h5)
+  python ARGS     build, then /usr/bin/python3 ARGS with the module grano importable
+                  (PYTHONPATH=$BUILD/python; e.g. ./grano.sh python examples/python/silo.py)
 USAGE
 }
 
@@ -113,6 +122,7 @@ case "${1:-}" in
     test) shift; cmd_test "$@" ;;
     bench) shift; cmd_bench "$@" ;;
     run) shift; cmd_build; exec "$BUILD/experiments/grano" "$@" ;;
+    python) shift; cmd_python "$@" ;;
     -h|--help|help) usage ;;
     *) usage >&2; exit 2 ;;
 esac

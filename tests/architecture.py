@@ -9,8 +9,9 @@
   include only headers of their own room and the rooms below it;
 - a backend never includes another backend's header;
 - outside a per-method benchmark (experiments/bench/), no file of
-  experiments/ includes a backend's own header (only methods/method.h);
-- inside every folder of common/, methods/ and experiments/, files stand in
+  experiments/ or python/ (the Python module's C interface, a floor beside
+  experiments/) includes a backend's own header (only methods/method.h);
+- inside every folder of common/, methods/, experiments/ and python/, files stand in
   layers (tests/layers.py: no two files use each other, directly or
   around a loop), and a file of a room of common/ calls no function of a
   room above it.
@@ -91,7 +92,7 @@ def check_includes(root):
     exp_h = headers_of(root, "experiments")
     backends = sorted(d for d in os.listdir(os.path.join(root, "methods"))
                       if os.path.isdir(os.path.join(root, "methods", d)))
-    for top in ("common", "methods", "experiments"):
+    for top in ("common", "methods", "experiments", "python"):
         for p in sources(root, top):
             rel = os.path.relpath(p, root)
             parts = rel.split(os.sep)
@@ -112,7 +113,7 @@ def check_includes(root):
                         owner = d[1] if len(d) > 1 else None
                     if owner and owner != mine and base not in common_h:
                         bad.append("%s includes %s of backend %s" % (rel, inc, owner))
-                if top == "experiments" and "bench" not in parts[1:-1]:
+                if top in ("experiments", "python") and "bench" not in parts[1:-1]:
                     owner = head if head in backends else None
                     if owner is None and base in method_h and base != "method.h":
                         d = method_h[base].split(os.sep)
@@ -132,7 +133,7 @@ def check_layers(root):
     if rooms and r.returncode:
         bad.append("common: %s" % "\n".join(l for l in r.stdout.splitlines()
                                              if l.startswith(("up a floor", "cycle", "  "))))
-    for top in ("common", "methods", "experiments"):
+    for top in ("common", "methods", "experiments", "python"):
         for d, _, files in os.walk(os.path.join(root, top)):
             if os.path.relpath(d, root) in rooms or not any(f.endswith(".c") for f in files):
                 continue

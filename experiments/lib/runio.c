@@ -276,10 +276,9 @@ static void sum_limits(gr_sim *st, const gr_run_opts *o)
     }
 }
 
-/* The first k with sample time t0 + k every after t. Computed, not
- * counted: an interval far below the time step would otherwise count up
- * for ever, or sample the same time twice. */
-static uint64_t next_index(double t, double t0, double every, double eps)
+/* Computed, not counted: an interval far below the time step would
+ * otherwise count up for ever, or sample the same time twice. */
+uint64_t gr_run_next_index(double t, double t0, double every, double eps)
 {
     double q = floor((t - t0 + eps) / every);
     uint64_t k = q > 0 ? (uint64_t)q : 0;
@@ -331,7 +330,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
             observed = 1;
             if (io->field && (status = gr_sim_fields(st, io->field, 1.0, err)))
                 break;
-            k[0] = next_index(t, t0, rc->observe_every, eps);
+            k[0] = gr_run_next_index(t, t0, rc->observe_every, eps);
             gr_progress_obs(pg, &obs);
         }
         if (t >= t0 + (double)k[1] * rc->output_every - eps || t >= rc->until - eps) {
@@ -347,10 +346,10 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                 break;
             if ((status = write_fields(io, &obs, err)))
                 break;
-            k[1] = next_index(t, t0, rc->output_every, eps);
+            k[1] = gr_run_next_index(t, t0, rc->output_every, eps);
         }
         if (t >= t0 + (double)k[2] * rc->checkpoint_every - eps) {
-            k[2] = next_index(t, t0, rc->checkpoint_every, eps);
+            k[2] = gr_run_next_index(t, t0, rc->checkpoint_every, eps);
             if (o->ckpt && ((status = room_check(&io->ckpt_room, io->ckpt_room.last, err)) ||
                             (status = gr_run_save(o->ckpt, st, k, err))))
                 break;
@@ -381,7 +380,7 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
 /* After a restart whose intervals changed, the next sample of each kind
  * is the first of the new interval after the checkpoint; a branch samples
  * the checkpoint's state itself first, as a fresh run samples its start. */
-static void resume_counters(const gr_scene *sc, const gr_runctl *was, double t, double t0, int branch,
+void gr_run_resume_counters(const gr_scene *sc, const gr_runctl *was, double t, double t0, int branch,
                             uint64_t k[3])
 {
     const gr_runctl *r = &sc->run;
@@ -390,9 +389,9 @@ static void resume_counters(const gr_scene *sc, const gr_runctl *was, double t, 
     double eps = 1e-9 * (r->until > 1 ? r->until : 1);
     for (int j = 0; j < 3; j++) {
         if (branch && j < 2)
-            k[j] = next_index(t - 2 * eps, t0, now[j], eps);
+            k[j] = gr_run_next_index(t - 2 * eps, t0, now[j], eps);
         else if (now[j] != old[j])
-            k[j] = next_index(t, t0, now[j], eps);
+            k[j] = gr_run_next_index(t, t0, now[j], eps);
     }
 }
 
@@ -484,7 +483,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         gr_runctl was;
         if ((rc = gr_run_load(o->restart, st, k, o, &was, err)))
             goto done;
-        resume_counters(sc, &was, gr_sim_time(st), t0, o->branch, k);
+        gr_run_resume_counters(sc, &was, gr_sim_time(st), t0, o->branch, k);
         /* Past the end: refused. At the end (killed while closing): the
          * result is reopened and closed, nothing run or written twice. */
         double eps = 1e-9 * (sc->run.until > 1 ? sc->run.until : 1);

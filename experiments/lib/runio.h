@@ -38,6 +38,15 @@ int gr_run_check(const gr_scene *sc, gr_err *err);
  * failed; the checkpoint then holds the last good state). */
 int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr_err *err);
 
+/* The sample times of a run are t0 + k * every (k = 0, 1, ...; every one
+ * of [run] observe_every, output_every, checkpoint_every): the first k
+ * whose time lies after t + eps. */
+uint64_t gr_run_next_index(double t, double t0, double every, double eps);
+/* The sample indices k[3] after a restart at time t (the checkpoint's
+ * [run] was `was`), as gr_run_scene resumes them. */
+void gr_run_resume_counters(const gr_scene *sc, const gr_runctl *was, double t, double t0, int branch,
+                            uint64_t k[3]);
+
 /* Save / restore a method's full state and the run counters. */
 int gr_run_save(const char *path, gr_sim *sim, const uint64_t counters[3], gr_err *err);
 /* Load: the scene may differ from the checkpoint's as restart.h allows
