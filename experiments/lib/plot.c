@@ -192,7 +192,8 @@ void gr_plot_log_axis(FILE *gp, const char *axis, double lo, double hi)
 {
     if (!(lo > 0) || !(hi >= lo) || !isfinite(hi))
         return;
-    double span = log10(hi / lo), pad = span > 0 ? 0.1 * span : 0.05;
+    /* data within a thousandth of a decade (0.23 %) are one value: a band around it */
+    double span = log10(hi / lo), pad = span > 1e-3 ? 0.1 * span : 0.05;
     double a = lo / pow(10, pad), b = hi * pow(10, pad);
     fprintf(gp, "set logscale %s\nset %srange [%.8g:%.8g]\n", axis, axis, a, b);
     log_tics(gp, axis, a, b);

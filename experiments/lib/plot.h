@@ -31,7 +31,8 @@ void gr_plot_quote(const char *s, char *buf, size_t n);
  * of a tenth of the data's span in decades each side (gnuplot's own
  * autoscale widens a log axis to whole decades, so that data within one
  * decade sit in a corner), with labelled tics (gnuplot labels only the
- * powers of ten). Nothing when lo or hi is not finite and positive. */
+ * powers of ten). Data within a thousandth of a decade get 0.05 decades each
+ * side. Nothing when lo or hi is not finite and positive. */
 void gr_plot_log_axis(FILE *gp, const char *axis, double lo, double hi);
 /* "png", "svg" or "pdf": the format a figure's name asks for. */
 const char *gr_plot_format_of(const char *path);

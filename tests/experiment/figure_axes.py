@@ -4,7 +4,9 @@
 terminal; after each plot command gnuplot reports the range its axes took
 (GPVAL_X_MIN...) and the range of the data drawn (GPVAL_DATA_X_MIN...). An
 axis more than five times wider than its data (in decades on a log axis)
-is the fault: the data squeezed into a corner. TAP.
+is the fault: the data squeezed into a corner. Data within a thousandth
+of their magnitude (a thousandth of a decade on a log axis) are one value,
+not checked. TAP.
 
 usage: figure_axes.py SCRIPT.gp ...     (or directories holding .gp files)
 """
@@ -72,7 +74,8 @@ def check(path):
             log = logs[a] == '1'
             ds, axs = span(dlo, dhi, log), span(lo, hi, log)
             name = '%s plot %d, %s axis%s' % (os.path.basename(path), k + 1, 'xy'[a], ' (log)' if log else '')
-            if not (ds > 0) or not math.isfinite(ds) or abs(dlo) > 1e300:
+            one = (log and ds < 1e-3) or (not log and ds <= 1e-3 * max(abs(dlo), abs(dhi)))
+            if not (ds > 0) or not math.isfinite(ds) or abs(dlo) > 1e300 or one:
                 res.append((True, '%s: no data or one value, not checked' % name))
                 continue
             ratio = axs / ds
