@@ -9,7 +9,8 @@ BUILD=build
 SAN=build-san
 PACKAGES=(meson ninja-build pkg-config gcc libc6-dev libgsl-dev libsundials-dev libhdf5-dev
           hdf5-tools libcmocka-dev gnuplot-nox python3-h5py python3-numpy
-          libsiconos-numerics-dev librandom123-dev python3-ase python3-pandas python3-matplotlib)
+          libsiconos-numerics-dev librandom123-dev python3-ase python3-pandas python3-matplotlib
+          python3-pytest)
 # optional, installed by `deps --optional` only: lammps (lmp) for
 # `grano bench dem --peer lammps` and `grano silo-flow --peer lammps`;
 # ffmpeg for `grano movie` to MP4 (a GIF needs only gnuplot)
