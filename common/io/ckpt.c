@@ -59,14 +59,16 @@ static gr_ckpt *create_impl(const char *path, gr_err *err)
     c->writing = 1;
     c->group = -1;
     hid_t fapl = gr_h5_fapl();
-    c->file = fapl < 0 ? -1 : H5Fcreate(c->tmp, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    hid_t fcpl = gr_h5_untimed(H5P_FILE_CREATE);
+    c->file = fapl < 0 || fcpl < 0 ? -1 : H5Fcreate(c->tmp, H5F_ACC_TRUNC, fcpl, fapl);
     gr_h5_close(fapl);
+    gr_h5_close(fcpl);
     if (c->file < 0) {
         gr_h5_fail(err, GR_EINPUT, "cannot create checkpoint %s", path);
         ckpt_release(c);
         return NULL;
     }
-    c->group = H5Gcreate2(c->file, "checkpoint", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    c->group = gr_h5_mkgroup(c->file, "checkpoint");
     if (c->group < 0) {
         gr_h5_fail(err, GR_ERUN, "cannot write checkpoint %s", path);
         gr_h5_close(c->file);

@@ -209,9 +209,10 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
                 gr_obs_count(o->obs ? o->obs : gr_obs_particle_set), GR_OBS_MAX);
         goto fail;
     }
-    hid_t fapl = gr_h5_fapl();
-    h->file = fapl < 0 ? -1 : H5Fcreate(part, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    hid_t fapl = gr_h5_fapl(), fcpl = gr_h5_untimed(H5P_FILE_CREATE);
+    h->file = fapl < 0 || fcpl < 0 ? -1 : H5Fcreate(part, H5F_ACC_TRUNC, fcpl, fapl);
     gr_h5_close(fapl);
+    gr_h5_close(fcpl);
     if (h->file < 0) {
         gr_h5_fail(err, GR_EINPUT, "cannot create output file %s", path);
         goto fail;
@@ -277,7 +278,7 @@ gr_h5md *gr_h5md_attach(hid_t file, const gr_scene *sc, const gr_h5md_opts *o, g
  * those of the element owning them (H5MD: equal sampling, shared axes). */
 static hid_t series_group(hid_t loc, const char *name, hid_t owner_group)
 {
-    hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = gr_h5_mkgroup(loc, name);
     if (g < 0)
         return -1;
     if (H5Lcreate_hard(owner_group, "step", g, "step", H5P_DEFAULT, H5P_DEFAULT) < 0 ||
@@ -304,7 +305,7 @@ static hid_t series_value(hid_t g, const gr_elem_def *d, size_t n)
 /* Owner of step/time: a group with both, time in tau. */
 static hid_t owner_group(hid_t loc, const char *name, hid_t *step, hid_t *time)
 {
-    hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = gr_h5_mkgroup(loc, name);
     if (g < 0)
         return -1;
     *step = gr_h5_ext_create(g, "step", GR_T_I64, 0, NULL);

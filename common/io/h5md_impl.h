@@ -42,6 +42,10 @@ int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
  * a rename after it is safe) and the 1.8 format (H5MD recommends format 2
  * and every reader of the last ten years opens it). */
 hid_t gr_h5_fapl(void);
+/* A creation property list of class cls (H5P_FILE_CREATE for a file's
+ * root group, H5P_GROUP_CREATE, H5P_DATASET_CREATE) that records no
+ * modification time: the same run writes the same bytes. */
+hid_t gr_h5_untimed(hid_t cls);
 void gr_h5_close(hid_t id); /* any id kind, ignores <= 0 */
 
 /* Attributes. */

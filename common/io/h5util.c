@@ -76,6 +76,16 @@ hid_t gr_h5_fapl(void)
     return fapl;
 }
 
+hid_t gr_h5_untimed(hid_t cls)
+{
+    hid_t p = H5Pcreate(cls);
+    if (p >= 0 && H5Pset_obj_track_times(p, 0) < 0) {
+        H5Pclose(p);
+        return -1;
+    }
+    return p;
+}
+
 void gr_h5_close(hid_t id)
 {
     if (id <= 0)
@@ -285,13 +295,14 @@ int gr_h5_read_attr_f64(hid_t obj, const char *name, double *v, size_t n)
 int gr_h5_dset_str(hid_t loc, const char *name, const char *text)
 {
     hid_t t = str_type(0, 1, 1);
-    hid_t s = H5Screate(H5S_SCALAR);
+    hid_t s = H5Screate(H5S_SCALAR), dcpl = gr_h5_untimed(H5P_DATASET_CREATE);
     hid_t d = -1;
     int rc = -1;
-    if (t >= 0 && s >= 0)
-        d = H5Dcreate2(loc, name, t, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (t >= 0 && s >= 0 && dcpl >= 0)
+        d = H5Dcreate2(loc, name, t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (d >= 0 && H5Dwrite(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, &text) >= 0)
         rc = 0;
+    gr_h5_close(dcpl);
     gr_h5_close(d);
     gr_h5_close(t);
     gr_h5_close(s);
@@ -300,9 +311,10 @@ int gr_h5_dset_str(hid_t loc, const char *name, const char *text)
 
 int gr_h5_dset_u64(hid_t loc, const char *name, uint64_t v)
 {
-    hid_t s = H5Screate(H5S_SCALAR);
-    hid_t d = s >= 0 ? H5Dcreate2(loc, name, H5T_STD_U64LE, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    hid_t s = H5Screate(H5S_SCALAR), dcpl = gr_h5_untimed(H5P_DATASET_CREATE);
+    hid_t d = s >= 0 && dcpl >= 0 ? H5Dcreate2(loc, name, H5T_STD_U64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT) : -1;
     int rc = d >= 0 && H5Dwrite(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, &v) >= 0 ? 0 : -1;
+    gr_h5_close(dcpl);
     gr_h5_close(d);
     gr_h5_close(s);
     return rc;
@@ -385,7 +397,8 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
     hid_t p = H5Pcreate(H5P_DATASET_CREATE);
     hid_t d = -1;
     /* each chunk checksummed: a flipped byte fails its read, named */
-    if (s >= 0 && p >= 0 && H5Pset_chunk(p, item_rank + 1, chunk) >= 0 && H5Pset_fletcher32(p) >= 0)
+    if (s >= 0 && p >= 0 && H5Pset_chunk(p, item_rank + 1, chunk) >= 0 && H5Pset_fletcher32(p) >= 0 &&
+        H5Pset_obj_track_times(p, 0) >= 0)
         d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, H5P_DEFAULT, p, H5P_DEFAULT);
     gr_h5_close(p);
     gr_h5_close(s);
@@ -464,6 +477,40 @@ int gr_h5_read_rows(hid_t dset, gr_h5_type t, hsize_t first, hsize_t count, void
     return rc;
 }
 
+/* Each missing group of path, made one by one with no modification time
+ * (HDF5's intermediate groups would record theirs). n: how much of path
+ * to make. Returns the last group, open. */
+static hid_t groups_along(hid_t loc, const char *path, size_t n)
+{
+    char buf[1024];
+    if (n >= sizeof buf)
+        return -1;
+    memcpy(buf, path, n);
+    buf[n] = '\0';
+    hid_t gcpl = gr_h5_untimed(H5P_GROUP_CREATE), g = -1;
+    for (size_t i = 1; gcpl >= 0 && i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char c = buf[i];
+        buf[i] = '\0';
+        gr_h5_close(g);
+        g = H5Lexists(loc, buf, H5P_DEFAULT) > 0 ? H5Gopen2(loc, buf, H5P_DEFAULT)
+                                                 : H5Gcreate2(loc, buf, H5P_DEFAULT, gcpl, H5P_DEFAULT);
+        buf[i] = c;
+        if (g < 0)
+            break;
+    }
+    gr_h5_close(gcpl);
+    return g;
+}
+
+static void make_parents(hid_t loc, const char *name)
+{
+    const char *slash = strrchr(name, '/');
+    if (slash && slash > name)
+        gr_h5_close(groups_along(loc, name, (size_t)(slash - name)));
+}
+
 hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_t dims[2],
                          const void *data)
 {
@@ -472,10 +519,10 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
     hid_t dcpl = gr_h5_checked_dcpl(rank, dims, gr_h5_tsize(t));
     hid_t d = -1;
+    make_parents(loc, name);
     if (s >= 0 && lcpl >= 0 && dcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0)
         d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, lcpl, dcpl, H5P_DEFAULT);
-    if (dcpl != H5P_DEFAULT)
-        gr_h5_close(dcpl);
+    gr_h5_close(dcpl);
     hsize_t total = dims[0] * (dims[1] ? dims[1] : 1);
     if (d >= 0 && total > 0 &&
         H5Dwrite(d, gr_h5_mtype(t), H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
@@ -492,17 +539,17 @@ hid_t gr_h5_checked_dcpl(int rank, const hsize_t *dims, size_t elsize)
 {
     hsize_t chunk[8], rowbytes = elsize;
     if (rank < 1 || rank > 8)
-        return H5P_DEFAULT;
+        return gr_h5_untimed(H5P_DATASET_CREATE);
     for (int k = 0; k < rank; k++) {
         if (dims[k] == 0)
-            return H5P_DEFAULT;
+            return gr_h5_untimed(H5P_DATASET_CREATE);
         chunk[k] = dims[k];
         if (k)
             rowbytes *= dims[k];
     }
     hsize_t rows = (1u << 20) / (rowbytes ? rowbytes : 1);
     chunk[0] = rows < 1 ? 1 : rows < dims[0] ? rows : dims[0];
-    hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t p = gr_h5_untimed(H5P_DATASET_CREATE);
     if (p >= 0 && (H5Pset_chunk(p, rank, chunk) < 0 || H5Pset_fletcher32(p) < 0)) {
         H5Pclose(p);
         return -1;
@@ -532,13 +579,7 @@ int gr_h5_exists(hid_t loc, const char *path)
 
 hid_t gr_h5_mkgroup(hid_t loc, const char *name)
 {
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
-    if (lcpl < 0)
-        return -1;
-    H5Pset_create_intermediate_group(lcpl, 1);
-    hid_t g = H5Gcreate2(loc, name, lcpl, H5P_DEFAULT, H5P_DEFAULT);
-    H5Pclose(lcpl);
-    return g;
+    return groups_along(loc, name, strlen(name));
 }
 
 int gr_h5_is_group(hid_t loc, const char *path)

@@ -71,7 +71,13 @@ exp_tab_file *exp_tab_create(const char *path, const char *kind, gr_err *err)
     snprintf(f->part, sizeof f->part, "%s.part", path);
     quiet q;
     quiet_on(&q);
-    f->file = H5Fcreate(f->part, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    /* no modification times recorded: the same tables, the same bytes */
+    hid_t fcpl = H5Pcreate(H5P_FILE_CREATE);
+    f->file = fcpl >= 0 && H5Pset_obj_track_times(fcpl, 0) >= 0
+                  ? H5Fcreate(f->part, H5F_ACC_TRUNC, fcpl, H5P_DEFAULT)
+                  : -1;
+    if (fcpl >= 0)
+        H5Pclose(fcpl);
     int bad = f->file < 0 || put_attr(f->file, "kind", kind) || put_attr(f->file, "creator", "grano " GRANO_VERSION);
     quiet_off(&q);
     if (bad) {
@@ -82,18 +88,35 @@ exp_tab_file *exp_tab_create(const char *path, const char *kind, gr_err *err)
     return f;
 }
 
-/* A group at path whose links keep their creation order (the columns'). */
+/* A group at path whose links keep their creation order (the columns'),
+ * its missing parents made one by one (HDF5's intermediate groups would
+ * record their modification times). */
 static hid_t make_group(hid_t file, const char *path)
 {
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), gcpl = H5Pcreate(H5P_GROUP_CREATE);
-    hid_t g = -1;
-    if (lcpl >= 0 && gcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0 &&
-        H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) >= 0)
-        g = H5Gcreate2(file, path, lcpl, gcpl, H5P_DEFAULT);
-    if (lcpl >= 0)
-        H5Pclose(lcpl);
-    if (gcpl >= 0)
-        H5Pclose(gcpl);
+    hid_t gcpl = H5Pcreate(H5P_GROUP_CREATE), g = -1;
+    char buf[1024];
+    size_t n = strlen(path);
+    if (gcpl < 0 || n >= sizeof buf || H5Pset_obj_track_times(gcpl, 0) < 0 ||
+        H5Pset_link_creation_order(gcpl, H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED) < 0) {
+        if (gcpl >= 0)
+            H5Pclose(gcpl);
+        return -1;
+    }
+    memcpy(buf, path, n + 1);
+    for (size_t i = 1; i <= n; i++) {
+        if (buf[i] != '/' && buf[i] != '\0')
+            continue;
+        char c = buf[i];
+        buf[i] = '\0';
+        if (g >= 0)
+            H5Gclose(g);
+        g = H5Lexists(file, buf, H5P_DEFAULT) > 0 ? H5Gopen2(file, buf, H5P_DEFAULT)
+                                                  : H5Gcreate2(file, buf, H5P_DEFAULT, gcpl, H5P_DEFAULT);
+        buf[i] = c;
+        if (g < 0)
+            break;
+    }
+    H5Pclose(gcpl);
     return g;
 }
 
@@ -104,7 +127,12 @@ static int put_column(hid_t g, size_t rows, const exp_col *c)
     hid_t s = H5Screate_simple(1, &dim, NULL);
     hid_t t = c->type == EXP_STR ? utf8_type() : H5Tcopy(c->type == EXP_INT ? H5T_STD_I64LE : H5T_IEEE_F64LE);
     hid_t mt = c->type == EXP_STR ? t : c->type == EXP_INT ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
-    hid_t d = s >= 0 && t >= 0 ? H5Dcreate2(g, c->name, t, s, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t d = s >= 0 && t >= 0 && dcpl >= 0 && H5Pset_obj_track_times(dcpl, 0) >= 0
+                  ? H5Dcreate2(g, c->name, t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT)
+                  : -1;
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
     void *buf = malloc(n * (c->type == EXP_STR ? sizeof(char *) : 8));
     int bad = d < 0 || !buf;
     for (size_t k = 0; !bad && k < rows; k++) {
@@ -157,11 +185,23 @@ int exp_tab_array(exp_tab_file *f, const char *name, int rank, const size_t *dim
         hd[k] = dims[k];
     quiet q;
     quiet_on(&q);
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    /* the parents made untimed first (make_group), then the array */
+    const char *slash = strrchr(name, '/');
+    if (slash && slash > name) {
+        char parent[1024];
+        snprintf(parent, sizeof parent, "%.*s", (int)(slash - name), name);
+        hid_t g = make_group(f->file, parent);
+        if (g >= 0)
+            H5Gclose(g);
+    }
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), dcpl = H5Pcreate(H5P_DATASET_CREATE);
     hid_t s = rank > 0 && rank <= 8 ? H5Screate_simple(rank, hd, NULL) : -1;
-    hid_t d = lcpl >= 0 && s >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0
-                  ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, lcpl, H5P_DEFAULT, H5P_DEFAULT)
+    hid_t d = lcpl >= 0 && dcpl >= 0 && s >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0 &&
+                      H5Pset_obj_track_times(dcpl, 0) >= 0
+                  ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, lcpl, dcpl, H5P_DEFAULT)
                   : -1;
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
     int bad = d < 0 || H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0 ||
               put_attr(d, "unit", unit) || put_attr(d, "description", desc) ||
               H5Fflush(f->file, H5F_SCOPE_GLOBAL) < 0;

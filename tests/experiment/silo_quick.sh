@@ -35,7 +35,7 @@ done
 
 # --- silo-start --quick
 S=$tmp/start
-"$GRANO" silo-start --quick --jobs 2 -o "$S" -q 2>"$tmp/err"
+"$GRANO" silo-start --quick --jobs 2 -o "$S" -q >/dev/null 2>"$tmp/err"
 check $? "silo-start --quick --jobs 2 runs"
 missing=""
 for f in silo-start.h5 summary.dat msd_D3.8.dat msd_D11.dat pdf_short_D11.dat pdf_long_D3.8.dat \
@@ -104,10 +104,10 @@ PY
 check $? "silo-start: fits converge, MSD exponents in (1.4, 1.95), densities normalised"
 
 cp "$S/silo-start.h5" "$tmp/start-first.h5"
-"$GRANO" silo-start --quick --jobs 2 -o "$S" 2>"$tmp/err" && grep -q "(4 reused)" "$tmp/err"
+"$GRANO" silo-start --quick --jobs 2 -o "$S" >/dev/null 2>"$tmp/err" && grep -q "(4 reused)" "$tmp/err"
 check $? "silo-start rerun reuses all 4 parts"
 rm "$S/parts/start-D11-r01.part"
-"$GRANO" silo-start --quick --jobs 1 -o "$S" 2>"$tmp/err" && grep -q "(3 reused)" "$tmp/err"
+"$GRANO" silo-start --quick --jobs 1 -o "$S" >/dev/null 2>"$tmp/err" && grep -q "(3 reused)" "$tmp/err"
 check $? "silo-start resumes: redoes only the missing part"
 $PY - "$tmp/start-first.h5" "$S/silo-start.h5" >"$tmp/err" 2>&1 <<'PY'
 import sys, h5py, numpy as np
@@ -121,7 +121,7 @@ check $? "silo-start: the redone part (1 job) gives the same bits as the first r
 
 # --- silo-flow --quick
 F=$tmp/flow
-"$GRANO" silo-flow --quick --jobs 2 -o "$F" -q 2>"$tmp/err"
+"$GRANO" silo-flow --quick --jobs 2 -o "$F" -q >/dev/null 2>"$tmp/err"
 check $? "silo-flow --quick --jobs 2 runs"
 missing=""
 for f in silo-flow.h5 flow.dat fits.dat pdf_fluctuations.dat reduced_flow.dat fig4_1_flow_rate.png \

@@ -53,7 +53,7 @@ done
 
 # --- sweeps: a stop signal to the parent ends the workers; the sweep resumes
 S=$tmp/sweep
-"$GRANO" silo-start --quick --jobs 2 -o "$S" -q 2>"$tmp/err" & pid=$!
+"$GRANO" silo-start --quick --jobs 2 -o "$S" -q >/dev/null 2>"$tmp/err" & pid=$!
 for i in $(seq 1 100); do [ -s "$S/parts/fill-r00.part" ] && break; sleep 0.2; done
 sleep 1
 workers=$(pgrep -P $pid | tr '\n' ' ')
@@ -76,7 +76,7 @@ else notok "the sweep resumes (exit $rc, $n_parts parts)"; fi
 
 # SIGKILL cannot be caught: the workers die with their parent all the same
 F=$tmp/flow
-"$GRANO" silo-flow --quick --jobs 2 -o "$F" -q 2>/dev/null & pid=$!
+"$GRANO" silo-flow --quick --jobs 2 -o "$F" -q >/dev/null 2>&1 & pid=$!
 for i in $(seq 1 50); do [ -n "$(pgrep -P $pid)" ] && break; sleep 0.1; done
 workers=$(pgrep -P $pid | tr '\n' ' ')
 kill -KILL $pid
