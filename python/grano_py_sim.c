@@ -252,16 +252,6 @@ static int take_samples(gp_sim *s, gr_err *err)
     return GR_OK;
 }
 
-/* "dsmc.ppc_min" -> where that key is (or would be) in the scene. */
-static void key_where(const gr_scene *sc, const char *key, char *buf, size_t n)
-{
-    char sec[64];
-    const char *dot = strchr(key, '.');
-    size_t l = dot ? (size_t)(dot - key) : 0;
-    snprintf(sec, sizeof sec, "%.*s", (int)(l < sizeof sec ? l : sizeof sec - 1), key);
-    gr_scene_where(sc, sec, dot ? dot + 1 : key, buf, n);
-}
-
 /* Each validity limit broken is told once, as grano run warns it; under
  * [run] strict = yes the first one fails the run. */
 static int check_limits(gp_sim *s, gr_err *err)
@@ -273,7 +263,7 @@ static int check_limits(gp_sim *s, gr_err *err)
             continue;
         s->warned |= 1ull << dg[i].index;
         char where[1200], msg[1800];
-        key_where(s->sc, dg[i].key, where, sizeof where);
+        gr_scene_where_key(s->sc, dg[i].key, where, sizeof where);
         snprintf(msg, sizeof msg, "%s: validity limit %s broken at t = %g: %s (%s changes it)", s->m->name,
                  dg[i].name, gr_sim_time(s->sim), dg[i].detail, where);
         if (s->sc->run.strict) {

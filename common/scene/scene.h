@@ -70,6 +70,8 @@ void gr_scene_feature_where(const gr_scene *sc, unsigned feature_bit, char *buf,
 const gr_scene_entry *gr_scene_find(const gr_scene *sc, const char *section, const char *key);
 /* "file:line" of an entry, or "file" when absent. */
 void gr_scene_where(const gr_scene *sc, const char *section, const char *key, char *buf, size_t n);
+/* The same for a key written "section.key" (a validity limit's key). */
+void gr_scene_where_key(const gr_scene *sc, const char *dotted, char *buf, size_t n);
 /* GR_EINPUT for a particle method given no grains, naming where they would
  * come from: [init] kind when the file sets it, else [species] count. */
 int gr_scene_no_grains(const gr_scene *sc, gr_err *err);

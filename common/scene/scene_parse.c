@@ -195,6 +195,15 @@ void gr_scene_where(const gr_scene *sc, const char *section, const char *key, ch
         snprintf(buf, n, "%s: [%s] key '%s' (absent, default)", sc->path, section, key);
 }
 
+void gr_scene_where_key(const gr_scene *sc, const char *dotted, char *buf, size_t n)
+{
+    char sec[64];
+    const char *dot = strchr(dotted, '.');
+    size_t l = dot ? (size_t)(dot - dotted) : 0;
+    snprintf(sec, sizeof sec, "%.*s", (int)(l < sizeof sec ? l : sizeof sec - 1), dotted);
+    gr_scene_where(sc, sec, dot ? dot + 1 : dotted, buf, n);
+}
+
 /* Levenshtein distance, for "did you mean" suggestions. */
 static size_t edit_distance(const char *a, const char *b)
 {

@@ -221,16 +221,6 @@ static int write_fields(run_io *io, const gr_obs *o, gr_err *err)
     return GR_OK;
 }
 
-/* "dsmc.ppc_min" -> where that key is (or would be) in the scene. */
-static void key_where(const gr_scene *sc, const char *key, char *buf, size_t n)
-{
-    char sec[64];
-    const char *dot = strchr(key, '.');
-    size_t l = dot ? (size_t)(dot - key) : 0;
-    snprintf(sec, sizeof sec, "%.*s", (int)(l < sizeof sec ? l : sizeof sec - 1), key);
-    gr_scene_where(sc, sec, dot ? dot + 1 : key, buf, n);
-}
-
 /* Each validity limit the method reports broken is told once, when it is
  * first seen; under [run] strict = yes the first one stops the run, and
  * the state that broke it is not kept as a good one. */
@@ -243,7 +233,7 @@ static int check_limits(run_io *io, const gr_scene *sc, gr_sim *st, const gr_run
             continue;
         io->warned |= 1ull << dg[i].index;
         char where[1200], msg[1800];
-        key_where(sc, dg[i].key, where, sizeof where);
+        gr_scene_where_key(sc, dg[i].key, where, sizeof where);
         snprintf(msg, sizeof msg, "%s: validity limit %s broken at t = %g: %s (%s changes it)",
                  gr_sim_type(st)->name, dg[i].name, gr_sim_time(st), dg[i].detail, where);
         if (sc->run.strict) {
