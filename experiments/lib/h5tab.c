@@ -120,6 +120,22 @@ static hid_t make_group(hid_t file, const char *path)
     return g;
 }
 
+/* A column's creation list: no modification time; numbers (rows > 0)
+ * in one chunk with HDF5's Fletcher-32 checksum, as the result files'
+ * datasets (strings are stored as references to a heap, which the filter
+ * would not cover). */
+static hid_t numbers_dcpl(size_t rows)
+{
+    hid_t p = H5Pcreate(H5P_DATASET_CREATE);
+    hsize_t chunk = rows;
+    if (p >= 0 && (H5Pset_obj_track_times(p, 0) < 0 ||
+                   (rows && (H5Pset_chunk(p, 1, &chunk) < 0 || H5Pset_fletcher32(p) < 0)))) {
+        H5Pclose(p);
+        return -1;
+    }
+    return p;
+}
+
 static int put_column(hid_t g, size_t rows, const exp_col *c)
 {
     size_t st = c->stride ? c->stride : 1, n = rows ? rows : 1;
@@ -127,10 +143,8 @@ static int put_column(hid_t g, size_t rows, const exp_col *c)
     hid_t s = H5Screate_simple(1, &dim, NULL);
     hid_t t = c->type == EXP_STR ? utf8_type() : H5Tcopy(c->type == EXP_INT ? H5T_STD_I64LE : H5T_IEEE_F64LE);
     hid_t mt = c->type == EXP_STR ? t : c->type == EXP_INT ? H5T_NATIVE_INT64 : H5T_NATIVE_DOUBLE;
-    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    hid_t d = s >= 0 && t >= 0 && dcpl >= 0 && H5Pset_obj_track_times(dcpl, 0) >= 0
-                  ? H5Dcreate2(g, c->name, t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT)
-                  : -1;
+    hid_t dcpl = numbers_dcpl(c->type == EXP_STR ? 0 : rows);
+    hid_t d = s >= 0 && t >= 0 && dcpl >= 0 ? H5Dcreate2(g, c->name, t, s, H5P_DEFAULT, dcpl, H5P_DEFAULT) : -1;
     if (dcpl >= 0)
         H5Pclose(dcpl);
     void *buf = malloc(n * (c->type == EXP_STR ? sizeof(char *) : 8));
@@ -196,10 +210,12 @@ int exp_tab_array(exp_tab_file *f, const char *name, int rank, const size_t *dim
     }
     hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), dcpl = H5Pcreate(H5P_DATASET_CREATE);
     hid_t s = rank > 0 && rank <= 8 ? H5Screate_simple(rank, hd, NULL) : -1;
-    hid_t d = lcpl >= 0 && dcpl >= 0 && s >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0 &&
-                      H5Pset_obj_track_times(dcpl, 0) >= 0
-                  ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, lcpl, dcpl, H5P_DEFAULT)
-                  : -1;
+    int ok = lcpl >= 0 && dcpl >= 0 && s >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0 &&
+             H5Pset_obj_track_times(dcpl, 0) >= 0;
+    hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
+    if (ok && np > 0)
+        ok = H5Pset_chunk(dcpl, rank, hd) >= 0 && H5Pset_fletcher32(dcpl) >= 0;
+    hid_t d = ok ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, lcpl, dcpl, H5P_DEFAULT) : -1;
     if (dcpl >= 0)
         H5Pclose(dcpl);
     int bad = d < 0 || H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0 ||
