@@ -516,12 +516,12 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
 {
     int rank = dims[1] ? 2 : 1;
     hid_t s = H5Screate_simple(rank, dims, NULL);
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
     hid_t dcpl = gr_h5_checked_dcpl(rank, dims, gr_h5_tsize(t));
     hid_t d = -1;
+    /* the parents made here, untimed, not as HDF5's intermediate groups */
     make_parents(loc, name);
-    if (s >= 0 && lcpl >= 0 && dcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0)
-        d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, lcpl, dcpl, H5P_DEFAULT);
+    if (s >= 0 && dcpl >= 0)
+        d = H5Dcreate2(loc, name, gr_h5_ftype(t), s, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     gr_h5_close(dcpl);
     hsize_t total = dims[0] * (dims[1] ? dims[1] : 1);
     if (d >= 0 && total > 0 &&
@@ -530,7 +530,6 @@ hid_t gr_h5_fixed_create(hid_t loc, const char *name, gr_h5_type t, const hsize_
         H5Ldelete(loc, name, H5P_DEFAULT);
         d = -1;
     }
-    gr_h5_close(lcpl);
     gr_h5_close(s);
     return d;
 }

@@ -59,6 +59,9 @@ int course_advance_pairs(gr_sim *s, uint64_t target, gr_err *err);
  * "algorithm tree" for edmd, the method's name for the others. */
 const char *course_how(const course_opts *o);
 
+/* The pitch of the square lattice the exercises start n disks on: it
+ * fills 0.99 of a box of side L. */
+double course_spacing(long n, double L);
 /* The side of a square box of n disks: --box, or from --eta, or from the
  * exercise's packing fraction eta0; GR_EINPUT naming the flag when the
  * disks do not fit on the starting square lattice (spacing below 1 d). */

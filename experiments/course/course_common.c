@@ -107,13 +107,14 @@ const char *course_how(const course_opts *o)
     return o->naive ? "algorithm naive (v1.0)" : "algorithm tree";
 }
 
+double course_spacing(long n, double L) { return 0.99 * L / ceil(sqrt((double)n)); }
+
 int course_box(const course_opts *o, long n, double eta0, double *L, gr_err *err)
 {
     const char *flag = (o->given & COURSE_BOX) ? "--box" : (o->given & COURSE_ETA) ? "--eta" : "--n";
     double eta = (o->given & COURSE_ETA) ? o->eta : eta0;
     double l = (o->given & COURSE_BOX) ? o->box : sqrt((double)n * M_PI / 4 / eta);
-    /* the exercises start on a square lattice filling 0.99 of the box */
-    double spacing = 0.99 * l / ceil(sqrt((double)n));
+    double spacing = course_spacing(n, l);
     if (!(spacing > 1.0))
         return gr_fail(err, GR_EINPUT,
                        "%s: %ld disks do not fit on the starting square lattice of a %.4g d box (spacing %.3g d, "

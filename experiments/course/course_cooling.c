@@ -31,7 +31,7 @@ static void scene_text(const course_opts *o, const cooling *w, double alpha, cha
              "left = periodic\nright = periodic\nbottom = periodic\ntop = periodic\n"
              "[material]\nrestitution = %g\n[species]\ndiameter = 1\ncount = %ld\n"
              "[init]\nkind = lattice\nspacing = %.17g\nvelocity = gaussian\nv0 = 1\n",
-             o->seed, w->L, w->L, alpha, w->n, 0.99 * w->L / ceil(sqrt((double)w->n)));
+             o->seed, w->L, w->L, alpha, w->n, course_spacing(w->n, w->L));
 }
 
 /* The elastic warm-up (3 collisions per disk): its grains in *p. */

@@ -41,7 +41,7 @@ static int one_run(const course_opts *o, maxwell *w, long r, gr_err *err)
              "[scene]\nname = course-maxwell\nseed = %lu\n[domain]\nwidth = %g\nheight = %g\n"
              "[material]\nrestitution = 1\n[species]\ndiameter = 1\ncount = %ld\n"
              "[init]\nkind = lattice\nspacing = %g\nvelocity = speed\nv0 = %g\n",
-             o->seed + (unsigned long)r, w->L, w->L, n, 0.99 * w->L / ceil(sqrt((double)n)), w->v0);
+             o->seed + (unsigned long)r, w->L, w->L, n, course_spacing(n, w->L), w->v0);
     gr_scene *sc;
     gr_sim *s;
     if (course_sim(text, o, NULL, &sc, &s, err))

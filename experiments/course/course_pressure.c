@@ -38,7 +38,7 @@ static int wall_pressure(const course_opts *o, const pressure *w, unsigned long 
              "[scene]\nname = course-pressure\nseed = %lu\n[domain]\nwidth = %g\nheight = %g\n"
              "[material]\nrestitution = 1\n[species]\ndiameter = 1\ncount = %ld\n"
              "[init]\nkind = lattice\nspacing = %g\nvelocity = speed\nv0 = %g\n",
-             seed, w->L, w->L, n, fmin(10.0, 0.99 * w->L / ceil(sqrt((double)n))), v0);
+             seed, w->L, w->L, n, fmin(10.0, course_spacing(n, w->L)), v0);
     gr_scene *sc;
     gr_sim *s;
     if (course_sim(text, o, NULL, &sc, &s, err))
@@ -177,11 +177,11 @@ static int sweep_counts(const course_opts *o, pressure *w, gr_err *err)
     for (int k = 0; k < w->nn; k++) {
         long n = lround((double)base[k] * w->L * w->L / 400.0);
         w->ns[k] = n < 1 ? 1 : n;
-        if (!(0.99 * w->L / ceil(sqrt((double)w->ns[k])) > 1.0))
+        if (!(course_spacing(w->ns[k], w->L) > 1.0))
             return gr_fail(err, GR_EINPUT, "--box: %ld disks do not fit on the starting lattice of a %g d box",
                            w->ns[k], w->L);
     }
-    if (!(0.99 * w->L / ceil(sqrt((double)w->nfix)) > 1.0))
+    if (!(course_spacing(w->nfix, w->L) > 1.0))
         return gr_fail(err, GR_EINPUT, "--n: %ld disks do not fit on the starting lattice of a %g d box", w->nfix,
                        w->L);
     return GR_OK;

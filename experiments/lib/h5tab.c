@@ -208,14 +208,13 @@ int exp_tab_array(exp_tab_file *f, const char *name, int rank, const size_t *dim
         if (g >= 0)
             H5Gclose(g);
     }
-    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE), dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
     hid_t s = rank > 0 && rank <= 8 ? H5Screate_simple(rank, hd, NULL) : -1;
-    int ok = lcpl >= 0 && dcpl >= 0 && s >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0 &&
-             H5Pset_obj_track_times(dcpl, 0) >= 0;
+    int ok = dcpl >= 0 && s >= 0 && H5Pset_obj_track_times(dcpl, 0) >= 0;
     hssize_t np = s >= 0 ? H5Sget_simple_extent_npoints(s) : 0;
     if (ok && np > 0)
         ok = H5Pset_chunk(dcpl, rank, hd) >= 0 && H5Pset_fletcher32(dcpl) >= 0;
-    hid_t d = ok ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, lcpl, dcpl, H5P_DEFAULT) : -1;
+    hid_t d = ok ? H5Dcreate2(f->file, name, H5T_IEEE_F64LE, s, H5P_DEFAULT, dcpl, H5P_DEFAULT) : -1;
     if (dcpl >= 0)
         H5Pclose(dcpl);
     int bad = d < 0 || H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) < 0 ||
@@ -225,8 +224,6 @@ int exp_tab_array(exp_tab_file *f, const char *name, int rank, const size_t *dim
         H5Dclose(d);
     if (s >= 0)
         H5Sclose(s);
-    if (lcpl >= 0)
-        H5Pclose(lcpl);
     quiet_off(&q);
     return bad ? gr_fail(err, GR_ERUN, "%s: cannot write the array %s", f->part, name) : GR_OK;
 }

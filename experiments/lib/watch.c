@@ -23,7 +23,7 @@ void exp_watch_init(exp_watch *w, gr_sim *st, const gr_runctl *rc)
 {
     uint64_t s = steps_of(st, &w->unit);
     double t = gr_sim_time(st), len = rc->until - t;
-    w->t_begin = w->t_moved = w->t_win = t;
+    w->t_moved = w->t_win = t;
     w->s_moved = w->s_win = s;
     /* the first unit of time, or a tenth of a shorter run */
     w->span = len > 10 ? 1.0 : len > 0 ? len / 10 : 1.0;
@@ -32,7 +32,7 @@ void exp_watch_init(exp_watch *w, gr_sim *st, const gr_runctl *rc)
 }
 
 /* The key that names a method's remedy for a collapse, if it has one. */
-static void remedy(const gr_sim *st, const gr_scene *sc, char *buf, size_t n)
+static void remedy(const gr_sim *st, char *buf, size_t n)
 {
     const gr_method_type *m = gr_sim_type(st);
     buf[0] = '\0';
@@ -41,19 +41,17 @@ static void remedy(const gr_sim *st, const gr_scene *sc, char *buf, size_t n)
             snprintf(buf, n, "; [%s] collapse chooses the inelastic-collapse model", m->name);
             return;
         }
-    (void)sc;
 }
 
-static int check(exp_watch *w, gr_sim *st, const gr_scene *sc, gr_err *err)
+/* After a chunk: s steps (events) so far at simulated time t. */
+static int check(exp_watch *w, const gr_sim *st, const gr_runctl *rc, uint64_t s, gr_err *err)
 {
-    const gr_runctl *rc = &sc->run;
     double t = gr_sim_time(st), now = gr_wall_seconds();
-    uint64_t s = steps_of(st, &w->unit);
     char why[200];
     if (t - w->t_moved > 1e-9 * fmax(1.0, fabs(rc->until))) {
         w->t_moved = t, w->s_moved = s, w->wall_moved = now;
     } else if ((double)(s - w->s_moved) >= rc->stall_steps && now - w->wall_moved >= rc->stall_seconds) {
-        remedy(st, sc, why, sizeof why);
+        remedy(st, why, sizeof why);
         return gr_fail(err, GR_ERUN,
                        "stalled at t = %.10g: %llu %s over %.0f s advanced the simulated time by %.3g, less than "
                        "1e-9 of the run (an inelastic collapse or a Zeno sequence of %s)%s; [run] stall_steps and "
@@ -72,7 +70,7 @@ static int check(exp_watch *w, gr_sim *st, const gr_scene *sc, gr_err *err)
         double now_rate = t > w->t_win ? (double)(s - w->s_win) / (t - w->t_win) : w->rate;
         double grown = fmax(w->rate, (double)(s - w->s_win) >= 16 * CHUNK ? now_rate : 0) / w->ref_rate;
         if (grown > rc->max_cost_growth) {
-            remedy(st, sc, why, sizeof why);
+            remedy(st, why, sizeof why);
             return gr_fail(err, GR_ERUN,
                            "the cost grew past its bound at t = %.10g: %.4g %s per unit time, %.0f times the "
                            "%.4g of the run's first %.3g (as when a bed comes to rest or collapses)%s; [run] "
@@ -87,15 +85,14 @@ int exp_watch_advance(exp_watch *w, gr_sim *st, const gr_scene *sc, double t_end
 {
     if (!w->unit)
         return gr_sim_advance(st, t_end, 0, err);
+    uint64_t before = steps_of(st, &w->unit);
     for (;;) {
-        uint64_t before = steps_of(st, &w->unit);
         if (gr_sim_advance(st, t_end, CHUNK, err))
             return err->code;
         uint64_t after = steps_of(st, &w->unit);
-        if (check(w, st, sc, err))
+        if (check(w, st, &sc->run, after, err))
             return err->code;
-        double rate = w->rate > 0 ? w->rate : 0;
-        gr_progress_cost(pg, gr_sim_time(st), w->unit, rate);
+        gr_progress_cost(pg, gr_sim_time(st), w->unit, w->rate);
         /* a stop signal is the caller's to act on, between two chunks */
         if (exp_stop_signal())
             return GR_OK;
@@ -103,5 +100,6 @@ int exp_watch_advance(exp_watch *w, gr_sim *st, const gr_scene *sc, double t_end
          * counts fewer than the steps; the caller's loop then asks again) */
         if (after - before < CHUNK || gr_sim_time(st) >= t_end)
             return GR_OK;
+        before = after;
     }
 }

@@ -19,7 +19,7 @@
 
 typedef struct {
     const char *unit;          /* "events" or "steps" (the counter read) */
-    double t_begin, span;      /* start, and the span of the reference and of a window */
+    double span;               /* the span of the reference and of a window */
     double ref_rate;           /* steps per unit time over the first span (0: not yet) */
     double t_moved, wall_moved;
     uint64_t s_moved;          /* steps at the last real advance of time */

@@ -104,6 +104,10 @@ void gr_dsmc_stream_all(gr_dsmc *d, double t, double h);
  * about 32 grains against gas_eta_max (a measurement: the dynamics does
  * not depend on it). */
 void gr_dsmc_dense_check(gr_dsmc *d);
+/* The live particles counted in bins of about 32 of them, bx x by (at
+ * most 256 a side), row-major; NULL when out of memory. Also the measure
+ * of the density the grains see at create (dsmc_state.c). */
+double *gr_dsmc_bins(const gr_dsmc *d, int *bx, int *by, size_t *live);
 
 /* dsmc_cells.c: the grid of collision cells, shifted by a random offset
  * every step. */

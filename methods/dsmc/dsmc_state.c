@@ -178,22 +178,13 @@ static int homogeneous(const gr_dsmc *d)
  * grains. */
 static double seen_density(const gr_dsmc *d)
 {
-    size_t live = 0;
-    for (size_t i = 0; i < d->n; i++)
-        live += !(d->rank[i] & GR_DSMC_GONE);
-    double A = d->Lx * d->Ly, side = sqrt(32.0 * A / (double)(live ? live : 1));
-    int bx = (int)fmax(1.0, fmin(256.0, floor(d->Lx / side))), by = (int)fmax(1.0, fmin(256.0, floor(d->Ly / side)));
-    double *cnt = calloc((size_t)bx * (size_t)by, sizeof *cnt), s = 0;
+    int bx, by;
+    size_t live;
+    double A = d->Lx * d->Ly, *cnt = gr_dsmc_bins(d, &bx, &by, &live), s = 0;
     if (!cnt || live < 2) {
         free(cnt);
         return (double)d->n * d->W / A;
     }
-    for (size_t i = 0; i < d->n; i++)
-        if (!(d->rank[i] & GR_DSMC_GONE)) {
-            int x = (int)fmin(bx - 1, fmax(0.0, floor(d->x[i] / d->Lx * bx)));
-            int y = (int)fmin(by - 1, fmax(0.0, floor(d->y[i] / d->Ly * by)));
-            cnt[(size_t)y * (size_t)bx + (size_t)x]++;
-        }
     for (size_t b = 0; b < (size_t)bx * (size_t)by; b++)
         s += cnt[b] * (cnt[b] - 1.0);
     free(cnt);
