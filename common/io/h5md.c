@@ -126,6 +126,7 @@ herr_t gr_h5md_release(gr_h5md *h)
     free(h->buf);
     free(h->times);
     free(h->path);
+    free(h->part);
     free(h->xdmf);
     free(h->h5name);
     free(h);
@@ -225,11 +226,7 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
     }
     if (gr_h5md_write_sidecar(h, err))
         goto fail_unlink;
-    if (rename(part, path) != 0) {
-        gr_fail(err, GR_EINPUT, "cannot create output file %s: %s", path, strerror(errno));
-        goto fail_unlink;
-    }
-    free(part);
+    h->part = part;
     return h;
 fail_unlink:
     free_writer(h);
@@ -463,7 +460,7 @@ static int frame_impl(gr_h5md *h, uint64_t step, double time, const gr_particles
         if (!e->series) {
             if (!h->frames || !memcmp(row, e->prev, h->n * gr_h5_tsize(gr_h5md_pdefs[k].type)))
                 continue;
-            if (promote(h, k))
+            if (gr_h5md_edit(h) || promote(h, k))
                 return gr_h5_fail(err, GR_ERUN, "cannot make %s time-dependent", gr_h5md_pdefs[k].name);
         }
         if (gr_h5_ext_append(e->value, gr_h5md_pdefs[k].type, row))
@@ -479,7 +476,7 @@ static int frame_impl(gr_h5md *h, uint64_t step, double time, const gr_particles
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
     h->broken = 0;
-    return update_sidecar(h, err);
+    return gr_h5md_edited(h, err) ? err->code : update_sidecar(h, err);
 }
 
 int gr_h5md_write_frame(gr_h5md *h, uint64_t step, double time, const gr_particles *p,
@@ -522,7 +519,7 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
         return gr_fail(err, GR_ERUN, "observable time %.17g is not after the previous one (%.17g)",
                        o->t, h->last_obs_time);
     if (!h->nobs && h->oe[h->o0].group < 0) {
-        hid_t og = gr_h5_mkgroup(h->file, "observables");
+        hid_t og = gr_h5md_edit(h) ? -1 : gr_h5_mkgroup(h->file, "observables");
         int bad = og < 0;
         for (size_t k = h->o0; k < h->noe && !bad; k++)
             bad = !(h->oskip >> k & 1) && obs_element(h, og, k);
@@ -547,7 +544,7 @@ static int obs_impl(gr_h5md *h, const gr_obs *o, gr_err *err)
     h->last_obs_time = o->t;
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot flush %s", h->path ? h->path : "the file");
-    return GR_OK;
+    return gr_h5md_edited(h, err);
 }
 
 int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err)
@@ -555,6 +552,59 @@ int gr_h5md_write_obs(gr_h5md *h, const gr_obs *o, gr_err *err)
     int rc;
     GR_H5_GUARD(err, rc, rc = obs_impl(h, o, err));
     return rc;
+}
+
+/* Every handle the writer holds, for gr_h5_swmr_copy to reopen. */
+static size_t handles(gr_h5md *h, hid_t **objs)
+{
+    size_t n = 0;
+    hid_t *fixed[] = {&h->traj, &h->box, &h->step, &h->time, &h->edges, &h->obs_step, &h->obs_time};
+    for (size_t k = 0; k < sizeof fixed / sizeof *fixed; k++)
+        objs[n++] = fixed[k];
+    for (int k = 0; k < NPE; k++) {
+        objs[n++] = &h->pe[k].group;
+        objs[n++] = &h->pe[k].value;
+    }
+    for (int k = 0; k < GR_OBS_MAX; k++) {
+        objs[n++] = &h->oe[k].group;
+        objs[n++] = &h->oe[k].value;
+    }
+    return n;
+}
+
+int gr_h5md_publish(gr_h5md *h, gr_err *err)
+{
+    int rc = GR_OK;
+    if (!h->published && h->owned && h->part)
+        GR_H5_GUARD(err, rc, if (gr_h5_swmr_start(h->file, h->part, h->path))
+                        rc = gr_h5_fail(err, GR_ERUN, "cannot publish %s (as %s): %s", h->part, h->path,
+                                        strerror(errno)));
+    if (!rc)
+        h->published = 1;
+    return rc;
+}
+
+int gr_h5md_edit(gr_h5md *h)
+{
+    if (!h->published)
+        return 0;
+    hid_t *objs[7 + 2 * NPE + 2 * GR_OBS_MAX];
+    size_t n = handles(h, objs);
+    h->published = 0;
+    h->republish = 1;
+    if (gr_h5_swmr_copy(&h->file, objs, n, h->path, h->part)) {
+        h->broken = 1;
+        return -1;
+    }
+    return 0;
+}
+
+int gr_h5md_edited(gr_h5md *h, gr_err *err)
+{
+    if (!h->republish)
+        return GR_OK;
+    h->republish = 0;
+    return gr_h5md_publish(h, err);
 }
 
 int gr_h5md_flush(gr_h5md *h, gr_err *err)
@@ -588,8 +638,14 @@ int gr_h5md_close(gr_h5md *h, gr_err *err)
     if (!rc)
         rc = gr_h5md_write_sidecar(h, err);
     char *path = h->path ? strdup(h->path) : NULL;
+    /* never published (a run that ended at its first sample, a course's
+     * table): it appears whole at its path now */
+    char *part = h->owned && !h->published && h->part ? strdup(h->part) : NULL;
     GR_H5_GUARD(err, rc, if (gr_h5md_release(h) < 0 && !rc)
                     rc = gr_h5_fail(err, GR_ERUN, "cannot close %s", path ? path : "the output file"));
+    if (part && !rc && rename(part, path) != 0)
+        rc = gr_fail(err, GR_ERUN, "cannot rename %s to %s: %s", part, path, strerror(errno));
+    free(part);
     free(path);
     return rc;
 }

@@ -35,20 +35,28 @@ typedef struct gr_h5md_opts {
     uint64_t obs_skip;     /* bit k: obs[k] is not written (the scene has no such quantity) */
 } gr_h5md_opts;
 
-/* Create path. Refuses an existing path unless o->force (GR_EINPUT naming
- * the file and --force). The file is built as <path>.part and renamed once
- * its metadata and parameters are on disk, so a failed creation leaves
- * nothing that looks like a result. sc may not be NULL. */
 /* Call first thing in main: the HDF5 library then runs no exit handler.
  * After a failed write (a full disk) a file cannot be closed, and the
  * handler's second attempt at exit crashed the program. */
 void gr_h5_no_exit_handler(void);
 
+/* Create path. Refuses an existing path unless o->force (GR_EINPUT naming
+ * the file and --force). The file is built as <path>.part and appears at
+ * path when published (gr_h5md_publish) or closed, so a failed creation
+ * leaves nothing that looks like a result. sc may not be NULL. */
 gr_h5md *gr_h5md_create(const char *path, const struct gr_scene *sc,
                         const gr_h5md_opts *o, gr_err *err);
 
+/* Rename the file to its path in HDF5's single-writer/multiple-reader
+ * mode: from then on a kill leaves it readable with every sample flushed
+ * before the kill, and readers may open it while it grows (in SWMR read
+ * mode, as gr_h5md_open does). Call once the first samples of every kind
+ * exist (a later write that adds objects works on a copy renamed over the
+ * file). A no-op when published already. */
+int gr_h5md_publish(gr_h5md *h, gr_err *err);
+
 /* Continue the result file of a run restarted from a checkpoint taken at
- * time t_keep: opens path for writing, checks that it holds a run of the
+ * time t_keep, published (gr_h5md_publish): opens a copy for writing, checks that it holds a run of the
  * same scene text, method and seed (GR_EINPUT otherwise, nothing changed),
  * and drops every frame, observable sample and field sample later than
  * t_keep, which the resumed run writes again; results/ are kept. */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "scene_types.h"
 
@@ -199,6 +200,14 @@ static int check_same_run(hid_t f, const char *path, const gr_scene *sc, const g
     return rc;
 }
 
+/* A failed reopen: the copy goes, the file stays as it was. */
+static gr_h5md *unlink_release(gr_h5md *h)
+{
+    unlink(h->part);
+    gr_h5md_release(h);
+    return NULL;
+}
+
 static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_opts *o,
                             double t_keep, gr_err *err)
 {
@@ -223,15 +232,18 @@ static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_
     h->h5name = strdup(slash ? slash + 1 : path);
     h->owned = 1;
     gr_h5md_set_obs(h, o);
-    hid_t fapl = gr_h5_fapl();
-    h->file = fapl < 0 ? -1 : H5Fopen(path, H5F_ACC_RDWR, fapl);
-    if (h->file < 0) {
-        gr_h5_fail(err, GR_EINPUT, "cannot open %s to continue it", path);
-        gr_h5_close(fapl);
+    /* Samples are dropped on a copy, published over the file once it holds
+     * only whole ones: a kill meanwhile leaves the file as it was. */
+    if (!(h->part = gr_h5_catstr(path, ".part")) || gr_h5_copy_file(path, h->part)) {
+        gr_fail(err, GR_ERUN, "cannot copy %s to continue it: %s", path, strerror(errno));
         gr_h5md_release(h);
         return NULL;
     }
-    gr_h5_close(fapl);
+    h->file = gr_h5_open_rw(h->part);
+    if (h->file < 0) {
+        gr_h5_fail(err, GR_EINPUT, "cannot open %s to continue it", path);
+        return unlink_release(h);
+    }
     /* A run killed while HDF5 wrote a frame can leave chunks the index
      * points at past the end of allocation the superblock records, and
      * the continued run's next write there failed ("addr overflow": 2 of
@@ -239,13 +251,10 @@ static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_
      * Allocation now starts past all the file holds. */
     if (H5Fincrement_filesize(h->file, 0) < 0) {
         gr_h5_fail(err, GR_ERUN, "cannot continue %s: its end of allocation cannot be set", path);
-        gr_h5md_release(h);
-        return NULL;
+        return unlink_release(h);
     }
-    if (check_same_run(h->file, path, sc, o, err)) {
-        gr_h5md_release(h);
-        return NULL;
-    }
+    if (check_same_run(h->file, path, sc, o, err))
+        return unlink_release(h);
     h->width = sc->width;
     h->height = sc->height;
     h->traj = H5Gopen2(h->file, "particles/trajectory", H5P_DEFAULT);
@@ -264,13 +273,10 @@ static gr_h5md *reopen_impl(const char *path, const gr_scene *sc, const gr_h5md_
     if (bad || H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0) {
         gr_h5_fail(err, GR_ERUN, "cannot continue %s: its trajectory, observables, fields or contacts are malformed",
                    path);
-        gr_h5md_release(h);
-        return NULL;
+        return unlink_release(h);
     }
-    if (gr_h5md_write_sidecar(h, err)) {
-        gr_h5md_release(h);
-        return NULL;
-    }
+    if (gr_h5md_write_sidecar(h, err) || gr_h5md_publish(h, err))
+        return unlink_release(h);
     return h;
 }
 

@@ -75,7 +75,9 @@ static int write_impl(gr_h5md *h, uint64_t step, double time, const gr_contacts 
     hid_t g = -1, d[6] = {-1, -1, -1, -1, -1, -1};
     hsize_t two = 2;
     uint64_t n = c->n;
-    int rc = contacts_group(h->file, &g);
+    /* time is made last: with it, the group is whole */
+    int rc = !gr_h5_exists(h->file, "contacts/time") && gr_h5md_edit(h);
+    rc = rc || contacts_group(h->file, &g);
     if (!rc) {
         d[0] = open_or_create(g, "i", GR_T_I64, 0, NULL, NULL);
         d[1] = open_or_create(g, "j", GR_T_I64, 0, NULL, NULL);
@@ -101,7 +103,7 @@ static int write_impl(gr_h5md *h, uint64_t step, double time, const gr_contacts 
     if (rc || (!rc && H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0))
         return gr_h5_fail(err, GR_ERUN, "%s: cannot write the contact network at t = %g",
                           gr_h5md_path_of(h), time);
-    return GR_OK;
+    return gr_h5md_edited(h, err);
 }
 
 int gr_h5md_write_contacts(gr_h5md *h, uint64_t step, double time, const gr_contacts *c,

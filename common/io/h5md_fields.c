@@ -71,10 +71,13 @@ static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double 
                        f->name, f->nx, f->ny, f->ncomp, f->dx, f->dy);
     if (!isfinite(time))
         return gr_fail(err, GR_ERUN, "field '%s': non-finite time", f->name);
-    hid_t file = gr_h5md_file_of(h);
     char path[256];
     snprintf(path, sizeof path, "fields/%s", f->name);
-    if (!gr_h5_exists(file, path)) {
+    int fresh = !gr_h5_exists(gr_h5md_file_of(h), path);
+    if (fresh && gr_h5md_edit(h))
+        return gr_h5_fail(err, GR_ERUN, "cannot copy %s to add %s", gr_h5md_path_of(h), path);
+    hid_t file = gr_h5md_file_of(h);
+    if (fresh) {
         if (create_field(file, path, f))
             return gr_h5_fail(err, GR_ERUN, "cannot create %s in %s", path, gr_h5md_path_of(h));
     } else {
@@ -93,7 +96,7 @@ static int field_impl(gr_h5md *h, const gr_field_desc *f, uint64_t step, double 
         return gr_h5_fail(err, GR_ERUN, "cannot append to %s in %s", path, gr_h5md_path_of(h));
     if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot flush %s", gr_h5md_path_of(h));
-    return GR_OK;
+    return gr_h5md_edited(h, err);
 }
 
 int gr_h5md_write_field(gr_h5md *h, const gr_field_desc *f, uint64_t step, double time,
@@ -108,9 +111,11 @@ static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_
 {
     if (!gr_h5_valid_name(d->name))
         return gr_fail(err, GR_ERUN, "invalid result name '%s'", d->name ? d->name : "");
-    hid_t file = gr_h5md_file_of(h);
     char path[256];
     snprintf(path, sizeof path, "results/%s", d->name);
+    if (gr_h5md_edit(h))
+        return gr_h5_fail(err, GR_ERUN, "cannot copy %s to add %s", gr_h5md_path_of(h), path);
+    hid_t file = gr_h5md_file_of(h);
     if (gr_h5_exists(file, path) && H5Ldelete(file, path, H5P_DEFAULT) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot replace %s in %s", path, gr_h5md_path_of(h));
     hsize_t dims[2] = {d->rows, d->cols};
@@ -127,7 +132,7 @@ static int result_impl(gr_h5md *h, const gr_result_desc *d, const double *v, gr_
         return gr_h5_fail(err, GR_ERUN, "cannot write %s in %s", path, gr_h5md_path_of(h));
     if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
         return gr_h5_fail(err, GR_ERUN, "cannot flush %s", gr_h5md_path_of(h));
-    return GR_OK;
+    return gr_h5md_edited(h, err);
 }
 
 int gr_h5md_write_result(gr_h5md *h, const gr_result_desc *d, const double *v, gr_err *err)

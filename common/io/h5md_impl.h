@@ -39,9 +39,23 @@ int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 /* File access list: strong close (the file is really closed by H5Fclose, so
- * a rename after it is safe) and the 1.8 format (H5MD recommends format 2
- * and every reader of the last ten years opens it). */
+ * a rename after it is safe) and the 1.10 format, which the
+ * single-writer/multiple-reader mode needs (HDF5 1.10 or later reads it). */
 hid_t gr_h5_fapl(void);
+
+/* The single-writer/multiple-reader mode (h5swmr.c). Open for writing,
+ * clearing the mark a killed writer leaves; open for reading, in SWMR read
+ * mode when a writer has the file (or was killed holding it). */
+hid_t gr_h5_open_rw(const char *path);
+hid_t gr_h5_open_ro(const char *path);
+int gr_h5_copy_file(const char *from, const char *to);
+/* Flush, enter the mode (a file of an older format goes on without it),
+ * then rename part to path if part is given. */
+int gr_h5_swmr_start(hid_t file, const char *part, const char *path);
+/* Leave the mode to change the file's objects: close *file (flushed) and
+ * the n objects, copy path to part, open part for writing and reopen every
+ * object by its name in *objs. */
+int gr_h5_swmr_copy(hid_t *file, hid_t *const *objs, size_t n, const char *path, const char *part);
 /* A creation property list of class cls (H5P_FILE_CREATE for a file's
  * root group, H5P_GROUP_CREATE, H5P_DATASET_CREATE) that records no
  * modification time: the same run writes the same bytes. */
@@ -132,6 +146,9 @@ struct gr_h5md {
     int owned;            /* created by gr_h5md_create: closed on free */
     int broken;           /* a write failed half-way: refuse further frames */
     char *path, *xdmf, *h5name;
+    char *part;           /* path.part: the file while unpublished */
+    int published;        /* at path, in SWMR write mode */
+    int republish;        /* unpublished to add objects: publish after the write */
     hid_t traj, box;
     size_t n, frames;
     size_t xdmf_frames;   /* frames in the sidecar on disk */
@@ -158,6 +175,10 @@ int gr_h5md_set_obs(gr_h5md *h, const gr_h5md_opts *o);
 gr_h5md *gr_h5md_alloc(void);
 herr_t gr_h5md_release(gr_h5md *h); /* close handles (and the owned file), free */
 int gr_h5md_write_sidecar(gr_h5md *h, gr_err *err);
+/* Before a write that adds or removes objects: a published file goes on in
+ * a copy (gr_h5_swmr_copy); after it, gr_h5md_edited publishes it again. */
+int gr_h5md_edit(gr_h5md *h);
+int gr_h5md_edited(gr_h5md *h, gr_err *err);
 char *gr_h5_catstr(const char *a, const char *b); /* malloc'd a b */
 
 /* Attach the H5MD layout to an open file that the caller keeps owning (the

@@ -181,9 +181,7 @@ static gr_h5md_reader *open_file(const char *path, gr_err *err)
         gr_fail(err, GR_ERUN, "out of memory");
         return NULL;
     }
-    hid_t fapl = gr_h5_fapl();
-    r->file = fapl < 0 ? -1 : H5Fopen(path, H5F_ACC_RDONLY, fapl);
-    gr_h5_close(fapl);
+    r->file = gr_h5_open_ro(path);
     if (r->file < 0) {
         gr_h5_fail(err, GR_EINPUT, "cannot open %s", path);
         free(r);

@@ -69,7 +69,7 @@ hid_t gr_h5_fapl(void)
     if (fapl < 0)
         return -1;
     if (H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0 ||
-        H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18) < 0) {
+        H5Pset_libver_bounds(fapl, H5F_LIBVER_V110, H5F_LIBVER_V110) < 0) {
         H5Pclose(fapl);
         return -1;
     }

@@ -110,7 +110,7 @@ static herr_t visit(hid_t loc, const char *name, const H5L_info_t *info, void *d
 static int verify_impl(const char *path, size_t *ndsets, unsigned long long *bytes, gr_err *err)
 {
     walk w = {0};
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t f = gr_h5_open_ro(path);
     if (f < 0)
         return gr_h5_fail(err, GR_ERUN, "%s: damaged: the file's metadata (superblock or root) does not read", path);
     herr_t st = H5Lvisit(f, H5_INDEX_NAME, H5_ITER_INC, visit, &w);

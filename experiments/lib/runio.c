@@ -344,6 +344,10 @@ static int loop(gr_scene *sc, gr_sim *st, run_io *io, const gr_run_opts *o, uint
                             (status = gr_run_save(o->ckpt, st, k, err))))
                 break;
         }
+        /* the first samples of every kind made their datasets: from now on
+         * the file only grows, in the mode a kill cannot break */
+        if ((status = gr_h5md_publish(io->h, err)))
+            break;
         if (t >= rc->until - eps)
             break;
         /* a stop signal is read here, the samples of t written (or between

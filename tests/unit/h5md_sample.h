@@ -155,6 +155,10 @@ static inline gr_h5md *write_sample(const char *path, gr_particles **want, int c
     for (int f = 0; f < NFR; f++) {
         move(p, f);
         assert_int_equal(gr_h5md_write_frame(h, 100u * (uint64_t)f, 0.5 * f, p, &e), GR_OK);
+        /* published after the first frame, so that the observables are
+         * added to a published file (on a copy renamed over it) */
+        if (!f)
+            assert_int_equal(gr_h5md_publish(h, &e), GR_OK);
         if (want) {
             want[f] = gr_particles_create(NP, &e);
             assert_int_equal(gr_particles_copy(want[f], p, &e), GR_OK);
