@@ -210,7 +210,7 @@ static gr_h5md *create_impl(const char *path, const gr_scene *sc, const gr_h5md_
                 gr_obs_count(o->obs ? o->obs : gr_obs_particle_set), GR_OBS_MAX);
         goto fail;
     }
-    hid_t fapl = gr_h5_fapl(), fcpl = gr_h5_untimed(H5P_FILE_CREATE);
+    hid_t fapl = gr_h5_fapl(), fcpl = gr_h5_paged_fcpl();
     h->file = fapl < 0 || fcpl < 0 ? -1 : H5Fcreate(part, H5F_ACC_TRUNC, fcpl, fapl);
     gr_h5_close(fapl);
     gr_h5_close(fcpl);

@@ -42,10 +42,17 @@ int gr_h5_fail(gr_err *err, int code, const char *fmt, ...)
  * a rename after it is safe) and the 1.10 format, which the
  * single-writer/multiple-reader mode needs (HDF5 1.10 or later reads it). */
 hid_t gr_h5_fapl(void);
+/* The data of a chunk of several rows: a page less its checksum. */
+#define GR_H5_PAGE_DATA 4092
 
 /* The single-writer/multiple-reader mode (h5swmr.c). Open for writing,
  * clearing the mark a killed writer leaves; open for reading, in SWMR read
  * mode when a writer has the file (or was killed holding it). */
+/* File creation list of a result: no modification times, and the file's
+ * space in pages of 4 KiB, an object smaller than a page within one page:
+ * a kill cannot tear a write within a page (Linux stops a write between
+ * pages), and a torn chunk or header would fail its checksum. */
+hid_t gr_h5_paged_fcpl(void);
 hid_t gr_h5_open_rw(const char *path);
 hid_t gr_h5_open_ro(const char *path);
 int gr_h5_copy_file(const char *from, const char *to);

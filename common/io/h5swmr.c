@@ -13,6 +13,17 @@
 #include <string.h>
 #include <unistd.h>
 
+hid_t gr_h5_paged_fcpl(void)
+{
+    hid_t p = gr_h5_untimed(H5P_FILE_CREATE);
+    if (p >= 0 && (H5Pset_file_space_strategy(p, H5F_FSPACE_STRATEGY_PAGE, 0, 1) < 0 ||
+                   H5Pset_file_space_page_size(p, 4096) < 0)) {
+        H5Pclose(p);
+        return -1;
+    }
+    return p;
+}
+
 hid_t gr_h5_open_rw(const char *path)
 {
     hid_t fapl = gr_h5_fapl();

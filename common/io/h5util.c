@@ -388,11 +388,13 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
         dims[k + 1] = maxd[k + 1] = chunk[k + 1] = item_dims[k];
         rowbytes *= item_dims[k];
     }
-    /* About 16 KiB per chunk: small rows are grouped, a frame of many
-     * grains is one chunk (read back one frame at a time). Chunks are
-     * allocated whole, so larger ones waste space in short runs. */
-    size_t rows = rowbytes ? (16 * 1024) / rowbytes : 512;
-    chunk[0] = rows < 1 ? 1 : rows > 512 ? 512 : rows;
+    /* Small rows share a chunk of one page (4 KiB with its checksum, on a
+     * page of the file: gr_h5_paged_fcpl), rewritten in place as rows arrive: a
+     * kill cannot tear a write within one page, and a torn chunk would
+     * fail its checksum, taking the rows before with it. A row larger than
+     * that (a frame of many grains) is a chunk of its own, written once. */
+    size_t rows = rowbytes ? GR_H5_PAGE_DATA / rowbytes : 1;
+    chunk[0] = rows < 1 ? 1 : rows;
     hid_t s = H5Screate_simple(item_rank + 1, dims, maxd);
     hid_t p = H5Pcreate(H5P_DATASET_CREATE);
     hid_t d = -1;
