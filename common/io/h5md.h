@@ -142,6 +142,8 @@ typedef struct {
     int periodic[2];      /* boundary per axis */
     size_t nobs;          /* complete observable samples */
     int has_checkpoint;   /* a /checkpoint group is present */
+    int writing;          /* opened in SWMR read mode: a run is writing it, or its
+                           * writer stopped without closing it (a kill) */
 } gr_h5md_info;
 
 /* Open a grano result or checkpoint file read-only. A missing file, a file

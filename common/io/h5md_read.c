@@ -221,6 +221,8 @@ static void read_parameters(hid_t file, gr_h5md_info *in)
     in->grano_version = dup_or_empty(gr_h5_read_dset_str(file, "parameters/grano_version"));
     gr_h5_read_dset_u64(file, "parameters/seed", &in->seed);
     in->has_checkpoint = gr_h5_is_group(file, "checkpoint");
+    unsigned intent = 0;
+    in->writing = H5Fget_intent(file, &intent) >= 0 && (intent & H5F_ACC_SWMR_READ);
 }
 
 /* The box's boundary attribute into in->periodic (left 0 if absent). */

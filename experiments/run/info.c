@@ -281,6 +281,9 @@ int cmd_info(int argc, char **argv)
     }
     const gr_h5md_info *in = gr_h5md_info_of(r);
     printf("file         %s\n", in->path);
+    if (in->writing)
+        printf("writing      a run is writing it, or its run was killed (the frames so far, "
+               "read as HDF5's SWMR reader; h5py: h5py.File(path, 'r', swmr=True))\n");
     printf("creator      %s %s (H5MD %d.%d), author %s\n", in->creator, in->creator_version,
            in->h5md_version[0], in->h5md_version[1], in->author);
     printf("scene        %s (from %s, %zu lines stored)\n", in->scene_name[0] ? in->scene_name : "?",

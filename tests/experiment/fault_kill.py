@@ -9,10 +9,13 @@ until it finishes, and the finished result must equal the uninterrupted
 run's bit for bit (h5diff). The rounds go through five scenes: dem with
 contacts, stress and fields; edmd and dsmc with stress and fields; cd with
 contacts and stress; lgca's pipe. TAP output, the figures on a comment line.
-Usage: fault_kill.py GRANO KILLS SEED"""
+Usage: fault_kill.py GRANO KILLS SEED [JOBS]: JOBS processes share the
+kills, each with its own seed (SEED * 1000 + job), and the figures are
+summed."""
 import glob
 import os
 import random
+import re
 import signal
 import subprocess
 import sys
@@ -23,6 +26,7 @@ import h5py
 import numpy
 
 GRANO, KILLS, SEED = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+JOBS = int(sys.argv[4]) if len(sys.argv) > 4 else 1
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 # Checkpoints and frames often, so kills land in both kinds of write.
@@ -222,5 +226,31 @@ def main():
     return 0 if all(r[1] is not False for r in results) else 1
 
 
+def jobs():
+    """JOBS copies of this test at once, their TAP lines and figures merged."""
+    import concurrent.futures
+    def one(j):
+        return subprocess.run([sys.executable, __file__, GRANO, str((KILLS + JOBS - 1) // JOBS),
+                               str(SEED * 1000 + j)], capture_output=True, text=True).stdout
+    with concurrent.futures.ThreadPoolExecutor(JOBS) as ex:
+        outs = list(ex.map(one, range(JOBS)))
+    tests, sums, good = 0, [0] * 5, True
+    for j, out in enumerate(outs):
+        for line in out.splitlines():
+            m = re.match(r"(not ok|ok) \d+ - (.*)", line)
+            if m:
+                tests += 1
+                good &= m.group(1) == "ok"
+                print("%s %d - job %d: %s" % (m.group(1), tests, j, m.group(2)))
+            elif line.startswith("# figures:"):
+                sums = [a + int(b) for a, b in zip(sums, re.findall(r"\d+", line))]
+            elif line.startswith("#"):
+                print(line)
+    print("# figures: kills %d, results lost or unreadable after a kill %d, restarts %d, rounds %d, "
+          "equal to the uninterrupted run %d (%d jobs)" % (*sums, JOBS))
+    print("1..%d" % tests)
+    return 0 if good and tests else 1
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(jobs() if JOBS > 1 else main())
