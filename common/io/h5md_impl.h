@@ -97,6 +97,8 @@ size_t gr_h5_tsize(gr_h5_type t);
 hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
                        const hsize_t *item_dims);
 int gr_h5_ext_append(hid_t dset, gr_h5_type t, const void *row);
+/* HDF5's Fletcher-32 checksum of len bytes, as its filter computes it. */
+uint32_t gr_h5_fletcher32(const void *data, size_t len);
 hsize_t gr_h5_rows(hid_t dset); /* first dimension; 0 on error */
 int gr_h5_read_rows(hid_t dset, gr_h5_type t, hsize_t first, hsize_t count, void *buf);
 /* Fixed dataset of rank 1 or 2 (dims[1] 0 for rank 1), with a checksum as
