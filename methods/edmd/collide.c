@@ -248,20 +248,24 @@ static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double 
 
 /* The sleep rule (collapse = sleep; Bannerman et al., Phys. Rev. E 84,
  * 011301, 2011): a grain that leaves a static contact (the fixed floor, a
- * segment that never opens, a sleeping grain) slower than v_sleep, with
- * gravity pressing it into that contact (normal n_y > 0), comes to rest
- * there: its velocity and spin are zeroed, the energy they held is counted
- * as dissipated, and it no longer falls nor has events. Elastic bounces of
- * the TC guard wear down no speed; without this a bed at rest keeps
- * bouncing at the guard's scale and its events per unit time grow
- * without bound. */
-static void maybe_sleep(gr_edmd *s, int32_t i, double ny)
+ * segment that never opens, a sleeping grain) with gravity pressing it
+ * into that contact (normal n_y > 0) comes to rest there when it is slower
+ * than v_sleep, or, whatever its speed, when it is jammed: it collided
+ * less than tc ago (the TC guard's regime, a grain squeezed between static
+ * contacts, whose elastic bounces would pass its momentum to and fro
+ * without time advancing). Its velocity and spin are zeroed, the energy
+ * they held is counted as dissipated, and it no longer falls nor has
+ * events. Elastic bounces of the guard wear down no speed; without this a
+ * bed at rest keeps bouncing at the guard's scale and its events per unit
+ * time grow without bound. `since` is the time since its previous
+ * collision. */
+static void maybe_sleep(gr_edmd *s, int32_t i, double ny, double since)
 {
     edmd_p *a = &s->p[i];
     if (!s->sleep_on || !(ny > 0.0))
         return;
     double v = sqrt(a->vx * a->vx + a->vy * a->vy) + (s->rough ? fabs(s->w[i]) * a->r : 0.0);
-    if (!(v < s->prm.v_sleep))
+    if (!(v < s->prm.v_sleep) && !(since < s->prm.tc))
         return;
     double m = s->m[i], rot, e = grain_energy(s, a, i, m, &rot);
     s->m_K -= e;
@@ -280,6 +284,29 @@ static void maybe_sleep(gr_edmd *s, int32_t i, double ny)
     s->cnt.sleeps++;
 }
 
+/* A grain left touching a supported static contact without normal speed
+ * (a woken grain on the floor pushed sideways, a grain sliding over the
+ * bed) has its next contact at once, with no impulse, for ever: time
+ * stops. Under the sleep model it leaves such a contact at v_threshold at
+ * least, the scale of the guard's elastic bounces; the energy this gives
+ * (m v_threshold^2 / 2 at most) enters the budget as negative dissipation. */
+static void lift(gr_edmd *s, edmd_p *a, double nx, double ny)
+{
+    if (!s->sleep_on || !(ny > 0.0))
+        return;
+    double vn = a->vx * nx + a->vy * ny;
+    if (vn < s->prm.v_threshold) {
+        a->vx += (s->prm.v_threshold - vn) * nx;
+        a->vy += (s->prm.v_threshold - vn) * ny;
+    }
+}
+
+/* Static contacts: the fixed floor and segments that never open. */
+static int static_wall(const gr_edmd *s, int wall)
+{
+    return wall == GR_BOTTOM || (wall >= W_SEG && !(s->seg[wall - W_SEG].open_time < EDMD_INF));
+}
+
 void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
 {
     edmd_p *a = &s->p[i];
@@ -293,10 +320,12 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     double gn = a->vx * nx + a->vy * ny - Vn;
     double e0 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double vy0 = a->vy;
+    double vy0 = a->vy, since = t - s->tlast[i];
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0)
         Jn = wall_impulse(s, i, m, nx, ny, gn, t, &Jt);
+    if (static_wall(s, wall))
+        lift(s, a, nx, ny);
     double e1 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double dE = e1 - e0;
     s->m_K += dE;
@@ -308,8 +337,8 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     s->cnt.wall++;
     if (s->hook)
         s->hook(s->hook_user, 1, (long)s->id[i], -1 - wall, t);
-    if (wall == GR_BOTTOM || (wall >= W_SEG && !(s->seg[wall - W_SEG].open_time < EDMD_INF)))
-        maybe_sleep(s, i, ny);
+    if (static_wall(s, wall))
+        maybe_sleep(s, i, ny, since);
 }
 
 /* Sleeping grain j wakes at rest where it slept, falling again. */
@@ -348,11 +377,12 @@ void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t)
         edmd_collide_pair(s, i, j, t);
         return;
     }
-    double m = s->m[i], rot0;
+    double m = s->m[i], rot0, since = t - s->tlast[i];
     double e0 = grain_energy(s, a, i, m, &rot0), vy0 = a->vy;
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0)
         Jn = wall_impulse(s, i, m, nx, ny, gn, t, &Jt);
+    lift(s, a, nx, ny);
     double rot1, e1 = grain_energy(s, a, i, m, &rot1), dE = e1 - e0;
     s->m_K += dE;
     s->m_Krot += rot1 - rot0;
@@ -369,7 +399,7 @@ void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t)
         long ia = (long)s->id[i], ib = (long)s->id[j];
         s->hook(s->hook_user, 0, ia < ib ? ia : ib, ia < ib ? ib : ia, t);
     }
-    maybe_sleep(s, i, ny);
+    maybe_sleep(s, i, ny, since);
 }
 
 /* A grain leaves through an open side or below the silo: it is reinserted
