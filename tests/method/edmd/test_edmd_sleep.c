@@ -1,9 +1,10 @@
 /* The sleep model (collapse = sleep): a bed of 200 disks settling under
- * gravity comes to rest, its energy bookkeeping stays exact across the
- * sleeping grains, none overlaps, and a checkpoint taken while some grains
- * sleep and others move restarts bit for bit. The cost bound is asserted
- * on the bed of the scene file (tests/experiment/watch_check.sh); this
- * bed, dropped from the whole box, prints its own. */
+ * gravity comes to rest at a bounded cost, its energy bookkeeping stays
+ * exact across the sleeping grains, none overlaps, and a checkpoint taken
+ * while some grains sleep and others move restarts bit for bit. The bed of
+ * the scene file is watched by tests/experiment/watch_check.sh; this one
+ * is dropped from the whole box, and its first unit of time, in free
+ * fall, has few events (115): its bound is 100 times those. */
 #include "test.h"
 
 #include <stdlib.h>
@@ -54,9 +55,10 @@ static double kinetic_of(gr_edmd *s)
     return K;
 }
 
-/* The bed reaches K < 1e-6 K0 by t = 60 with every grain asleep;
- * E(t) - E(0) = -dissipated (the energy of each grain put to sleep counts
- * as dissipated) to 1e-9 E0; no overlap beyond 1e-9. */
+/* Events per unit time within 100 times those of the first unit
+ * (measured 74 times); the bed reaches K < 1e-6 K0 by t = 60 with every
+ * grain asleep; E(t) - E(0) = -dissipated (the energy of each grain put to
+ * sleep counts as dissipated) to 1e-9 E0; no overlap beyond 1e-9. */
 static void bed_comes_to_rest(void **st)
 {
     (void)st;
@@ -89,6 +91,7 @@ static void bed_comes_to_rest(void **st)
            "overlap %.2e\n",
            first, worst, worst / first, K1 / K0, t_rest, (unsigned long long)(c.sleeps - c.wakes),
            (unsigned long long)c.sleeps, (unsigned long long)c.wakes, fabs(E1 - E0 + diss - inj) / E0, ov);
+    assert_true(worst <= 100.0 * first);
     assert_true(c.sleeps - c.wakes == 200);
     assert_true(t_rest > 0 && K1 < 1e-6 * K0);
     assert_true(fabs(E1 - E0 + diss - inj) < 1e-9 * E0);
