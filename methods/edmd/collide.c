@@ -284,15 +284,16 @@ static void maybe_sleep(gr_edmd *s, int32_t i, double ny, double since)
     s->cnt.sleeps++;
 }
 
-/* A grain left touching a supported static contact without normal speed
- * (a woken grain on the floor pushed sideways, a grain sliding over the
- * bed) has its next contact at once, with no impulse, for ever: time
+/* A grain left touching a static contact without normal speed (a woken
+ * grain on the floor pushed sideways, a grain grazing a sleeper, where the
+ * contact search and the rule may round the sign of the normal speed
+ * apart) has its next contact at once, with no impulse, for ever: time
  * stops. Under the sleep model it leaves such a contact at v_threshold at
  * least, the scale of the guard's elastic bounces; the energy this gives
  * (m v_threshold^2 / 2 at most) enters the budget as negative dissipation. */
 static void lift(gr_edmd *s, edmd_p *a, double nx, double ny)
 {
-    if (!s->sleep_on || !(ny > 0.0))
+    if (!s->sleep_on)
         return;
     double vn = a->vx * nx + a->vy * ny;
     if (vn < s->prm.v_threshold) {
