@@ -18,7 +18,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->tc = 1e-5;
     p->v_threshold = 1e-4;
     p->v_sleep = 1e-2;
-    p->v_wake = 1.0;
+    p->v_wake = 0.3;
     p->fields = 0;
     p->sort_every = -1.0;
     p->tree_arity = 2;
@@ -37,7 +37,7 @@ const gr_param gr_edmd_param_table[] = {
      "threshold model: elastic below this normal speed"},
     {"v_sleep", GR_PARAM_REAL, 1e-2, 0, INFINITY, 0, NULL, "d tau-1",
      "sleep model: a grain slower than this after a supported contact sleeps"},
-    {"v_wake", GR_PARAM_REAL, 1.0, 0, INFINITY, 0, NULL, "d tau-1",
+    {"v_wake", GR_PARAM_REAL, 0.3, 0, INFINITY, 0, NULL, "d tau-1",
      "sleep model: an impact faster than this wakes a sleeping grain"},
     {"fields", GR_PARAM_CHOICE, 0, 0, 0, 0, yesno, "", "accumulate hydrodynamic fields on the cells"},
     {"sort_every", GR_PARAM_REAL, -1.0, -INFINITY, INFINITY, 0, NULL, "1",

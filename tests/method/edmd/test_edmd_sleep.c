@@ -56,7 +56,7 @@ static double kinetic_of(gr_edmd *s)
 }
 
 /* Events per unit time within 100 times those of the first unit
- * (measured 74 times); the bed reaches K < 1e-6 K0 by t = 60 with every
+ * (measured 90 times); the bed reaches K < 1e-6 K0 by t = 60 with every
  * grain asleep; E(t) - E(0) = -dissipated (the energy of each grain put to
  * sleep counts as dissipated) to 1e-9 E0; no overlap beyond 1e-9. */
 static void bed_comes_to_rest(void **st)
