@@ -36,7 +36,7 @@ const gr_param gr_edmd_param_table[] = {
     {"v_threshold", GR_PARAM_REAL, 1e-4, 0, INFINITY, 0, NULL, "d tau-1",
      "threshold model: elastic below this normal speed"},
     {"v_sleep", GR_PARAM_REAL, 1e-2, 0, INFINITY, 0, NULL, "d tau-1",
-     "sleep model: a grain slower than this after a supported contact sleeps"},
+     "sleep model: a grain leaving a supported static contact slower than this sleeps"},
     {"v_wake", GR_PARAM_REAL, 0.3, 0, INFINITY, 0, NULL, "d tau-1",
      "sleep model: an impact faster than this wakes a sleeping grain"},
     {"fields", GR_PARAM_CHOICE, 0, 0, 0, 0, yesno, "", "accumulate hydrodynamic fields on the cells"},
@@ -67,7 +67,8 @@ int gr_edmd_params_from(const gr_scene *sc, const gr_param_values *pv, gr_edmd_p
     if (p->collapse == GR_EDMD_COLLAPSE_SLEEP && p->algorithm == GR_EDMD_NAIVE) {
         char where[1200];
         gr_scene_where(sc, "edmd", "collapse", where, sizeof where);
-        return gr_fail(err, GR_EINPUT, "%s: [edmd] key 'collapse' = sleep needs algorithm = tree", where);
+        return gr_fail(err, GR_EINPUT, "%s: sleep needs algorithm = tree (the naive loop's pair times know no "
+                                           "sleeping grains)", where);
     }
     if (p->tree_arity == 3) {
         char where[1200];
