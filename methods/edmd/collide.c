@@ -17,9 +17,9 @@
 /* The sleep model guards with both rules: tc for chatter, the threshold
  * for a grain sliding over a sleeper, whose contacts come further apart
  * than tc (the slack time, roots.c) and would otherwise sink it by
- * inelastic bounces into a Zeno sequence. */
-/* The collision clocks are read only under the tc rule: at large N each
- * is a random line, which an elastic run would wait for in vain. */
+ * inelastic bounces into a Zeno sequence. The collision clocks are read
+ * only under the tc and sleep rules: at large N each is a random line,
+ * which an elastic run would wait for in vain. */
 static int guarded(gr_edmd *s, int dissipative, double gn, int32_t i, int32_t j, double t)
 {
     if (!dissipative)
@@ -357,9 +357,8 @@ static void wake(gr_edmd *s, int32_t j, double t)
  * as off a wall of infinite mass (guard and rough rule included), and may
  * fall asleep in turn. A resting grain pressed into its supports passes a
  * blow from above on to them at once in the hard-disk limit, which is why
- * the bed may stand in for the floor; waking at v_sleep instead kept the
- * bottom rows waking and the 200-disk bed crawling (docs/methods/edmd.md).
- * The collision counts as a pair collision and enters the virial, fields
+ * the bed may stand in for the floor up to v_wake (its sweep:
+ * docs/methods/edmd.md, "Coming to rest"). The collision counts as a pair collision and enters the virial, fields
  * and stress as one. */
 void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t)
 {
