@@ -14,14 +14,21 @@
  * smooth (no tangential impulse), so that neither the normal nor the
  * tangential rule can drain energy in an accumulation of collisions (a
  * rough grain wedged in a corner collapses through friction alone). */
-/* The collision clocks are read only under the tc rule: at large N each
- * is a random line, which an elastic run would wait for in vain. */
+/* The sleep model guards with both rules: tc for chatter, the threshold
+ * for a grain sliding over a sleeper, whose contacts come further apart
+ * than tc (the slack time, roots.c) and would otherwise sink it by
+ * inelastic bounces into a Zeno sequence. The collision clocks are read
+ * only under the tc and sleep rules: at large N each is a random line,
+ * which an elastic run would wait for in vain. */
 static int guarded(gr_edmd *s, int dissipative, double gn, int32_t i, int32_t j, double t)
 {
     if (!dissipative)
         return 0;
     int on = 0;
     switch (s->prm.collapse) {
+    case GR_EDMD_COLLAPSE_SLEEP:
+        on = -gn < s->prm.v_threshold || t - s->tlast[i] < s->prm.tc || (j >= 0 && t - s->tlast[j] < s->prm.tc);
+        break;
     case GR_EDMD_COLLAPSE_TC:
         on = t - s->tlast[i] < s->prm.tc || (j >= 0 && t - s->tlast[j] < s->prm.tc);
         break;
@@ -89,7 +96,7 @@ static inline void pair_count(gr_edmd *s, int32_t i, int32_t j, double t)
 {
     s->p[i].ncol++;
     s->p[j].ncol++;
-    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC || s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP)
         s->tlast[i] = s->tlast[j] = t;
     s->cnt.pair++;
     if (s->hook) {
@@ -239,6 +246,68 @@ static inline void wall_tally(gr_edmd *s, int32_t i, int wall, int side, double 
     }
 }
 
+/* The sleep rule (collapse = sleep; Bannerman et al., Phys. Rev. E 84,
+ * 011301, 2011): a grain that leaves a static contact (the fixed floor, a
+ * segment that never opens, a sleeping grain) with gravity pressing it
+ * into that contact (normal n_y > 0) comes to rest there when it is slower
+ * than v_sleep, or, whatever its speed, when it is jammed: it collided
+ * less than tc ago (the TC guard's regime, a grain squeezed between static
+ * contacts, whose elastic bounces would pass its momentum to and fro
+ * without time advancing). Its velocity and spin are zeroed, the energy
+ * they held is counted as dissipated, and it no longer falls nor has
+ * events. Elastic bounces of the guard wear down no speed; without this a
+ * bed at rest keeps bouncing at the guard's scale and its events per unit
+ * time grow without bound. `since` is the time since its previous
+ * collision. */
+static void maybe_sleep(gr_edmd *s, int32_t i, double ny, double since)
+{
+    edmd_p *a = &s->p[i];
+    if (!s->sleep_on || !(ny > 0.0))
+        return;
+    double v = sqrt(a->vx * a->vx + a->vy * a->vy) + (s->rough ? fabs(s->w[i]) * a->r : 0.0);
+    if (!(v < s->prm.v_sleep) && !(since < s->prm.tc))
+        return;
+    double m = s->m[i], rot, e = grain_energy(s, a, i, m, &rot);
+    s->m_K -= e;
+    s->m_Krot -= rot;
+    s->m_Smvy -= m * a->vy;
+    s->m_Sm -= m;
+    s->e_diss += e;
+    s->a_diss += e;
+    if (s->cacc)
+        s->cacc[a->cell].diss += e;
+    a->vx = a->vy = 0.0;
+    if (s->rough)
+        s->w[i] = 0.0;
+    a->asleep = 1;
+    a->ncol++;
+    s->cnt.sleeps++;
+}
+
+/* A grain left touching a static contact without normal speed (a woken
+ * grain on the floor pushed sideways, a grain grazing a sleeper, where the
+ * contact search and the rule may round the sign of the normal speed
+ * apart) has its next contact at once, with no impulse, for ever: time
+ * stops. Under the sleep model it leaves such a contact at v_threshold at
+ * least, the scale of the guard's elastic bounces; the energy this gives
+ * (m v_threshold^2 / 2 at most) enters the budget as negative dissipation. */
+static void lift(gr_edmd *s, edmd_p *a, double nx, double ny)
+{
+    if (!s->sleep_on)
+        return;
+    double vn = a->vx * nx + a->vy * ny;
+    if (vn < s->prm.v_threshold) {
+        a->vx += (s->prm.v_threshold - vn) * nx;
+        a->vy += (s->prm.v_threshold - vn) * ny;
+    }
+}
+
+/* Static contacts: the fixed floor and segments that never open. */
+static int static_wall(const gr_edmd *s, int wall)
+{
+    return wall == GR_BOTTOM || (wall >= W_SEG && !(s->seg[wall - W_SEG].open_time < EDMD_INF));
+}
+
 void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
 {
     edmd_p *a = &s->p[i];
@@ -252,10 +321,12 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     double gn = a->vx * nx + a->vy * ny - Vn;
     double e0 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double kr0 = 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-    double vy0 = a->vy;
+    double vy0 = a->vy, since = t - s->tlast[i];
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0)
         Jn = wall_impulse(s, i, m, nx, ny, gn, t, &Jt);
+    if (static_wall(s, wall))
+        lift(s, a, nx, ny);
     double e1 = 0.5 * m * (a->vx * a->vx + a->vy * a->vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
     double dE = e1 - e0;
     s->m_K += dE;
@@ -267,6 +338,68 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
     s->cnt.wall++;
     if (s->hook)
         s->hook(s->hook_user, 1, (long)s->id[i], -1 - wall, t);
+    if (static_wall(s, wall))
+        maybe_sleep(s, i, ny, since);
+}
+
+/* Sleeping grain j wakes at rest where it slept, falling again. */
+static void wake(gr_edmd *s, int32_t j, double t)
+{
+    edmd_p *b = &s->p[j];
+    b->t = t;
+    b->asleep = 0;
+    s->m_Sm += s->m[j];
+    s->cnt.wakes++;
+}
+
+/* An impact faster than v_wake wakes the sleeper and the pair collides as
+ * any other; a slower one leaves it asleep, fixed: grain i bounces off it
+ * as off a wall of infinite mass (guard and rough rule included), and may
+ * fall asleep in turn. A resting grain pressed into its supports passes a
+ * blow from above on to them at once in the hard-disk limit, which is why
+ * the bed may stand in for the floor up to v_wake (its sweep:
+ * docs/methods/edmd.md, "Coming to rest"). The collision counts as a pair collision and enters the virial, fields
+ * and stress as one. */
+void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t)
+{
+    edmd_p *a = &s->p[i], *b = &s->p[j];
+    edmd_measure_advance(s, t);
+    if (edmd_measuring_cells(s)) {
+        edmd_field_flush(s, i, t);
+        edmd_field_flush(s, j, t);
+    }
+    edmd_advance_p(a, t, s->g);
+    double dx = a->x - b->x, dy = a->y - b->y; /* from the sleeper to the mover */
+    double dist = sqrt(dx * dx + dy * dy), nx = dx / dist, ny = dy / dist;
+    double gn = a->vx * nx + a->vy * ny;
+    if (-gn > s->prm.v_wake) {
+        wake(s, j, t);
+        edmd_collide_pair(s, i, j, t);
+        return;
+    }
+    double m = s->m[i], rot0, since = t - s->tlast[i];
+    double e0 = grain_energy(s, a, i, m, &rot0), vy0 = a->vy;
+    double Jn = 0.0, Jt = 0.0;
+    if (gn < 0.0)
+        Jn = wall_impulse(s, i, m, nx, ny, gn, t, &Jt);
+    lift(s, a, nx, ny);
+    double rot1, e1 = grain_energy(s, a, i, m, &rot1), dE = e1 - e0;
+    s->m_K += dE;
+    s->m_Krot += rot1 - rot0;
+    s->m_Smvy += m * (a->vy - vy0);
+    s->e_diss -= dE;
+    s->a_diss -= dE;
+    s->a_virial += dist * Jn;
+    if (edmd_measuring_cells(s))
+        edmd_measure_pair(s, i, j, Jn * nx - Jt * ny, Jn * ny + Jt * nx, dE, 0.0, dx, dy);
+    a->ncol++;
+    s->tlast[i] = t;
+    s->cnt.pair++;
+    if (s->hook) {
+        long ia = (long)s->id[i], ib = (long)s->id[j];
+        s->hook(s->hook_user, 0, ia < ib ? ia : ib, ia < ib ? ib : ia, t);
+    }
+    maybe_sleep(s, i, ny, since);
 }
 
 /* A grain leaves through an open side or below the silo: it is reinserted

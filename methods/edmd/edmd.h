@@ -11,7 +11,12 @@
 extern const gr_method_type gr_edmd_method;
 
 typedef enum { GR_EDMD_TREE = 0, GR_EDMD_NAIVE } gr_edmd_algorithm;
-typedef enum { GR_EDMD_COLLAPSE_NONE = 0, GR_EDMD_COLLAPSE_TC, GR_EDMD_COLLAPSE_THRESHOLD } gr_edmd_collapse;
+typedef enum {
+    GR_EDMD_COLLAPSE_NONE = 0,
+    GR_EDMD_COLLAPSE_TC,
+    GR_EDMD_COLLAPSE_THRESHOLD,
+    GR_EDMD_COLLAPSE_SLEEP /* tc, and slow supported grains sleep (docs/methods/edmd.md) */
+} gr_edmd_collapse;
 
 /* The [edmd] section of a scene (docs/methods/edmd.md). */
 typedef struct {
@@ -20,6 +25,8 @@ typedef struct {
     gr_edmd_collapse collapse;   /* guard against inelastic collapse */
     double tc;                   /* TC model: elastic if a partner collided less than tc ago */
     double v_threshold;          /* threshold model: elastic below this normal speed */
+    double v_sleep;              /* sleep model: a supported grain slower than this sleeps */
+    double v_wake;               /* sleep model: an impact faster than this wakes a sleeper */
     int fields;                  /* accumulate hydrodynamic fields on the cells */
     double sort_every;           /* collisions per grain between spatial re-sorts; 0 never, < 0 auto */
     int tree_arity;              /* 2: the slides' complete binary tree; 4: every other level elided */
@@ -55,6 +62,7 @@ typedef struct {
     uint64_t crossing;  /* virtual-wall crossings (CPV) */
     uint64_t stale;     /* predicted events dropped by the collision counters */
     uint64_t elastic_guard; /* collisions made elastic by the collapse guard */
+    uint64_t sleeps, wakes; /* grains put to sleep, woken (collapse = sleep) */
 } gr_edmd_counters;
 void gr_edmd_get_counters(const gr_edmd *s, gr_edmd_counters *c);
 

@@ -56,7 +56,7 @@ typedef struct {
     double x, y, vx, vy, t, r;
     int32_t cell;    /* event cell, -1 when not in a cell (naive) */
     int16_t nev;     /* events in its slab */
-    int16_t spare;
+    int16_t asleep;  /* collapse = sleep: at rest, fixed, no events of its own */
     int32_t cnext;   /* next particle in its cell */
     uint32_t ncol;   /* state changes so far (collision counter) */
 } edmd_p;
@@ -120,6 +120,7 @@ typedef struct {
 struct gr_edmd {
     gr_edmd_params prm;
     gr_edmd_collapse collapse_asked; /* prm.collapse is it only while collisions dissipate */
+    int sleep_on;            /* collapse = sleep under gravity: slow supported grains sleep */
     size_t n;
     edmd_p *p;
     double *w, *m, *inertia, *tlast, *tacc;
@@ -224,6 +225,10 @@ static inline double edmd_y_at(const edmd_p *p, double t, double g)
     return p->y + s * (p->vy - 0.5 * g * s);
 }
 static inline double edmd_vy_at(const edmd_p *p, double t, double g) { return p->vy - g * (t - p->t); }
+/* The gravity a grain feels: none while it sleeps (it stays where it fell
+ * asleep, at rest). Only the cold paths (snapshots, measurements, checks)
+ * meet sleepers; the event loop never advances one. */
+static inline double edmd_g_of(const edmd_p *p, double g) { return p->asleep ? 0.0 : g; }
 /* Bring a particle's reference state to time t. */
 static inline void edmd_advance_p(edmd_p *p, double t, double g)
 {
@@ -335,6 +340,9 @@ double edmd_cross_time(const gr_edmd *s, int32_t i, int *dir);
 int edmd_wall_relevant(const gr_edmd *s, int cell, int wall);
 int edmd_predict_all(gr_edmd *s, int32_t i);
 int edmd_predict_cross(gr_edmd *s, int32_t i, int dir);
+/* Grain i fell asleep: its moving neighbours predict their contacts with it. */
+int edmd_sleep_neighbours(gr_edmd *s, int32_t i);
+static inline int edmd_any_asleep(const gr_edmd *s) { return s->cnt.sleeps != s->cnt.wakes; }
 void edmd_prefetch_block(const gr_edmd *s, int32_t i);
 
 /* measure.c */
@@ -356,6 +364,8 @@ void edmd_field_flush_all(gr_edmd *s, double t);
  * the silo or gone) */
 void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
 void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t);
+/* Moving grain i meets sleeping grain j: j wakes, or i bounces off it. */
+void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t);
 int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err);
 
 /* sort.c: renumber grains along a Morton curve over the cells */

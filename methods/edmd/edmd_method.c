@@ -72,7 +72,9 @@ static size_t m_counters(const void *st, gr_counter *out, size_t cap)
                         {"floor_collisions", c.floor},
                         {"cell_crossings", c.crossing},
                         {"stale_events", c.stale},
-                        {"elastic_guard", c.elastic_guard}};
+                        {"elastic_guard", c.elastic_guard},
+                        {"sleeps", c.sleeps},
+                        {"wakes", c.wakes}};
     return gr_counters_put(out, cap, all, sizeof all / sizeof all[0]);
 }
 
@@ -96,6 +98,8 @@ static const gr_obs_def observables[] = {
     GR_OBS_DEF_COUNTER("cell_crossings", "cell crossings (virtual-wall events)"),
     GR_OBS_DEF_COUNTER("stale_events", "events dropped because a partner collided since they were scheduled"),
     GR_OBS_DEF_LIMIT("elastic_guard", "edmd.collapse", "collisions made elastic by the inelastic-collapse guard"),
+    GR_OBS_DEF_COUNTER("sleeps", "grains put to sleep at rest (collapse = sleep)"),
+    GR_OBS_DEF_COUNTER("wakes", "sleeping grains woken by an impact (collapse = sleep)"),
     GR_OBS_DEF_END,
 };
 
@@ -107,9 +111,10 @@ static void m_diagnose(const void *st, const char *name, char *msg, size_t n)
     gr_edmd_counters c;
     gr_edmd_get_counters(s, &c);
     (void)name;
-    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
-        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = tc: a partner collided less than "
-                 "tc = %g ago)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair, s->prm.tc);
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC || s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP)
+        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = %s: a partner collided less than "
+                 "tc = %g ago)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair,
+                 s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP ? "sleep" : "tc", s->prm.tc);
     else
         snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = threshold: normal speed below "
                  "v_threshold = %g)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair,

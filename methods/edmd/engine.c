@@ -12,7 +12,7 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
     for (size_t i = 0; i < s->n; i++)
         edmd_list_clear(s, (int32_t)i);
     for (size_t i = 0; i < s->n; i++)
-        if (!s->gone[i] && edmd_predict_all(s, (int32_t)i))
+        if (!s->gone[i] && !s->p[i].asleep && edmd_predict_all(s, (int32_t)i))
             return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
     if (s->q->build(s))
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
@@ -61,11 +61,12 @@ static void do_cross(gr_edmd *s, int32_t i, int dir)
 static const char *collapse_hint(const gr_edmd *s, char *buf, size_t n)
 {
     if (s->prm.collapse == GR_EDMD_COLLAPSE_NONE)
-        return "set [edmd] collapse = tc or threshold";
-    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC)
-        snprintf(buf, n, "the guard collapse = tc (tc = %g) is on and did not prevent it: a grain at rest "
+        return "set [edmd] collapse = tc, threshold or sleep";
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_TC || s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP)
+        snprintf(buf, n, "the guard collapse = %s (tc = %g) is on and did not prevent it: a grain at rest "
                          "against a wall under gravity; try a larger [edmd] tc (10 times), or dem or cd, "
-                         "which model resting packings", s->prm.tc);
+                         "which model resting packings",
+                 s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP ? "sleep" : "tc", s->prm.tc);
     else
         snprintf(buf, n, "the guard collapse = threshold (v_threshold = %g) is on and did not prevent it: a "
                          "grain at rest against a wall under gravity; a resting packing is dem's or cd's to "
@@ -115,6 +116,26 @@ static int drop(gr_edmd *s, int32_t i, gr_err *err)
     return s->q->update(s, i) ? oom(s, err) : 0;
 }
 
+/* Grain i's events after a collision: its own, or, if it fell asleep,
+ * its moving neighbours' contacts with it. */
+static int after_collision(gr_edmd *s, int32_t i)
+{
+    if (!s->p[i].asleep)
+        return edmd_predict_all(s, i) || s->q->update(s, i);
+    return edmd_sleep_neighbours(s, i) || s->q->update(s, i);
+}
+
+/* Moving grain i meets sleeping grain j, which wakes or stays put. */
+static int on_sleeper(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *err)
+{
+    s->t = t;
+    edmd_collide_sleeper(s, i, j, t);
+    edmd_list_clear(s, i);
+    if (!s->p[j].asleep && (edmd_predict_all(s, j) || s->q->update(s, j)))
+        return oom(s, err);
+    return after_collision(s, i) ? oom(s, err) : 1;
+}
+
 static inline int on_pair(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
 {
     int32_t j = ev->partner;
@@ -122,6 +143,8 @@ static inline int on_pair(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr
         return drop(s, i, err);
     if (check_collapse(s, i, j, t, err))
         return -1;
+    if (s->p[j].asleep)
+        return on_sleeper(s, i, j, t, err);
     if (edmd_engine_prefetches(s)) {
         s->q->prefetch(s, j);
         edmd_prefetch_block(s, i);
@@ -154,9 +177,7 @@ static inline int on_wall(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr
     }
     edmd_collide_wall(s, i, w, t);
     edmd_list_clear(s, i);
-    if (edmd_predict_all(s, i) || s->q->update(s, i))
-        return oom(s, err);
-    return 1;
+    return after_collision(s, i) ? oom(s, err) : 1;
 }
 
 static inline int on_cross(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)

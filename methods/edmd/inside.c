@@ -26,7 +26,7 @@ static double floor_at(const gr_edmd *s, double t)
 static double cut_depth(const gr_edmd *s, int32_t i, double t)
 {
     const edmd_p *p = &s->p[i];
-    double x = edmd_x_at(p, t), y = edmd_y_at(p, t, s->g), d = -EDMD_INF;
+    double x = edmd_x_at(p, t), y = edmd_y_at(p, t, edmd_g_of(p, s->g)), d = -EDMD_INF;
     if (s->hard[GR_BOTTOM] || s->floor != GR_FLOOR_FIXED)
         d = fmax(d, floor_at(s, t) + p->r - y);
     if (s->hard[GR_TOP])
@@ -52,7 +52,7 @@ int edmd_check_inside(const gr_edmd *s, double t, gr_err *err)
             return gr_fail(err, GR_ERUN,
                            "edmd: grain %lld is %.3g below the floor or into a wall at t = %.17g "
                            "(y = %.6g): a contact was missed",
-                           (long long)s->id[i], d, t, edmd_y_at(&s->p[i], t, s->g));
+                           (long long)s->id[i], d, t, edmd_y_at(&s->p[i], t, edmd_g_of(&s->p[i], s->g)));
     }
     return GR_OK;
 }

@@ -14,7 +14,7 @@
 double edmd_kinetic(const gr_edmd *s, int32_t i, double t)
 {
     const edmd_p *p = &s->p[i];
-    double vy = edmd_vy_at(p, t, s->g);
+    double vy = edmd_vy_at(p, t, edmd_g_of(p, s->g));
     return 0.5 * s->m[i] * (p->vx * p->vx + vy * vy) + 0.5 * s->inertia[i] * s->w[i] * s->w[i];
 }
 
@@ -27,7 +27,9 @@ static void resync(gr_edmd *s)
             continue;
         K += edmd_kinetic(s, (int32_t)i, t);
         Kr += 0.5 * s->inertia[i] * s->w[i] * s->w[i];
-        U += s->m[i] * g * edmd_y_at(p, t, g);
+        U += s->m[i] * g * edmd_y_at(p, t, edmd_g_of(p, g));
+        if (p->asleep) /* at rest: its K and U stay what they are */
+            continue;
         Sm += s->m[i];
         Smvy += s->m[i] * edmd_vy_at(p, t, g);
     }
@@ -77,7 +79,7 @@ void edmd_field_flush(gr_edmd *s, int32_t i, double t)
     const edmd_p *p = &s->p[i];
     if (!(d > 0.0) || s->gone[i])
         return;
-    double g = s->g, m = s->m[i], vx = p->vx;
+    double g = edmd_g_of(p, s->g), m = s->m[i], vx = p->vx;
     double vy = edmd_vy_at(p, s->tacc[i], g);
     double d2 = d * d, d3 = d2 * d;
     double Ivy = vy * d - 0.5 * g * d2;

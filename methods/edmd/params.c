@@ -6,7 +6,7 @@
 #include "edmd_params.h"
 
 static const char *const algo_names[] = {"tree", "naive", NULL};
-static const char *const collapse_names[] = {"none", "tc", "threshold", NULL};
+static const char *const collapse_names[] = {"none", "tc", "threshold", "sleep", NULL};
 static const char *const yesno[] = {"no", "yes", NULL};
 static const char *const queue_names[] = {"tree", "calendar", NULL};
 
@@ -17,6 +17,8 @@ void gr_edmd_params_default(gr_edmd_params *p)
     p->collapse = GR_EDMD_COLLAPSE_TC;
     p->tc = 1e-5;
     p->v_threshold = 1e-4;
+    p->v_sleep = 1e-2;
+    p->v_wake = 0.3;
     p->fields = 0;
     p->sort_every = -1.0;
     p->tree_arity = 2;
@@ -33,6 +35,10 @@ const gr_param gr_edmd_param_table[] = {
      "TC model: elastic if a partner collided less than tc ago"},
     {"v_threshold", GR_PARAM_REAL, 1e-4, 0, INFINITY, 0, NULL, "d tau-1",
      "threshold model: elastic below this normal speed"},
+    {"v_sleep", GR_PARAM_REAL, 1e-2, 0, INFINITY, 0, NULL, "d tau-1",
+     "sleep model: a grain leaving a supported static contact slower than this sleeps"},
+    {"v_wake", GR_PARAM_REAL, 0.3, 0, INFINITY, 0, NULL, "d tau-1",
+     "sleep model: an impact faster than this wakes a sleeping grain"},
     {"fields", GR_PARAM_CHOICE, 0, 0, 0, 0, yesno, "", "accumulate hydrodynamic fields on the cells"},
     {"sort_every", GR_PARAM_REAL, -1.0, -INFINITY, INFINITY, 0, NULL, "1",
      "collisions per grain between spatial re-sorts; 0 never, < 0 automatic"},
@@ -52,10 +58,18 @@ int gr_edmd_params_from(const gr_scene *sc, const gr_param_values *pv, gr_edmd_p
     p->collapse = (gr_edmd_collapse)gr_param_get(pv, "collapse");
     p->tc = gr_param_get(pv, "tc");
     p->v_threshold = gr_param_get(pv, "v_threshold");
+    p->v_sleep = gr_param_get(pv, "v_sleep");
+    p->v_wake = gr_param_get(pv, "v_wake");
     p->fields = (int)gr_param_get(pv, "fields");
     p->sort_every = gr_param_get(pv, "sort_every");
     p->tree_arity = (int)gr_param_get(pv, "tree_arity");
     p->calendar = (int)gr_param_get(pv, "queue");
+    if (p->collapse == GR_EDMD_COLLAPSE_SLEEP && p->algorithm == GR_EDMD_NAIVE) {
+        char where[1200];
+        gr_scene_where(sc, "edmd", "collapse", where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: sleep needs algorithm = tree (the naive loop's pair times know no "
+                                           "sleeping grains)", where);
+    }
     if (p->tree_arity == 3) {
         char where[1200];
         gr_scene_where(sc, "edmd", "tree_arity", where, sizeof where);

@@ -176,6 +176,41 @@ double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double hor
     }
 }
 
+/* How far ahead moving grain i's contacts with sleepers are searched: to
+ * its next crossing or hard-wall collision, events that cannot go stale
+ * and after which its contacts are predicted again (predict_cross looks
+ * at the sleepers of the whole new block). Gates and exits are left out:
+ * a gate's event is dropped once it opens. */
+static double mover_horizon(gr_edmd *s, int32_t i)
+{
+    int dir;
+    double h = edmd_cross_time(s, i, &dir);
+    if (dir < 0)
+        h = EDMD_INF;
+    unsigned mask = s->any_wall ? s->wmask[s->p[i].cell] & 0x1fu : 0u; /* the sides and the floor */
+    for (int w = 0; mask; w++, mask >>= 1)
+        if (mask & 1u)
+            h = fmin(h, edmd_wall_time(s, i, w, s->t, h));
+    if (!(h < EDMD_INF)) { /* it has crossed cells by the time it falls out of the domain */
+        const edmd_p *p = &s->p[i];
+        h = p->t + edmd_fall_time(p->y - s->ybot + 1.0, p->vy, s->g);
+    }
+    return h;
+}
+
+/* Moving grain i against sleeping grain j, which stays put: under gravity
+ * their gap is no quadratic but the quartic of a segment's end (roots.c),
+ * a circle of radius r_i + r_j about j's centre, searched up to i's
+ * horizon. */
+static double sleeper_time(gr_edmd *s, int32_t i, int32_t j)
+{
+    edmd_p q = s->p[i];
+    const edmd_p *b = &s->p[j];
+    q.r += b->r;
+    double a = s->t > q.t ? s->t : q.t;
+    return edmd_point_time(s, &q, b->x, b->y, a, mover_horizon(s, i));
+}
+
 static int push_pairs_in_cell(gr_edmd *s, int32_t i, int c)
 {
     const edmd_p *pi = &s->p[i];
@@ -183,7 +218,20 @@ static int push_pairs_in_cell(gr_edmd *s, int32_t i, int c)
     for (int32_t j = s->chead[c]; j >= 0; j = s->p[j].cnext) {
         if (j == i)
             continue;
-        double t = edmd_pair_time(s, pi, &s->p[j]);
+        double t = s->p[j].asleep ? sleeper_time(s, i, j) : edmd_pair_time(s, pi, &s->p[j]);
+        if (t < EDMD_INF && edmd_ev_push(s, i, t > now ? t : now, EV_PAIR, j, s->p[j].ncol))
+            return GR_ERUN;
+    }
+    return GR_OK;
+}
+
+static int push_sleepers_in_cell(gr_edmd *s, int32_t i, int c)
+{
+    double now = s->t;
+    for (int32_t j = s->chead[c]; j >= 0; j = s->p[j].cnext) {
+        if (j == i || !s->p[j].asleep)
+            continue;
+        double t = sleeper_time(s, i, j);
         if (t < EDMD_INF && edmd_ev_push(s, i, t > now ? t : now, EV_PAIR, j, s->p[j].ncol))
             return GR_ERUN;
     }
@@ -297,6 +345,22 @@ int edmd_predict_all(gr_edmd *s, int32_t i)
     return GR_OK;
 }
 
+/* After a crossing, the contacts with the sleepers of the block's other
+ * cells, whose search stopped at the crossing (mover_horizon). */
+static int sleepers_again(gr_edmd *s, int32_t i, const int *seen, int nseen)
+{
+    int cells[9];
+    int ns = block_cells(s, i, cells);
+    for (int k = 0; k < ns; k++) {
+        int fresh = 0;
+        for (int q = 0; q < nseen; q++)
+            fresh |= seen[q] == cells[k];
+        if (!fresh && push_sleepers_in_cell(s, i, cells[k]))
+            return GR_ERUN;
+    }
+    return GR_OK;
+}
+
 /* After crossing in direction dir: the next crossing, the walls of the new
  * cell, and pairs with the row or column of cells that just became
  * neighbours (events with the others are already in some list). */
@@ -328,5 +392,24 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
     for (int k = 0; k < ns; k++)
         if (push_pairs_in_cell(s, i, seen[k]))
             return GR_ERUN;
+    return edmd_any_asleep(s) ? sleepers_again(s, i, seen, ns) : GR_OK;
+}
+
+/* Grain i fell asleep: every moving grain of its block predicts its
+ * contact with it (their events with i as it moved went stale). */
+int edmd_sleep_neighbours(gr_edmd *s, int32_t i)
+{
+    int cells[9];
+    int ns = block_cells(s, i, cells);
+    double now = s->t;
+    for (int k = 0; k < ns; k++)
+        for (int32_t j = s->chead[cells[k]]; j >= 0; j = s->p[j].cnext) {
+            if (j == i || s->p[j].asleep)
+                continue;
+            double t = sleeper_time(s, j, i);
+            if (t < EDMD_INF && (edmd_ev_push(s, j, t > now ? t : now, EV_PAIR, i, s->p[i].ncol) ||
+                                 s->q->update(s, j)))
+                return GR_ERUN;
+        }
     return GR_OK;
 }

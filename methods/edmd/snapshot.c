@@ -10,11 +10,12 @@ int gr_edmd_snapshot(gr_edmd *s, gr_particles *out, gr_err *err)
     out->n = 0;
     if (gr_particles_reserve(out, s->n, err))
         return err->code;
-    double t = s->t, g = s->g, Ly = s->H - s->ybot;
+    double t = s->t, Ly = s->H - s->ybot;
     for (size_t k = 0; k < s->n; k++) {
         size_t i = s->order[k];
         const edmd_p *p = &s->p[i];
         int gone = s->gone[i];
+        double g = edmd_g_of(p, s->g);
         double x = gone ? p->x : edmd_x_at(p, t), y = gone ? p->y : edmd_y_at(p, t, g);
         if (s->periodic_x)
             x -= s->W * floor(x / s->W);

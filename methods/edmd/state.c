@@ -299,6 +299,10 @@ static int setup_cells(gr_edmd *s, gr_err *err)
         if (s->sort_period && edmd_sort_setup(s, err))
             return err->code;
     }
+    /* the naive loop's pair times know no sleepers (their contacts need a
+     * horizon, the next cell crossing) */
+    if (s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP && s->prm.algorithm == GR_EDMD_NAIVE)
+        return gr_fail(err, GR_EINPUT, "edmd: collapse = sleep needs algorithm = tree");
     if (s->prm.fields) {
         if (s->prm.algorithm == GR_EDMD_NAIVE)
             return gr_fail(err, GR_EINPUT, "edmd: fields need algorithm = tree");
@@ -315,6 +319,7 @@ static void set_guard(gr_edmd *s)
 {
     int dissipative = s->alpha < 1.0 || s->alpha_w < 1.0 || (s->rough && s->beta < 1.0);
     s->prm.collapse = dissipative ? s->collapse_asked : GR_EDMD_COLLAPSE_NONE;
+    s->sleep_on = s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP && s->g > 0.0;
 }
 
 int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_params *prm, gr_rng *rng,
