@@ -55,17 +55,18 @@ sed 's/count = 400/count = 399/' "$scene" >"$tmp/other.ini"
 if [ $? = 2 ] && grep -q "physical parameter differs" "$tmp/err" && [ ! -e "$tmp/d.h5" ]; then
     ok "restart with another scene refused"; else notok "restart with another scene refused"; fi
 
-# Killed mid-run: the file is readable up to its last flush.
+# Killed mid-run: the file is readable up to its last flush, in the read
+# mode of a file being written (HDF5's SWMR reader), during the run and after.
 "$GRANO" run "$scene" --method dem --until 1000 --out "$tmp/k.h5" -q 2>/dev/null &
 pid=$!
 for _ in $(seq 1 100); do
     sleep 0.2
-    HDF5_USE_FILE_LOCKING=FALSE $PY -c "import h5py,sys; f=h5py.File('$tmp/k.h5','r'); sys.exit(0 if f['particles/trajectory/position/value'].shape[0] >= 2 else 1)" 2>/dev/null && break
+    $PY -c "import h5py,sys; f=h5py.File('$tmp/k.h5','r',swmr=True); sys.exit(0 if f['particles/trajectory/position/value'].shape[0] >= 2 else 1)" 2>/dev/null && break
 done
 kill -9 $pid 2>/dev/null; wait $pid 2>/dev/null
 if $PY - "$tmp/k.h5" >"$tmp/err" 2>&1 <<'PY'
 import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
+f = h5py.File(sys.argv[1], "r", swmr=True)
 p = f["particles/trajectory/position/value"]
 assert p.shape[0] >= 2 and np.all(np.isfinite(p[:]))
 PY
