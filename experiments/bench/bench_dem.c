@@ -19,6 +19,7 @@
 #include "init.h"
 #include "opts.h"
 #include "plot.h"
+#include "table.h"
 
 static gr_scene *bench_dem_scene(const char *text, gr_err *err)
 {
@@ -496,19 +497,18 @@ static int bench_dem_accuracy(const char *dir, int quick, gr_err *err)
     }
     printf("# collision reference: e = %.12f, t_c = %.12f (eq. 2.5: %.6f); packing of %d grains to t = %g: %.3g s\n",
            e_ref, tc_ref, tc0, n, T, pref_secs);
-    FILE *f = fopen(dat, "w");
+    FILE *f = exp_dat_open(dat, err);
     if (!f) {
         free(xref), free(xy);
-        return gr_fail(err, GR_EINPUT, "%s: %s", dat, strerror(errno));
+        return err->code;
     }
     fprintf(f, "# grano bench dem --accuracy: error against the CVODE reference and cost\n"
                "# problem integrator dt steps cpu_seconds err_restitution err_contact_time err_position\n");
     int nk = quick ? 3 : 6;
     accuracy_collisions(f, tc0, e_ref, tc_ref, nk, quick);
     accuracy_packing(f, n, T, xref, xy, nk);
-    fclose(f);
     free(xref), free(xy);
-    if (accuracy_plot(dat, png, n, T, err))
+    if (exp_dat_close(f, dat, err) || accuracy_plot(dat, png, n, T, err))
         return err->code;
     printf("wrote %s and %s\n", dat, png);
     return GR_OK;

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "files.h"
+#include "table.h"
 #include "progress.h"
 #include "silo_flow.h"
 
@@ -195,12 +196,14 @@ int sf_peer_lammps(const sf_ctx *c, char *summary, size_t n, gr_err *err)
         rate(cl, c->nblocks, tb, &wlm, &el);
         double z = (wgr - wlm) / sqrt(eg * eg + el * el);
         snprintf(path, sizeof path, "%s/peer.dat", c->dir);
-        FILE *f = fopen(path, "w");
+        FILE *f = exp_dat_open(path, err);
         if (f) {
             fprintf(f, "# code W W_err cpu_s wall_s (D = %g d, %ld grains, %d blocks of %ld steps after %ld)\n"
                        "grano %.6g %.6g %.4g %.4g\nlammps %.6g %.6g %.4g %.4g\n",
                     cfg.orifice, cfg.n, c->nblocks, c->block, c->discard, wgr, eg, tg, wg, wlm, el, tl, wl);
-            fclose(f);
+            rc = exp_dat_close(f, path, err);
+        } else {
+            rc = err->code;
         }
         snprintf(summary, n,
                  "  D = %g d, %d blocks of %ld steps: grano W = %.3f +- %.3f, LAMMPS W = %.3f +- %.3f grains/tau "
