@@ -574,11 +574,12 @@ static size_t handles(gr_h5md *h, hid_t **objs)
 
 int gr_h5md_publish(gr_h5md *h, gr_err *err)
 {
-    int rc = GR_OK;
+    int rc = GR_OK, st = 0;
     if (!h->published && h->owned && h->part)
-        GR_H5_GUARD(err, rc, if (gr_h5_swmr_start(h->file, h->part, h->path))
-                        rc = gr_h5_fail(err, GR_ERUN, "cannot publish %s (as %s): %s", h->part, h->path,
-                                        strerror(errno)));
+        GR_H5_GUARD(err, st < 0, st = gr_h5_swmr_start(h->file, h->part, h->path));
+    if (st)
+        rc = st < 0 ? gr_h5_fail(err, GR_ERUN, "cannot switch %s to SWMR writing", h->part)
+                    : gr_fail(err, GR_ERUN, "cannot rename %s to %s: %s", h->part, h->path, strerror(errno));
     if (!rc)
         h->published = 1;
     return rc;
@@ -593,6 +594,11 @@ int gr_h5md_edit(gr_h5md *h)
     h->published = 0;
     h->republish = 1;
     if (gr_h5_swmr_copy(&h->file, objs, n, h->path, h->part)) {
+        /* the file at path is whole (closed before the copy); the copy
+         * must never be renamed over it */
+        unlink(h->part);
+        h->published = 1;
+        h->republish = 0;
         h->broken = 1;
         return -1;
     }

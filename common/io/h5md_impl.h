@@ -57,7 +57,8 @@ hid_t gr_h5_open_rw(const char *path);
 hid_t gr_h5_open_ro(const char *path);
 int gr_h5_copy_file(const char *from, const char *to);
 /* Flush, enter the mode (a file of an older format goes on without it),
- * then rename part to path if part is given. */
+ * then rename part to path if part is given: -1 when HDF5 failed, 1 when
+ * the rename did (errno says why). */
 int gr_h5_swmr_start(hid_t file, const char *part, const char *path);
 /* Leave the mode to change the file's objects: close *file (flushed) and
  * the n objects, copy path to part, open part for writing and reopen every

@@ -87,12 +87,17 @@ int gr_h5_swmr_start(hid_t file, const char *part, const char *path)
         return -1;
     /* a file of an older format (a result begun by an older build) goes
      * on without the mode */
+    H5F_info2_t fi;
     if (!(intent & H5F_ACC_SWMR_WRITE)) {
         herr_t st;
         GR_H5_QUIET(st = H5Fstart_swmr_write(file));
-        (void)st;
+        /* only the 1.10 format (superblock 3) can, and then must: tried
+         * again unguarded, so that the caller's guard hears HDF5's reason */
+        if (st < 0 && (H5Fget_info2(file, &fi) < 0 || fi.super.version >= 3) &&
+            H5Fstart_swmr_write(file) < 0)
+            return -1;
     }
-    return part && rename(part, path) != 0 ? -1 : 0;
+    return part && rename(part, path) != 0 ? 1 : 0;
 }
 
 int gr_h5_swmr_copy(hid_t *file, hid_t *const *objs, size_t n, const char *path, const char *part)
