@@ -14,7 +14,7 @@ void gr_dsmc_free(gr_dsmc *d)
     gr_particles_free(d->view);
     free(d->x), free(d->y), free(d->vx), free(d->vy), free(d->tmp);
     free(d->rank), free(d->cell), free(d->order), free(d->ids), free(d->last), free(d->prev);
-    free(d->start), free(d->hist);
+    free(d->start), free(d->hist), free(d->cv);
     free(d);
 }
 
