@@ -24,43 +24,51 @@ int gr_dsmc_esmc_reach(const gr_dsmc *d)
 
 static inline size_t count(const gr_dsmc *d, size_t e) { return d->start[e + 1] - d->start[e]; }
 
-/* Cell (x, y) of the grid, wrapped along a periodic axis; SIZE_MAX past
- * the end of another. */
+/* Cell (x, y) of the grid, wrapped along a periodic axis (by one grid at
+ * most); SIZE_MAX past the end of another. */
 static inline size_t at(const gr_dsmc *d, int x, int y)
 {
-    if (d->gx == d->nx)
-        x = (x % d->gx + d->gx) % d->gx;
-    else if (x < 0 || x >= d->gx)
-        return SIZE_MAX;
-    if (d->gy == d->ny)
-        y = (y % d->gy + d->gy) % d->gy;
-    else if (y < 0 || y >= d->gy)
-        return SIZE_MAX;
+    if (x < 0 || x >= d->gx) {
+        if (d->gx != d->nx)
+            return SIZE_MAX;
+        x += x < 0 ? d->gx : -d->gx;
+    }
+    if (y < 0 || y >= d->gy) {
+        if (d->gy != d->ny)
+            return SIZE_MAX;
+        y += y < 0 ? d->gy : -d->gy;
+    }
     return (size_t)y * (size_t)d->gx + (size_t)x;
 }
 
+/* Times cell k appears among the 3 cells c - 1 .. c + 1 of an axis of g
+ * (wrapped when periodic; more than once in a grid under 3 wide). */
+static inline int times(int k, int c, int g, int wraps)
+{
+    int t = 0;
+    for (int x = c - 1; x <= c + 1; x++)
+        t += (wraps ? (x + g) % g : x) == k;
+    return t;
+}
+
 /* Number density (real grains) of the 3 x 3 cells around cell c, without
- * particle i of cell A (SIZE_MAX: with every particle): the density i sees
- * around the place of its partner. A wider square than the partner's
- * cell, because the pairs of neighbouring cells run thinner than the gas:
- * a collision across a cell boundary kicks the partners apart along the
- * line from one cell to the other (the collisional transfer), and they
- * leave each other's cells more often than the flights bring them back;
- * counted in the partner's cell alone, the equilibrium rate fell 1.7 %
- * short with cells of 8 d at packing 0.04 (docs/methods/dsmc.md). Within
- * the square they have mostly stayed. */
+ * particle i of cell A: the density i sees around the place of its
+ * partner. A wider square than the partner's cell, because the pairs of
+ * neighbouring cells run thinner than the gas: a collision across a cell
+ * boundary kicks the partners apart along the line from one cell to the
+ * other (the collisional transfer), and they leave each other's cells
+ * more often than the flights bring them back; counted in the partner's
+ * cell alone, the equilibrium rate fell 1.7 % short with cells of 8 d at
+ * packing 0.04 (docs/methods/dsmc.md). Within the square they have mostly
+ * stayed. */
 static double block_n(const gr_dsmc *d, size_t c, size_t A)
 {
+    const gr_dsmc_cellv *v = &d->cv[c];
     int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
-    double cnt = 0, area = 0;
-    for (int y = cy - 1; y <= cy + 1; y++)
-        for (int x = cx - 1; x <= cx + 1; x++) {
-            size_t e = at(d, x, y);
-            if (e == SIZE_MAX)
-                continue;
-            cnt += (double)count(d, e) - (e == A), area += d->cv[e].a;
-        }
-    return area > 0 && cnt > 0 ? cnt * d->W / area : 0.0;
+    int ax = (int)(A % (size_t)d->gx), ay = (int)(A / (size_t)d->gx);
+    int in = times(ax, cx, d->gx, d->gx == d->nx) * times(ay, cy, d->gy, d->gy == d->ny);
+    double cnt = (double)v->cnt - in;
+    return v->ba > 0 && cnt > 0 ? cnt * d->W / v->ba : 0.0;
 }
 
 /* chi at number density n (packing capped at 0.9). */
@@ -87,18 +95,34 @@ static void prepare_cell(gr_dsmc *d, size_t c)
     v->mx = mx, v->my = my, v->r = sqrt(r2), v->a = gr_dsmc_cell_area(d, c);
 }
 
-/* The density of the 3 x 3 cells around c with every particle (a bound of
- * block_n), and their count. */
-static void prepare_block(gr_dsmc *d, size_t c)
+/* The 3 x 3 sums as a sum of 3 along the row (hc, ha), then of 3 of
+ * those along the column (cnt, ba): with every particle, n bounds
+ * block_n's. */
+static void prepare_row(gr_dsmc *d, size_t c)
 {
     int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
-    uint32_t cnt = 0;
-    for (int y = cy - 1; y <= cy + 1; y++)
-        for (int x = cx - 1; x <= cx + 1; x++) {
-            size_t e = at(d, x, y);
-            cnt += e == SIZE_MAX ? 0 : (uint32_t)count(d, e);
-        }
-    d->cv[c].cnt = cnt, d->cv[c].n = block_n(d, c, SIZE_MAX);
+    uint32_t k = 0;
+    double a = 0;
+    for (int x = cx - 1; x <= cx + 1; x++) {
+        size_t e = at(d, x, cy);
+        if (e != SIZE_MAX)
+            k += (uint32_t)count(d, e), a += d->cv[e].a;
+    }
+    d->cv[c].hc = k, d->cv[c].ha = a;
+}
+
+static void prepare_column(gr_dsmc *d, size_t c)
+{
+    int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
+    uint32_t k = 0;
+    double a = 0;
+    for (int y = cy - 1; y <= cy + 1; y++) {
+        size_t e = at(d, cx, y);
+        if (e != SIZE_MAX)
+            k += d->cv[e].hc, a += d->cv[e].ha;
+    }
+    gr_dsmc_cellv *v = &d->cv[c];
+    v->cnt = k, v->ba = a, v->n = a > 0 ? k * d->W / a : 0.0;
 }
 
 void gr_dsmc_esmc_prepare(gr_dsmc *d, int T)
@@ -108,7 +132,9 @@ void gr_dsmc_esmc_prepare(gr_dsmc *d, int T)
         for (size_t c = 0; c < nc; c++)
             prepare_cell(d, c);
         for (size_t c = 0; c < nc; c++)
-            prepare_block(d, c);
+            prepare_row(d, c);
+        for (size_t c = 0; c < nc; c++)
+            prepare_column(d, c);
         return;
     }
 #pragma omp parallel num_threads(T)
@@ -118,7 +144,10 @@ void gr_dsmc_esmc_prepare(gr_dsmc *d, int T)
             prepare_cell(d, c);
 #pragma omp for schedule(static)
         for (size_t c = 0; c < nc; c++)
-            prepare_block(d, c);
+            prepare_row(d, c);
+#pragma omp for schedule(static)
+        for (size_t c = 0; c < nc; c++)
+            prepare_column(d, c);
     }
 }
 
@@ -129,19 +158,20 @@ static double majorant(const gr_dsmc *d, size_t c, int R)
 {
     int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
     const gr_dsmc_cellv *va = &d->cv[c];
-    double gm = 0, nm = 0;
+    double g2 = 0, nm = 0;
     for (int y = cy - R; y <= cy + R; y++)
         for (int x = cx - R; x <= cx + R; x++) {
             size_t e = at(d, x, y);
             if (e == SIZE_MAX)
                 continue;
-            nm = fmax(nm, d->cv[e].n);
+            const gr_dsmc_cellv *ve = &d->cv[e];
+            nm = ve->n > nm ? ve->n : nm; /* not fmax: a libm call */
             if (!count(d, e))
                 continue;
-            double dx = va->mx - d->cv[e].mx, dy = va->my - d->cv[e].my;
-            gm = fmax(gm, va->r + sqrt(dx * dx + dy * dy) + d->cv[e].r);
+            double dx = va->mx - ve->mx, dy = va->my - ve->my, u = sqrt(dx * dx + dy * dy) + ve->r;
+            g2 = u > g2 ? u : g2;
         }
-    return nm * chi_n(d, nm) * gm;
+    return nm * chi_n(d, nm) * (va->r + g2);
 }
 
 /* The partner's place r_i + sigma s, wrapped across periodic sides: 0 where

@@ -27,7 +27,8 @@ enum {
     GR_DSMC_BAD_DT = 1,
     GR_DSMC_BAD_CELL = 2,
     GR_DSMC_BAD_PPC = 4,
-    GR_DSMC_BAD_ENSKOG_CELL = 8,
+    /* 8: no longer used (cells under 10 d in the Enskog mode, whose
+     * displacement of partners thinned the pairs of small cells) */
     GR_DSMC_BAD_RECOLLIDE = 16, /* cell side under the pool limit (GR_DSMC_POOL_K) */
     GR_DSMC_BAD_DENSE = 32      /* during the run: a region packed beyond a gas (dsmc_dense.c) */
 };
@@ -171,8 +172,9 @@ typedef struct {
 typedef struct gr_dsmc_cellv {
     double mx, my, r; /* mean velocity, largest distance of a velocity from it */
     double a;         /* area */
-    double n;         /* number density of the 3 x 3 cells around */
-    uint32_t cnt;     /* particles of the 3 x 3 cells around */
+    double ha, ba;    /* area of the 3 cells of its row around it, of the 3 x 3 */
+    double n;         /* number density (real grains) of the 3 x 3 cells around */
+    uint32_t hc, cnt; /* particles of the 3 cells of its row around it, of the 3 x 3 */
 } gr_dsmc_cellv;
 int gr_dsmc_esmc_reach(const gr_dsmc *d);
 /* This step's bounds of every cell (d->cv), on T threads. */
