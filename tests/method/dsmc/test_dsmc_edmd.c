@@ -98,7 +98,7 @@ static void test_cooling_defaults(void **st)
 }
 
 /* Packing 0.25, restitution 0.9, N = 4000 (16000 in slow), four seeds:
- * dsmc's Enskog mode (rate times chi = 1.58, displacement) with cells of
+ * dsmc's Enskog mode (rate times chi = 1.58, partners where they touch) with cells of
  * 10 d, within 5 %. edmd cools more slowly than Enskog's rate as T falls
  * (measured: 2 to 4 % in T at T0/6; Enskog leaves out the velocity
  * correlations a dense inelastic gas builds). */
@@ -166,9 +166,8 @@ static void bed(const char *method, const char *sec, int seed, int n, double wid
  * least a tenth of its largest: density within 10 %, temperature within
  * 20 %. The measured departure (docs/methods/dsmc.md): dsmc has some 5 %
  * fewer collisions than edmd (chi = 1.05 at this density, which the
- * Boltzmann rate leaves out) and runs up to 18 % hotter in the upper bed;
- * the Enskog mode with these cells is further off (its displacement thins
- * the pairs within a cell). Slow: 4 seeds, 4 times longer. */
+ * Boltzmann rate leaves out) and runs up to 18 % hotter in the upper bed.
+ * Slow: 4 seeds, 4 times longer. */
 static void test_vibrated_bed(void **st)
 {
     (void)st;
