@@ -272,6 +272,12 @@ static void test_cell_sweep(void **st)
 
 int main(int argc, char **argv)
 {
+    if (argc == 4 && !strcmp(argv[1], "defaults")) { /* `defaults ETA SEEDS`: test_cooling_defaults' gas */
+        double eta = atof(argv[2]);
+        double w = compare_cooling("defaults", 3000, eta, 0.9, "", 0, 0, eta > 0.05 ? 2 : 10, atoi(argv[3]));
+        print_message("# defaults, eta %g: largest |T_dsmc / T_edmd - 1| %.4f\n", eta, w);
+        return 0;
+    }
     if (argc > 1 && !strcmp(argv[1], "sweep")) { /* `sweep [SEEDS_GAS [SEEDS_BED [ENSKOG]]]` */
         const char *ens = argc > 4 ? argv[4] : "yes";
         double dep[NC];
