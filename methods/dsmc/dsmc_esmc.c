@@ -192,15 +192,14 @@ static int partner_place(const gr_dsmc *d, double *x, double *y)
     return 1;
 }
 
-/* The w-th particle of cell B that is neither i nor j. */
-static size_t nth_other(const gr_dsmc *d, size_t B, size_t w, size_t i, size_t j)
+/* The w-th place of a cell, in order, that is neither e1 nor e2 (places
+ * in the cell, e1 < e2; SIZE_MAX for none): the w-th particle of the cell
+ * other than the pair's, without a pass over the cell (one cell of 4000
+ * would make every candidate cost 4000 reads). */
+static inline size_t skip(size_t w, size_t e1, size_t e2)
 {
-    for (size_t q = d->start[B]; q < d->start[B + 1]; q++) {
-        size_t l = d->order[q];
-        if (l != i && l != j && !w--)
-            return l;
-    }
-    return (size_t)-1;
+    w += w >= e1;
+    return w + (w >= e2);
 }
 
 /* A particle of the pool p that is neither i nor j (both in it: within
@@ -271,19 +270,20 @@ void gr_dsmc_esmc_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, gr_dsmc_tall
     gr_dsmc_pool q;
     int have = 0;
     for (uint64_t k = 0; k < nc; k++) {
-        size_t i = d->order[a + gr_dsmc_below(gr_dsmc_uniform(&r), m)];
+        size_t ia = gr_dsmc_below(gr_dsmc_uniform(&r), m), i = d->order[a + ia];
         double th = 2.0 * M_PI * gr_dsmc_uniform(&r), sx = cos(th), sy = sin(th);
         double px = d->x[i] + d->sigma * sx, py = d->y[i] + d->sigma * sy;
         double u = gr_dsmc_uniform(&r), v = gr_dsmc_uniform(&r), w = gr_dsmc_uniform(&r);
         if (!partner_place(d, &px, &py))
             continue;
-        size_t B = gr_dsmc_cell_of(d, px, py), others = count(d, B) - (B == c);
-        size_t j = others ? nth_other(d, B, gr_dsmc_below(u, others), i, i)
-                          : pool_other(d, pool(d, c, p, &q, &have), u, i, i);
+        size_t B = gr_dsmc_cell_of(d, px, py), bs = d->start[B], others = count(d, B) - (B == c);
+        size_t pi = B == c ? ia : SIZE_MAX, jb = others ? skip(gr_dsmc_below(u, others), pi, SIZE_MAX) : 0;
+        size_t j = others ? d->order[bs + jb] : pool_other(d, pool(d, c, p, &q, &have), u, i, i);
         if (j == (size_t)-1)
             continue;
         if (gr_dsmc_recent(d, i, j)) {
-            j = others > 1 ? nth_other(d, B, gr_dsmc_below(w, others - 1), i, j)
+            size_t e1 = pi < jb ? pi : jb, e2 = pi < jb ? jb : pi;
+            j = others > 1 ? d->order[bs + skip(gr_dsmc_below(w, others - 1), e1, e2)]
                            : pool_other(d, pool(d, c, p, &q, &have), w, i, j);
             if (j == (size_t)-1)
                 continue;
