@@ -77,7 +77,24 @@ static inline double chi_n(const gr_dsmc *d, double n)
     return gr_dsmc_chi(fmin(0.9, n * M_PI * d->sigma * d->sigma / 4.0));
 }
 
-/* Mean velocity and radius of cell c's velocities, and its area. */
+/* Width of cell k along an axis of length L (offset o, width w) that
+ * centres can reach: cut to [r, L - r] where a side is a wall, to [0, L]
+ * where it is open. The density of centres is what the collision rate
+ * needs; counted over the whole area, a box of 20 d with walls at packing
+ * 0.385 ran 13 % short of the hard-disk collisions (grano course pressure
+ * --quick --method dsmc). */
+static double reach_width(int k, double o, double w, double L, int wraps, gr_bc lo_side, gr_bc hi_side, double r)
+{
+    if (wraps)
+        return w;
+    double lo = k * w - o, hi = lo + w;
+    double a = lo_side == GR_BC_WALL ? r : 0.0, b = hi_side == GR_BC_WALL ? L - r : L;
+    double x = fmin(hi, b) - fmax(lo, a);
+    return x > 0 ? x : 0.0;
+}
+
+/* Mean velocity and radius of cell c's velocities, and the area centres
+ * can reach in it. */
 static void prepare_cell(gr_dsmc *d, size_t c)
 {
     gr_dsmc_cellv *v = &d->cv[c];
@@ -92,7 +109,12 @@ static void prepare_cell(gr_dsmc *d, size_t c)
         double ux = d->vx[o[k]] - mx, uy = d->vy[o[k]] - my, u2 = ux * ux + uy * uy;
         r2 = u2 > r2 ? u2 : r2;
     }
-    v->mx = mx, v->my = my, v->r = sqrt(r2), v->a = gr_dsmc_cell_area(d, c);
+    const gr_bc *s = d->sc.side;
+    int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
+    double rad = 0.5 * d->sigma;
+    v->mx = mx, v->my = my, v->r = sqrt(r2);
+    v->a = reach_width(cx, d->ox, d->cw, d->Lx, d->gx == d->nx, s[GR_LEFT], s[GR_RIGHT], rad) *
+           reach_width(cy, d->oy, d->ch, d->Ly, d->gy == d->ny, s[GR_BOTTOM], s[GR_TOP], rad);
 }
 
 /* The 3 x 3 sums as a sum of 3 along the row (hc, ha), then of 3 of
