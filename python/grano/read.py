@@ -88,7 +88,12 @@ class Result:
     def __init__(self, path):
         import h5py
         self.path = str(path)
-        with h5py.File(path, "r") as f:
+        try:
+            f = h5py.File(path, "r")
+        except OSError:
+            # a run writing it, or killed while it did: HDF5's SWMR read mode
+            f = h5py.File(path, "r", swmr=True)
+        with f:
             self.attrs = {k: _str(v) for k, v in f.attrs.items()}
             p = f.get("parameters")
             get = (lambda k: _str(p[k].asstr()[()]) if k in p else None) if p is not None else (lambda k: None)

@@ -64,3 +64,26 @@ def test_api(grano, part):
     names = fn.__code__.co_varnames[:fn.__code__.co_argcount]
     args = {"tap": Checks(), "grano": grano, "exe": EXE, "root": ROOT}
     fn(*[args[n] for n in names])
+
+
+def test_read_a_running_and_a_killed_result(grano):
+    """grano.read opens a result while its run writes it, and after a kill
+    (HDF5's SWMR read mode), with the frames flushed so far."""
+    import signal
+    import time
+    ini = "%s/experiments/scenes/box.ini" % ROOT
+    p = subprocess.Popen([EXE, "run", ini, "--method", "dem", "--until", "100", "-o", "live.h5", "-f", "-q"])
+    seen = []
+    try:
+        for _ in range(200):
+            time.sleep(0.1)
+            if os.path.exists("live.h5"):
+                r = grano.read("live.h5")
+                seen.append(r.trajectory.position.shape[0])
+                if len(set(seen)) >= 3:
+                    break
+    finally:
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+    assert len(set(seen)) >= 3 and seen == sorted(seen), seen
+    assert grano.read("live.h5").trajectory.position.shape[0] >= seen[-1]
