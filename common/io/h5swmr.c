@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 hid_t gr_h5_paged_fcpl(void)
@@ -24,8 +25,29 @@ hid_t gr_h5_paged_fcpl(void)
     return p;
 }
 
+/* A writer killed after its superblock recorded the end of the space it
+ * had allocated, and before the last page was written, leaves a file
+ * shorter than that end: a reader takes it (HDF5's SWMR reader checks no
+ * end), a writer refuses it as truncated. The missing bytes were never
+ * part of a flushed sample: the file is extended to that end with zeros. */
+static int extend_to_eoa(const char *path)
+{
+    hid_t f = -1;
+    haddr_t eoa = 0;
+    struct stat st;
+    GR_H5_QUIET(f = H5Fopen(path, H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT));
+    int ok = f >= 0 && H5Fget_eoa(f, &eoa) >= 0;
+    if (f >= 0)
+        H5Fclose(f);
+    if (!ok || stat(path, &st) != 0 || (haddr_t)st.st_size >= eoa)
+        return 0;
+    return truncate(path, (off_t)eoa);
+}
+
 hid_t gr_h5_open_rw(const char *path)
 {
+    if (extend_to_eoa(path))
+        return -1;
     hid_t fapl = gr_h5_fapl();
     /* A killed writer leaves the superblock marked open for writing; the
      * file itself is consistent (that is the mode's promise), so the mark is

@@ -416,6 +416,19 @@ static int want_contacts(const gr_scene *sc, const gr_method_type *m, run_io *io
     return GR_OK;
 }
 
+/* The samples of a continued result that the restart keeps: those up to
+ * the checkpoint's time, taken before it was saved; a checkpoint saved
+ * before its time's samples (the initial state's) keeps only the earlier
+ * ones, or its time's samples would be written twice. */
+static double kept_until(const gr_scene *sc, gr_sim *st, const uint64_t k[3], double t0)
+{
+    const gr_runctl *r = &sc->run;
+    double t = gr_sim_time(st), eps = 1e-9 * (r->until > 1 ? r->until : 1);
+    int pending = t0 + (double)k[0] * r->observe_every <= t + eps ||
+                  t0 + (double)k[1] * r->output_every <= t + eps;
+    return pending ? t - 2 * eps : t;
+}
+
 /* A stop signal ended the loop between samples: the state is a good one,
  * saved as the checkpoint, and the message says what the files hold. */
 static void said_stop(const run_io *io, const gr_run_opts *o, gr_sim *st, const uint64_t k[3], gr_err *err)
@@ -509,7 +522,7 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     struct stat ost;
     int cont = o->restart && !o->branch && stat(o->out, &ost) == 0;
     ho.any_text = cont;
-    if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, gr_sim_time(st), err)
+    if (!(io.h = cont ? gr_h5md_reopen(o->out, sc, &ho, kept_until(sc, st, k, t0), err)
                       : gr_h5md_create(o->out, sc, &ho, err))) {
         rc = err->code;
         goto done;

@@ -5,6 +5,8 @@ set -u
 GRANO=$1
 SRC=$2
 PY=/usr/bin/python3
+# the same objects, shapes and values (h5diff passes datasets of different shapes)
+SAME="$PY $SRC/tests/experiment/same_h5.py"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cd "$tmp" || exit 1
@@ -38,8 +40,8 @@ check "1: dem runs vibrated.ini at width 430" $?
 "$GRANO" run rs.ini -o a.h5 -q 2>err &&
     "$GRANO" run rs.ini -o b.h5 -q --until 0.1 2>err &&
     "$GRANO" run rs.ini -o b.h5 -q --restart b.ckpt 2>err &&
-    h5diff a.h5 b.h5 >err 2>&1
-check "4: restart into the same output keeps the frames before the checkpoint (h5diff identical)" $?
+    $SAME a.h5 b.h5 >err 2>&1
+check "4: restart into the same output keeps the frames before the checkpoint (identical)" $?
 
 # 17: a restart past the end time is refused and changes nothing; one at
 # the end time (a run killed while closing) runs nothing and exits 0
@@ -48,7 +50,7 @@ sum=$(md5sum b.h5)
 rc=$?
 [ $rc = 2 ] && grep -q "past the end time" err && [ "$(md5sum b.h5)" = "$sum" ]
 check "17: restart past --until refused (exit $rc), result unchanged" $?
-"$GRANO" run rs.ini -o b.h5 -q --restart b.ckpt 2>err && h5diff a.h5 b.h5 >>err 2>&1
+"$GRANO" run rs.ini -o b.h5 -q --restart b.ckpt 2>err && $SAME a.h5 b.h5 >>err 2>&1
 check "17: restart at the end time: exit 0, result still identical" $?
 
 # 15: a partial checkpoint of a killed run is removed and said
@@ -135,7 +137,7 @@ sed 's/^until = 0.2/until = 0.1/' rs.ini >short.ini
 "$GRANO" run short.ini -o s.h5 -q 2>err &&
     "$GRANO" run rs.ini -o s.h5 --restart s.ckpt 2>err &&
     grep -q "\[run\] until: '0.1' -> '0.2'" err &&
-    h5diff a.h5 s.h5 /particles /particles >>err 2>&1 && h5diff a.h5 s.h5 /observables /observables >>err 2>&1
+    $SAME a.h5 s.h5 /particles /observables >>err 2>&1
 check "branch: a restart with a longer [run] until continues bit for bit and lists the difference" $?
 "$GRANO" run short.ini -o s2.h5 -q 2>err
 sed 's/^output_every = 0.02/output_every = 0.05/' rs.ini >coarse.ini
