@@ -16,9 +16,9 @@
 
 #include <math.h>
 
-/* An arch at D = 3 is likely, not certain: of seeds 1 to 4, seed 2 lets
- * 105 grains out and the rest come to rest beside the orifice; the others
- * arch, seed 4 after 18 grains have left. */
+/* An arch at D = 3 is likely, not certain: seed 2 let 105 grains out and
+ * the rest came to rest beside the orifice (docs/methods/cd.md); seed 4
+ * arches after some grains have left. */
 static const char *const arch_text =
     "[scene]\nseed = 4\n[domain]\nwidth = 12\nheight = 30\nbottom = open\ngravity = 1\n"
     "[material]\ntangential = coulomb\nmu = 0.5\nrestitution = 0\n"
