@@ -24,7 +24,7 @@
 
 /* Dense W costs (2 nc)^2 doubles and fc2d_nsgs_dense O(nc^2) per sweep:
  * above this many contacts the Siconos comparison is left out. */
-#define SICONOS_MAX_CONTACTS 1500
+#define SICONOS_MAX_CONTACTS 2500
 
 typedef struct {
     long ns[16];
@@ -32,6 +32,8 @@ typedef struct {
     long steps;
     double tol, settle;
     int given_n;
+    int cases;        /* bit 0: pile, bit 1: silo */
+    char extra[512];  /* KEY = VALUE lines added to [cd] by --set */
 } bc_opts;
 
 typedef struct {
@@ -44,7 +46,8 @@ typedef struct {
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: grano bench cd [--n N1,N2,...] [--steps S] [--settle T] [--tol E] [--rounds R] [--quick]\n\n"
+            "usage: grano bench cd [--n N1,N2,...] [--steps S] [--settle T] [--tol E] [--rounds R] [--quick]\n"
+            "                      [--case pile|silo] [--set KEY=VALUE]...\n\n"
             "Polydisperse disks (d = 0.8..1.2, mu = 0.5, e = 0, dt = 2e-3, [cd] tol E, default 1e-4) in two\n"
             "cases: a resting pile in a box (lattice start, settled for T tau, default 20) and a silo with walls\n"
             "of fixed grains, an orifice of 6 d and reinsertion (flowing for T/2 tau before timing).\n"
@@ -54,7 +57,8 @@ static void usage(FILE *f)
             "built in and it has at most %d closed contacts, by fc2d_nsgs_dense to the same tolerance,\n"
             "R alternating rounds (siconos_ratio: median of time(Siconos) / time(cd)).\n"
             "Prints: RESULT method=cd case=C n=N contact_updates_per_s=X steps_per_s=Y iterations_per_step=I\n"
-            "        [siconos_ratio=R], and for the pile WARM ... factor=F (cold over warm sweeps per step).\n",
+            "        [siconos_ratio=R], and for the pile WARM ... factor=F (cold over warm sweeps per step).\n"
+            "--case runs one case only; --set KEY=VALUE sets a [cd] key (relax, order, ...) for every step.\n",
             SICONOS_MAX_CONTACTS);
 }
 
@@ -80,6 +84,21 @@ static int cd_option(void *ctx, int id, const char *arg, gr_err *err)
     long v;
     switch (id) {
     case 'Q': o->quick = 1; return 0;
+    case 'c':
+        if (strcmp(arg, "pile") && strcmp(arg, "silo"))
+            return gr_fail(err, GR_EINPUT, "--case: '%s' is neither pile nor silo", arg);
+        o->cases = strcmp(arg, "pile") ? 2 : 1;
+        return 0;
+    case 'k': {
+        const char *eq = strchr(arg, '=');
+        size_t used = strlen(o->extra);
+        if (!eq || eq == arg)
+            return gr_fail(err, GR_EINPUT, "--set: '%s' is not KEY=VALUE", arg);
+        if (used + strlen(arg) + 4 >= sizeof o->extra)
+            return gr_fail(err, GR_EINPUT, "--set: too many keys");
+        snprintf(o->extra + used, sizeof o->extra - used, "%.*s = %s\n", (int)(eq - arg), arg, eq + 1);
+        return 0;
+    }
     case 'n':
         if ((o->nn = parse_list(arg, o->ns, 16)) < 1)
             return gr_fail(err, GR_EINPUT, "--n: '%s' is not a list of integers >= 10", arg);
@@ -104,8 +123,9 @@ static int parse_args(int argc, char **argv, bc_opts *o)
         {"quick", no_argument, NULL, 'Q'}, {"n", required_argument, NULL, 'n'},
         {"steps", required_argument, NULL, 's'}, {"settle", required_argument, NULL, 'S'},
         {"tol", required_argument, NULL, 't'}, {"rounds", required_argument, NULL, 'r'},
+        {"case", required_argument, NULL, 'c'}, {"set", required_argument, NULL, 'k'},
         {NULL, 0, NULL, 0}};
-    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0, 0};
+    *o = (bc_opts){{500, 2000, 8000}, 3, 0, 5, 200, 1e-4, 20.0, 0, 3, ""};
     int first = 0;
     int rc = exp_getopt_main("bench cd", argc, argv, opts, cd_option, o, usage, 0, &first);
     if (rc >= 0)
@@ -126,10 +146,10 @@ static int parse_args(int argc, char **argv, bc_opts *o)
  * whatever the diameters) with random velocities (so that columns do not
  * stay stacked), in a box (pile) or a silo of fixed-grain walls
  * emptying through an orifice into its reinsertion band (silo). */
-static gr_scene *bench_cd_scene(const char *name, long n, double tol, gr_err *err)
+static gr_scene *bench_cd_scene(const char *name, long n, double tol, const char *extra, gr_err *err)
 {
     static const char *const ext[] = {"cd", NULL};
-    char text[2048], geo[768];
+    char text[2560], geo[768];
     double site = 1.05 * 1.2 * 1.2; /* the reader's lattice pitch: spacing x d_max x (1 + poly) */
     int silo = !strcmp(name, "silo");
     double w = ceil((silo ? 1.0 : 1.5) * sqrt((double)n)) + 2;
@@ -149,24 +169,43 @@ static gr_scene *bench_cd_scene(const char *name, long n, double tol, gr_err *er
              "[scene]\nname = bench-cd-%s\nseed = 3\n%s"
              "[material]\ntangential = coulomb\nmu = 0.5\n"
              "[species]\ncount = %ld\npolydispersity = 0.2\n"
-             "[cd]\ndt = 2e-3\ntol = %.17g\nmax_iter = 100000\n",
-             name, geo, n, tol);
+             "[cd]\ndt = 2e-3\ntol = %.17g\nmax_iter = 100000\n%s",
+             name, geo, n, tol, extra);
     return gr_scene_parse(text, "bench-cd", ext, err);
 }
 
-/* Timed steps with warm start: steps/s and sweeps per step. */
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Timed steps with warm start: steps/s and sweeps per step, with the
+ * median and largest step on stderr (the mean can be a few hard steps). */
 static int time_steps(gr_cd *d, long steps, bc_result *r, gr_err *err)
 {
     uint64_t s0 = d->sweeps;
+    double *per = malloc((size_t)steps * sizeof *per);
+    if (!per)
+        return gr_fail(err, GR_ERUN, "out of memory");
     double t0 = exp_wall_seconds();
-    for (long k = 0; k < steps; k++)
-        if (gr_cd_step(d, err))
+    for (long k = 0; k < steps; k++) {
+        uint64_t sk = d->sweeps;
+        if (gr_cd_step(d, err)) {
+            free(per);
             return err->code;
+        }
+        per[k] = (double)(d->sweeps - sk);
+    }
     double t = exp_wall_seconds() - t0;
     r->steps_per_s = (double)steps / t;
     r->iter_per_step = (double)(d->sweeps - s0) / (double)steps;
-    fprintf(stderr, "cd %s n=%ld: %ld steps in %.3f s, %.2f sweeps per step, %zu contacts, largest overlap %.2e d\n",
-            r->name, r->n, steps, t, r->iter_per_step, d->prev.n, d->max_ovl);
+    qsort(per, (size_t)steps, sizeof *per, cmp_double);
+    fprintf(stderr,
+            "cd %s n=%ld: %ld steps in %.3f s, %.2f sweeps per step (median %.0f, largest %.0f), %zu contacts, "
+            "largest overlap %.2e d\n",
+            r->name, r->n, steps, t, r->iter_per_step, per[steps / 2], per[steps - 1], d->prev.n, d->max_ovl);
+    free(per);
     return GR_OK;
 }
 
@@ -190,12 +229,6 @@ static int cold_solve(gr_cd *d, const free_vel *fv, double *sec, long *sweeps, g
     *sec = exp_wall_seconds() - t0;
     *sweeps = si.converged ? si.sweeps : -si.sweeps;
     return GR_OK;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 #ifdef GR_BENCH_SICONOS
@@ -318,7 +351,7 @@ static int cold_rates(gr_cd *d, int rounds, bc_result *r, gr_err *err)
 static int run_case(const char *name, long n, const bc_opts *o, bc_result *r, gr_err *err)
 {
     *r = (bc_result){.name = name, .n = n};
-    gr_scene *sc = bench_cd_scene(name, n, o->tol, err);
+    gr_scene *sc = bench_cd_scene(name, n, o->tol, o->extra, err);
     gr_particles *p = sc ? gr_particles_create(0, err) : NULL;
     gr_sim *s = NULL;
     int rc = GR_OK;
@@ -365,7 +398,7 @@ int bench_cd(int argc, char **argv)
     static const char *const cases[] = {"pile", "silo"};
     gr_err err = {0};
     for (int c = 0; c < 2; c++) {
-        for (int k = 0; k < o.nn; k++) {
+        for (int k = 0; k < o.nn && (o.cases >> c & 1); k++) {
             bc_result r;
             if (run_case(cases[c], o.ns[k], &o, &r, &err)) {
                 fprintf(stderr, "grano bench cd: %s n = %ld: %s\n", cases[c], o.ns[k], err.msg);

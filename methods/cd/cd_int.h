@@ -16,11 +16,12 @@
 #include "rng.h"
 #include "scene.h"
 
-typedef enum { GR_CD_SEQUENTIAL = 0, GR_CD_SHUFFLED, GR_CD_RANDOM } gr_cd_order;
+typedef enum { GR_CD_SEQUENTIAL = 0, GR_CD_SHUFFLED, GR_CD_RANDOM, GR_CD_SYMMETRIC } gr_cd_order;
 
 /* The [cd] section (docs/methods/cd.md). */
 typedef struct {
     double dt, theta, tol, gap;
+    double relax;   /* over-relaxation factor of the local updates */
     long max_iter, check_every;
     int order;      /* gr_cd_order */
     int strict;     /* non-convergence at max_iter is an error */
@@ -47,6 +48,8 @@ typedef struct {
     double rn, rt;
     double dmin;       /* smaller diameter of the pair, for overlaps */
     int status;        /* last local solution: gr_cd_status */
+    int closed;        /* Jean's rule in the last sweep: 1 closed, 0 open, -1 not yet */
+    int flips;         /* changes of that decision in this step's sweeps */
 } gr_cd_contact;
 
 /* The four cases of the single-contact problem. */
