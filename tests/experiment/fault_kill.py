@@ -152,14 +152,14 @@ def run_round(rng, method, scene, out, ckpt, ref, wall, results):
         argv += ["--restart", ckpt] if os.path.exists(ckpt) else ["--force"]
         restarts += "--restart" in argv
         # samples a reader saw before the restart published may be dropped
-        keep = kept(ref, ckpt) if os.path.exists(ckpt) else 0
+        keep = kept(ref, ckpt) if os.path.exists(ckpt) else None
         p = subprocess.Popen(argv, stderr=subprocess.PIPE, text=True)
         try:
             err = p.communicate(timeout=rng.uniform(0.0, 0.6 * wall))[1]
             return (kills, restarts, lost, p.returncode == 0), err
         except subprocess.TimeoutExpired:
             seen = frames_now(out)
-            seen = min(seen, keep) if keep else seen
+            seen = min(seen, keep) if keep is not None else seen
             p.send_signal(signal.SIGKILL)
             p.communicate()
             kills += 1
