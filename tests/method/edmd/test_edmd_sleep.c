@@ -35,24 +35,25 @@ static gr_edmd *bed(gr_particles **p0)
     return s;
 }
 
-static double energy_of(gr_edmd *s)
+/* The state's energy, with gravity g (0: the kinetic energy alone). */
+static double energy_at(gr_edmd *s, double g)
 {
     gr_err e = {0};
     gr_particles *p = gr_particles_create(0, &e);
     assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
-    double E = edmd_energy(p, 1.0);
+    double E = edmd_energy(p, g);
     gr_particles_free(p);
     return E;
 }
 
+static double energy_of(gr_edmd *s)
+{
+    return energy_at(s, 1.0);
+}
+
 static double kinetic_of(gr_edmd *s)
 {
-    gr_err e = {0};
-    gr_particles *p = gr_particles_create(0, &e);
-    assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
-    double K = edmd_energy(p, 0.0);
-    gr_particles_free(p);
-    return K;
+    return energy_at(s, 0.0);
 }
 
 /* Events per unit time within 100 times those of the first unit
