@@ -407,14 +407,25 @@ hid_t gr_h5_ext_create(hid_t loc, const char *name, gr_h5_type t, int item_rank,
     return d;
 }
 
+static int little_endian(void)
+{
+    static const uint16_t one = 1;
+    return *(const uint8_t *)&one == 1;
+}
+
+/* Fletcher's partial reduction modulo 65535, as HDF5 applies it. */
+static uint32_t fold(uint32_t x)
+{
+    return (x & 0xffff) + (x >> 16);
+}
+
 uint32_t gr_h5_fletcher32(const void *data, size_t len)
 {
     /* HDF5's own sums (H5_checksum_fletcher32: big-endian 16-bit words,
      * folded every 360), each block summed at once, sum2 as the weighted
      * sum it is, n s1 - sum of i w_i (below 2^32 for 360 words): the same
      * bits, about three times faster (the loop vectorises). */
-    static const uint16_t one = 1;
-    const int swap = *(const uint8_t *)&one == 1;
+    const int swap = little_endian();
     const uint8_t *d = data;
     size_t words = len / 2;
     uint32_t sum1 = 0, sum2 = 0;
@@ -431,18 +442,16 @@ uint32_t gr_h5_fletcher32(const void *data, size_t len)
         sum1 += s1;
         d += 2 * (size_t)n;
         words -= n;
-        sum1 = (sum1 & 0xffff) + (sum1 >> 16);
-        sum2 = (sum2 & 0xffff) + (sum2 >> 16);
+        sum1 = fold(sum1);
+        sum2 = fold(sum2);
     }
     if (len % 2) {
         sum1 += (uint32_t)*d << 8;
         sum2 += sum1;
-        sum1 = (sum1 & 0xffff) + (sum1 >> 16);
-        sum2 = (sum2 & 0xffff) + (sum2 >> 16);
+        sum1 = fold(sum1);
+        sum2 = fold(sum2);
     }
-    sum1 = (sum1 & 0xffff) + (sum1 >> 16);
-    sum2 = (sum2 & 0xffff) + (sum2 >> 16);
-    return sum2 << 16 | sum1;
+    return fold(sum2) << 16 | fold(sum1);
 }
 
 /* A row that is a chunk of its own (a frame of many grains) and a dataset
@@ -452,8 +461,7 @@ uint32_t gr_h5_fletcher32(const void *data, size_t len)
  * holds on a little-endian host only; 1 when it does not apply. */
 static int append_chunk(hid_t dset, int rank, const hsize_t *start, size_t bytes, const void *row)
 {
-    static const uint16_t one = 1;
-    if (*(const uint8_t *)&one != 1 || bytes <= GR_H5_PAGE_DATA)
+    if (!little_endian() || bytes <= GR_H5_PAGE_DATA)
         return 1;
     hid_t p = H5Dget_create_plist(dset);
     hsize_t chunk[4] = {0};
