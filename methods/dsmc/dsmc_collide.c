@@ -152,35 +152,36 @@ static void crowded_block(gr_dsmc *d, size_t b, size_t nc, gr_dsmc_tally *out)
     *out = y;
 }
 
-/* Cell c (at cx, cy) of the Enskog mode runs on the threads: its reach
- * R lies inside the grid, and its stand-ins come from within it (R = 1 and
- * the 3 x 3 cells around hold a third particle). */
-static int esmc_local(const gr_dsmc *d, size_t c, int cx, int cy, int R)
+/* Cell c (at cx, cy) of the Enskog mode runs on the threads: its
+ * candidates touch the cells within the reach + 1 (the partners around
+ * the cell at r_i + sigma s), which must lie inside the grid. */
+#define ESMC_SPAN 5 /* cells between cells of one colour: 2 (reach + 1) + 1 */
+static int esmc_local(const gr_dsmc *d, int cx, int cy, int R)
 {
-    return R == 1 && cx >= 1 && cx <= d->gx - 2 && cy >= 1 && cy <= d->gy - 2 && d->cv[c].cnt >= 3;
+    return R == 1 && cx >= 2 && cx <= d->gx - 3 && cy >= 2 && cy <= d->gy - 3;
 }
 
-/* Row cy of colour kx of the Enskog mode's cells, 3 apart along each axis
- * (the reach is 1): their candidates touch disjoint particles. */
+/* Row cy of colour kx of the Enskog mode's cells, ESMC_SPAN apart along
+ * each axis: their candidates touch disjoint particles. */
 static void esmc_row(gr_dsmc *d, int kx, int cy, gr_dsmc_tally *out)
 {
     gr_dsmc_tally y = {0, 0, 0, 0.0};
-    for (int cx = 1 + (kx + 2) % 3; cx <= d->gx - 2; cx += 3) {
+    for (int cx = 2 + kx; cx <= d->gx - 3; cx += ESMC_SPAN) {
         size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
-        gr_dsmc_pool p = {{cx - 1, cy - 1}, {cx + 1, cy + 1}};
-        if (cell_count(d, c) && esmc_local(d, c, cx, cy, 1))
-            gr_dsmc_esmc_cell(d, c, &p, &y);
+        if (cell_count(d, c))
+            gr_dsmc_esmc_cell(d, c, &y);
     }
     *out = y;
 }
 
 /* The Enskog mode: the cells that esmc_local allows colour by colour
- * (cx mod 3, cy mod 3), a colour's rows on the threads (rt: 9 x gy
- * tallies), then the others (at the grid's edge, with a wider pool, or all
- * where cells are narrower than sigma) one after the other in cell order. */
+ * (cx mod 5, cy mod 5), a colour's rows on the threads (rt: 25 x gy
+ * tallies), then the others (at the grid's edge, or all where cells are
+ * narrower than sigma) one after the other in cell order. */
 static int collide_esmc(gr_dsmc *d, int T, gr_err *err)
 {
-    size_t nc = gr_dsmc_ncells(d), nr = 9 * (size_t)d->gy;
+    const int K = ESMC_SPAN * ESMC_SPAN;
+    size_t nc = gr_dsmc_ncells(d), nr = (size_t)K * (size_t)d->gy;
     if (!d->cv && !(d->cv = malloc(nc * sizeof *d->cv)))
         return gr_fail(err, GR_ERUN, "out of memory for the bounds of %zu cells", nc);
     gr_dsmc_esmc_prepare(d, T);
@@ -188,22 +189,22 @@ static int collide_esmc(gr_dsmc *d, int T, gr_err *err)
     gr_dsmc_tally *rt = calloc(nr + 1, sizeof *rt);
     if (!rt)
         return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
-    for (int k = 0; R == 1 && k < 9; k++) {
-        int cy0 = 1 + (k / 3 + 2) % 3;
+    for (int k = 0; R == 1 && k < K; k++) {
+        int cy0 = 2 + k / ESMC_SPAN, kx = k % ESMC_SPAN;
         gr_dsmc_tally *r = rt + (size_t)k * (size_t)d->gy;
         if (T == 1) {
-            for (int cy = cy0; cy <= d->gy - 2; cy += 3)
-                esmc_row(d, k % 3, cy, &r[cy]);
+            for (int cy = cy0; cy <= d->gy - 3; cy += ESMC_SPAN)
+                esmc_row(d, kx, cy, &r[cy]);
             continue;
         }
 #pragma omp parallel for schedule(dynamic, 4) num_threads(T)
-        for (int cy = cy0; cy <= d->gy - 2; cy += 3)
-            esmc_row(d, k % 3, cy, &r[cy]);
+        for (int cy = cy0; cy <= d->gy - 3; cy += ESMC_SPAN)
+            esmc_row(d, kx, cy, &r[cy]);
     }
     for (size_t c = 0; c < nc; c++) {
         int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
-        if (cell_count(d, c) && !esmc_local(d, c, cx, cy, R))
-            gr_dsmc_esmc_cell(d, c, NULL, &rt[nr]);
+        if (cell_count(d, c) && !esmc_local(d, cx, cy, R))
+            gr_dsmc_esmc_cell(d, c, &rt[nr]);
     }
     for (size_t b = 0; b <= nr; b++) {
         d->pairs += rt[b].pairs, d->cand += rt[b].cand, d->stand_ins += rt[b].stand_ins;

@@ -179,10 +179,9 @@ typedef struct gr_dsmc_cellv {
 int gr_dsmc_esmc_reach(const gr_dsmc *d);
 /* This step's bounds of every cell (d->cv), on T threads. */
 void gr_dsmc_esmc_prepare(gr_dsmc *d, int T);
-/* The candidates of cell c, whose stand-ins come from the pool p (all
- * the cells within the reach, holding three particles or more), or, when
- * p is NULL, from gr_dsmc_pool_of's (from the reach out). */
-void gr_dsmc_esmc_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, gr_dsmc_tally *y);
+/* The candidates of cell c: they touch the particles of the cells within
+ * the reach + 1 of it. */
+void gr_dsmc_esmc_cell(gr_dsmc *d, size_t c, gr_dsmc_tally *y);
 
 /* dsmc_collide.c: the collisions of one step, cell by cell. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err);
