@@ -27,14 +27,15 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: grano bench dsmc [--n N1,N2,...] [--eta E] [--dt F] [--ppc P] [--quick]\n"
+            "usage: grano bench dsmc [--n N1,N2,...] [--eta E] [--dt F] [--ppc P] [--enskog] [--quick]\n"
             "       grano bench dsmc --compare [--n N1,...] [--rounds R] [--quick]\n"
-            "       grano bench dsmc --threads T1,T2 [--n N1,...] [--rounds R]\n"
+            "       grano bench dsmc --threads T1,T2 [--n N1,...] [--rounds R] [--enskog]\n"
             "       grano bench dsmc --rng\n\n"
             "Throughput: disks (d = m = 1, T = 1) in a periodic square box at packing fraction E (default\n"
             "0.01), square lattice start with Gaussian velocities; dt = F mean free times (default 0.2),\n"
             "cells holding P particles on average (default 8, so the side stays below the mean free path).\n"
-            "Three steps warm the cells' speed bounds, then at least 5 steps and 2e7 moves are timed.\n"
+            "The Boltzmann rate, or with --enskog the Enskog mode (the method's default). Three steps warm\n"
+            "the cells' speed bounds, then at least 5 steps and 2e7 moves are timed.\n"
             "Defaults: --n 1e3,1e4,1e5,1e6,1e7; --quick: --n 1e3,1e4,1e5. Prints per N:\n"
             "  RESULT method=dsmc n=N particle_moves_per_s=X collisions_per_particle_step=C bytes_per_particle=B\n"
             "--compare: the homogeneous cooling of disks with restitution 0.9 at packing 0.01 to a quarter\n"
@@ -106,11 +107,11 @@ static uint64_t counter(const gr_sim *s, const char *name)
     return v;
 }
 
-static int throughput(long n, double eta, double dtf, double ppc)
+static int throughput(long n, double eta, double dtf, double ppc, const char *ens)
 {
     gr_err err = {0};
     double nd = eta * 4.0 / M_PI;
-    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, "no", &err);
+    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, ens, &err);
     gr_sim *s = sc ? bench_sim("dsmc", sc, &err) : NULL;
     long steps = (long)fmax(5.0, ceil(2e7 / (double)n));
     int rc = !s || gr_sim_advance(s, INFINITY, 3, &err);
@@ -155,11 +156,11 @@ static int same_state(const gr_dsmc *a, const gr_dsmc *b)
  * bit for bit at the end. */
 enum { MAXC = 64 };
 
-static int scaling(long n, double eta, double dtf, double ppc, int T1, int T2, int rounds)
+static int scaling(long n, double eta, double dtf, double ppc, const char *ens, int T1, int T2, int rounds)
 {
     gr_err err = {0};
     double nd = eta * 4.0 / M_PI;
-    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, "no", &err);
+    gr_scene *sc = bench_scene(n, eta, 1.0, dtf * tau_of(eta), sqrt(ppc / nd), 1.0, 1, ens, &err);
     int nc = T2 < MAXC ? T2 : MAXC, ns = 2 + nc, rc = !sc;
     gr_sim *s[2 + MAXC] = {NULL};
     for (int k = 0; k < ns && !rc; k++)
@@ -324,6 +325,7 @@ int bench_dsmc(int argc, char **argv)
     double th[2] = {0, 0};
     size_t nth = 0;
     int quick = 0, cmp = 0, rounds = 3, given = 0;
+    const char *ens = "no";
     for (int a = 1; a < argc; a++) {
         int ok = 1;
         if (!strcmp(argv[a], "--help") || !strcmp(argv[a], "-h")) {
@@ -336,6 +338,8 @@ int bench_dsmc(int argc, char **argv)
             quick = 1;
         } else if (!strcmp(argv[a], "--compare")) {
             cmp = 1;
+        } else if (!strcmp(argv[a], "--enskog")) {
+            ens = "yes";
         } else if (!strcmp(argv[a], "--sweep")) {
             cmp = 2;
         } else if (!strcmp(argv[a], "--rng")) {
@@ -374,22 +378,23 @@ int bench_dsmc(int argc, char **argv)
     if (nth == 2) {
         double tn[2] = {1e5, 1e6};
         const double *list = given ? ns : tn;
-        printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell; wall seconds, %d rounds\n",
-               eta, dtf, ppc, rounds);
+        printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell, enskog = %s; wall seconds, "
+               "%d rounds\n", eta, dtf, ppc, ens, rounds);
         printf("# %9s %6s %3s %9s %12s %3s %9s %12s %7s %7s %6s %s\n", "N", "steps", "T1", "wall_s", "moves/s", "T2",
                "wall_s", "moves/s", "speedup", "ceiling", "of_it", "bits");
         for (size_t k = 0; k < (given ? nn : 2); k++) {
-            int rc = scaling((long)list[k], eta, dtf, ppc, (int)th[0], (int)th[1], rounds);
+            int rc = scaling((long)list[k], eta, dtf, ppc, ens, (int)th[0], (int)th[1], rounds);
             if (rc)
                 return rc;
         }
         return 0;
     }
-    printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell\n", eta, dtf, ppc);
+    printf("# periodic box, packing %g, dt %g mean free times, %g particles per cell, enskog = %s\n", eta, dtf, ppc,
+           ens);
     printf("# %9s %6s %9s %9s %12s %8s %6s %7s\n", "N", "steps", "wall_s", "cpu_s", "moves/cpu_s", "coll/p/s",
            "B/p", "ppc");
     for (size_t k = 0; k < nn; k++) {
-        int rc = throughput((long)ns[k], eta, dtf, ppc);
+        int rc = throughput((long)ns[k], eta, dtf, ppc, ens);
         if (rc)
             return rc;
     }

@@ -27,21 +27,6 @@ void gr_dsmc_grid(gr_dsmc *d)
     d->gx = d->nx + !periodic_x(d), d->gy = d->ny + !periodic_y(d);
 }
 
-/* Index along one axis of coordinate x with offset o, cell width w. */
-static inline int axis_of(double x, double o, double w, int n, int g)
-{
-    int k = (int)floor((x + o) / w);
-    if (g == n) /* periodic */
-        return k >= n ? k - n : k < 0 ? k + n : k;
-    return k < 0 ? 0 : k >= g ? g - 1 : k;
-}
-
-static inline uint32_t cell_of(const gr_dsmc *d, double x, double y)
-{
-    int cx = axis_of(x, d->ox, d->cw, d->nx, d->gx), cy = axis_of(y, d->oy, d->ch, d->ny, d->gy);
-    return (uint32_t)(cy * d->gx + cx);
-}
-
 /* Width of cell k along an axis of length L: [k w - o, (k + 1) w - o]
  * cut to [0, L] where the axis does not wrap. */
 static double width(int k, double o, double w, double L, int wraps)
@@ -113,7 +98,7 @@ static void sort_count(gr_dsmc *d, int t, int T)
     uint32_t *restrict cell = d->cell, *h = d->hist + (size_t)t * w;
     memset(h, 0, w * sizeof *h);
     for (size_t i = lo; i < hi; i++) {
-        cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : cell_of(d, d->x[i], d->y[i]);
+        cell[i] = (d->rank[i] & GR_DSMC_GONE) ? (uint32_t)nc : gr_dsmc_cell_of(d, d->x[i], d->y[i]);
         h[cell[i]]++;
     }
 }

@@ -1,7 +1,10 @@
 /* Collisions of one step, cell by cell: Bird's no-time-counter scheme for
  * hard disks of diameter sigma, whose cross-section in 2-D is the width
- * 2 sigma swept by impact parameters b in [-sigma, sigma]. Calls
- * dsmc_cells.c (the grid) and dsmc_partner.c (stand-ins). */
+ * 2 sigma swept by impact parameters b in [-sigma, sigma] (the Boltzmann
+ * rate), or the Enskog mode's partners drawn where they touch
+ * (dsmc_esmc.c), both in an order that does not depend on the threads.
+ * Calls dsmc_cells.c (the grid), dsmc_partner.c (stand-ins) and
+ * dsmc_esmc.c. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,56 +12,11 @@
 #include "dsmc_int.h"
 #include "dsmc_rng.h"
 
-/* A partner displaced through a wall is put back on it (at a radius from
- * it: the next flight bounces it); through a periodic side, wrapped. */
-static void keep_inside(gr_dsmc *d, size_t i)
-{
-    const gr_bc *s = d->sc.side;
-    double r = 0.5 * d->sigma;
-    if (s[GR_LEFT] == GR_BC_PERIODIC)
-        d->x[i] -= d->Lx * floor(d->x[i] / d->Lx);
-    if (s[GR_BOTTOM] == GR_BC_PERIODIC)
-        d->y[i] -= d->Ly * floor(d->y[i] / d->Ly);
-    if (s[GR_LEFT] == GR_BC_WALL && d->x[i] < r)
-        d->x[i] = r;
-    if (s[GR_RIGHT] == GR_BC_WALL && d->x[i] > d->Lx - r)
-        d->x[i] = d->Lx - r;
-    if (s[GR_BOTTOM] == GR_BC_WALL && d->y[i] < r)
-        d->y[i] = r;
-    if (s[GR_TOP] == GR_BC_WALL && d->y[i] > d->Ly - r)
-        d->y[i] = d->Ly - r;
-}
-
-/* The Enskog displacement (the consistent Boltzmann algorithm of
- * Alexander, Garcia and Alder, PRL 74, 5212 (1995)): after the collision
- * the partners jump apart along the normal, i by -delta n and j by
- * +delta n. Carrying their new momenta, the jump moves momentum
- * delta (p_j' - p_i').n = delta m alpha g_n across the pair, which equals
- * the collisional transfer sigma J = sigma m (1 + alpha) g_n / 2 of hard
- * disks for delta = sigma (1 + alpha) / (2 alpha) (sigma when elastic, as
- * in the paper). */
-static void displace(gr_dsmc *d, size_t i, size_t j, double nx, double ny)
-{
-    double delta = d->sigma * (1.0 + d->alpha) / (2.0 * d->alpha);
-    d->x[i] -= delta * nx, d->y[i] -= delta * ny;
-    d->x[j] += delta * nx, d->y[j] += delta * ny;
-    keep_inside(d, i);
-    keep_inside(d, j);
-}
-
-/* What a block of cells adds to the counters and the virial: summed per
- * block in cell order, then over the blocks in order, so that the sums
- * do not depend on the threads. */
-typedef struct {
-    uint64_t pairs, cand, stand_ins;
-    double virial;
-} tally;
-
 /* The inelastic smooth-disk rule for equal masses: the normal n makes the
  * angle asin(b / sigma) with the relative velocity, b uniform; the normal
  * relative velocity is reversed and scaled by alpha, momentum is kept. */
 
-static void collide_pair(gr_dsmc *d, gr_dsmc_rng *r, tally *y, size_t i, size_t j, double gx, double gy, double g)
+static void collide_pair(gr_dsmc *d, gr_dsmc_rng *r, gr_dsmc_tally *y, size_t i, size_t j, double gx, double gy, double g)
 {
     double s = 2.0 * gr_dsmc_uniform(r) - 1.0, c = sqrt(1.0 - s * s);
     double ux = gx / g, uy = gy / g;
@@ -68,8 +26,6 @@ static void collide_pair(gr_dsmc *d, gr_dsmc_rng *r, tally *y, size_t i, size_t 
     d->vx[j] += k * nx, d->vy[j] += k * ny;
     y->virial += d->sigma * d->mass * k;
     gr_dsmc_stress_pair(d, i, j, nx, ny, k);
-    if (d->par.enskog)
-        displace(d, i, j, nx, ny);
 }
 
 /* The bound g_max of the relative speeds in the cell, exact for this
@@ -94,34 +50,12 @@ static double cell_bound(const gr_dsmc *d, size_t a, size_t m)
     return 2.0 * sqrt(v2);
 }
 
-/* The packing fraction chi is evaluated at: from the particles of the
- * (up to eight) neighbouring cells, not the cell's own. The own count is
- * at least 2 whenever a pair is drawn, so with few particles per cell it
- * would overestimate the density where the collisions are counted (a
- * cell of 2 x 2 d holding 2 disks is at eta 0.39, chi 2.2, in a gas at
- * eta 0.005); the neighbours' count is independent of it. A single cell
- * has no neighbours and uses its own. */
-static double cell_eta(const gr_dsmc *d, size_t c, size_t m, double area)
-{
-    int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
-    size_t cnt = 0;
-    double A = 0;
-    for (int y = cy - 1; y <= cy + 1; y++)
-        for (int x = cx - 1; x <= cx + 1; x++)
-            if ((x != cx || y != cy) && x >= 0 && x < d->gx && y >= 0 && y < d->gy) {
-                size_t e = (size_t)y * (size_t)d->gx + (size_t)x;
-                cnt += d->start[e + 1] - d->start[e], A += gr_dsmc_cell_area(d, e);
-            }
-    double per = A > 0 ? (double)cnt / A : (double)m / area;
-    return fmin(0.9, per * d->W * M_PI * d->sigma * d->sigma / 4.0);
-}
-
-/* The candidates of cell c: N_c = m (m - 1) / 2 W 2 sigma g_max dt / A
- * (times chi), each accepted with g / g_max; a pair of recent partners
+/* The candidates of cell c (the Boltzmann rate): N_c = m (m - 1) / 2 W
+ * 2 sigma g_max dt / A, each accepted with g / g_max; a pair of recent partners
  * meets a stand-in instead (dsmc_partner.c). A pair alone in its cell
  * takes its stand-ins from around it (p, its pool; NULL for a cell of
  * three or more), so its bound covers that pool. */
-static void collide_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, tally *y)
+static void collide_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, gr_dsmc_tally *y)
 {
     size_t a = d->start[c], m = d->start[c + 1] - a;
     double area = gr_dsmc_cell_area(d, c);
@@ -133,8 +67,6 @@ static void collide_cell(gr_dsmc *d, size_t c, const gr_dsmc_pool *p, tally *y)
     gr_dsmc_rng r;
     gr_dsmc_rng_init(&r, d->key, d->step, c);
     double rate = d->W * 2.0 * d->sigma / area;
-    if (d->par.enskog)
-        rate *= gr_dsmc_chi(cell_eta(d, c, m, area));
     double want = 0.5 * (double)m * (double)(m - 1) * rate * gmax * d->par.dt;
     uint64_t nc = (uint64_t)floor(want + gr_dsmc_uniform(&r));
     y->cand += nc;
@@ -176,14 +108,14 @@ static int local_pool(const gr_dsmc *d, size_t c, const gr_dsmc_pool *p)
 }
 
 /* Row cy of colour k's cells of two whose pool is local. */
-static void pairs_row(gr_dsmc *d, int k, int cy, tally *out)
+static void pairs_row(gr_dsmc *d, int k, int cy, gr_dsmc_tally *out)
 {
-    tally y = {0, 0, 0, 0.0};
+    gr_dsmc_tally y = {0, 0, 0, 0.0};
     for (int cx = 1 + (k % 3 + 2) % 3; cx <= d->gx - 2; cx += 3) {
         size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
         if (cell_count(d, c) != 2)
             continue;
-        gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
+        gr_dsmc_pool p = gr_dsmc_pool_of(d, c, 1);
         if (local_pool(d, c, &p))
             collide_cell(d, c, &p, &y);
     }
@@ -191,14 +123,14 @@ static void pairs_row(gr_dsmc *d, int k, int cy, tally *out)
 }
 
 /* The cells of two whose pool is local, colour by colour, a colour's rows
- * on the threads; each row's tally its own (rt: 9 x gy). One thread runs
+ * on the threads; each row's gr_dsmc_tally its own (rt: 9 x gy). One thread runs
  * the rows without a parallel region: nine regions a step, even turned
  * off by an if clause, cost more than a small gas's collisions. */
-static void pairs_local(gr_dsmc *d, int T, tally *rt)
+static void pairs_local(gr_dsmc *d, int T, gr_dsmc_tally *rt)
 {
     for (int k = 0; k < 9; k++) {
         int cy0 = 1 + (k / 3 + 2) % 3;
-        tally *r = rt + (size_t)k * (size_t)d->gy;
+        gr_dsmc_tally *r = rt + (size_t)k * (size_t)d->gy;
         if (T == 1) {
             for (int cy = cy0; cy <= d->gy - 2; cy += 3)
                 pairs_row(d, k, cy, &r[cy]);
@@ -211,30 +143,94 @@ static void pairs_local(gr_dsmc *d, int T, tally *rt)
 }
 
 /* Block b's cells of three or more. */
-static void crowded_block(gr_dsmc *d, size_t b, size_t nc, tally *out)
+static void crowded_block(gr_dsmc *d, size_t b, size_t nc, gr_dsmc_tally *out)
 {
-    tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
+    gr_dsmc_tally y = {0, 0, 0, 0.0}; /* on the thread's stack: neighbours in blk[] share cache lines */
     for (size_t c = b * BLOCK; c < nc && c < (b + 1) * BLOCK; c++)
         if (cell_count(d, c) > 2)
             collide_cell(d, c, NULL, &y);
     *out = y;
 }
 
-/* Three passes. The cells of three or more particles touch only their own
- * (their stand-ins come from the cell), so they run on the threads, in
- * blocks. The cells of two, whose stand-ins and bound reach into the
- * cells around: those whose pool is the 3 x 3 square inside the grid
- * colour by colour on the threads, then the others one after the other
- * in cell order. The order is the same on any number of threads, and so
- * are the sums (per block or row, then in order). The stress window's
- * accumulator is shared: with it open, one thread. */
+/* Cell c (at cx, cy) of the Enskog mode runs on the threads: its
+ * candidates touch the cells within the reach + 1 (the partners around
+ * the cell at r_i + sigma s), which must lie inside the grid. */
+#define ESMC_SPAN 5 /* cells between cells of one colour: 2 (reach + 1) + 1 */
+static int esmc_local(const gr_dsmc *d, int cx, int cy, int R)
+{
+    return R == 1 && cx >= 2 && cx <= d->gx - 3 && cy >= 2 && cy <= d->gy - 3;
+}
+
+/* Row cy of colour kx of the Enskog mode's cells, ESMC_SPAN apart along
+ * each axis: their candidates touch disjoint particles. */
+static void esmc_row(gr_dsmc *d, int kx, int cy, gr_dsmc_tally *out)
+{
+    gr_dsmc_tally y = {0, 0, 0, 0.0};
+    for (int cx = 2 + kx; cx <= d->gx - 3; cx += ESMC_SPAN) {
+        size_t c = (size_t)cy * (size_t)d->gx + (size_t)cx;
+        if (cell_count(d, c))
+            gr_dsmc_esmc_cell(d, c, &y);
+    }
+    *out = y;
+}
+
+/* The Enskog mode: the cells that esmc_local allows colour by colour
+ * (cx mod 5, cy mod 5), a colour's rows on the threads (rt: 25 x gy
+ * tallies), then the others (at the grid's edge, or all where cells are
+ * narrower than sigma) one after the other in cell order. */
+static int collide_esmc(gr_dsmc *d, int T, gr_err *err)
+{
+    const int K = ESMC_SPAN * ESMC_SPAN;
+    size_t nc = gr_dsmc_ncells(d), nr = (size_t)K * (size_t)d->gy;
+    if (!d->cv && !(d->cv = malloc(nc * sizeof *d->cv)))
+        return gr_fail(err, GR_ERUN, "out of memory for the bounds of %zu cells", nc);
+    gr_dsmc_esmc_prepare(d, T);
+    int R = gr_dsmc_esmc_reach(d);
+    gr_dsmc_tally *rt = calloc(nr + 1, sizeof *rt);
+    if (!rt)
+        return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
+    for (int k = 0; R == 1 && k < K; k++) {
+        int cy0 = 2 + k / ESMC_SPAN, kx = k % ESMC_SPAN;
+        gr_dsmc_tally *r = rt + (size_t)k * (size_t)d->gy;
+        if (T == 1) {
+            for (int cy = cy0; cy <= d->gy - 3; cy += ESMC_SPAN)
+                esmc_row(d, kx, cy, &r[cy]);
+            continue;
+        }
+#pragma omp parallel for schedule(dynamic, 4) num_threads(T)
+        for (int cy = cy0; cy <= d->gy - 3; cy += ESMC_SPAN)
+            esmc_row(d, kx, cy, &r[cy]);
+    }
+    for (size_t c = 0; c < nc; c++) {
+        int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
+        if (cell_count(d, c) && !esmc_local(d, cx, cy, R))
+            gr_dsmc_esmc_cell(d, c, &rt[nr]);
+    }
+    for (size_t b = 0; b <= nr; b++) {
+        d->pairs += rt[b].pairs, d->cand += rt[b].cand, d->stand_ins += rt[b].stand_ins;
+        d->virial += rt[b].virial;
+    }
+    free(rt);
+    return GR_OK;
+}
+
+/* The Boltzmann rate in three passes. The cells of three or more touch
+ * only their own particles (their stand-ins come from the cell), so they
+ * run on the threads, in blocks. The cells of two, whose stand-ins and
+ * bound reach into the cells around: those whose pool is the 3 x 3 square
+ * inside the grid colour by colour on the threads, then the others one
+ * after the other in cell order. The order is the same on any number of
+ * threads, and so are the sums (per block or row, then in order). The
+ * stress window's accumulator is shared: with it open, one thread. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
 {
     if (gr_dsmc_sort(d, err))
         return err->code;
-    size_t nc = gr_dsmc_ncells(d), nb = (nc + BLOCK - 1) / BLOCK, nr = 9 * (size_t)d->gy;
     int T = d->par.threads > 1 && !d->stress ? d->par.threads : 1;
-    tally *blk = calloc(nb + nr + 1, sizeof *blk);
+    if (d->par.enskog)
+        return collide_esmc(d, T, err);
+    size_t nc = gr_dsmc_ncells(d), nb = (nc + BLOCK - 1) / BLOCK, nr = 9 * (size_t)d->gy;
+    gr_dsmc_tally *blk = calloc(nb + nr + 1, sizeof *blk);
     if (!blk)
         return gr_fail(err, GR_ERUN, "out of memory for the tallies of %zu cells", nc);
     if (T == 1) {
@@ -246,10 +242,10 @@ int gr_dsmc_collide(gr_dsmc *d, gr_err *err)
             crowded_block(d, b, nc, &blk[b]);
     }
     pairs_local(d, T, blk + nb);
-    tally *rest = blk + nb + nr;
+    gr_dsmc_tally *rest = blk + nb + nr;
     for (size_t c = 0; c < nc; c++)
         if (cell_count(d, c) == 2) {
-            gr_dsmc_pool p = gr_dsmc_pool_of(d, c);
+            gr_dsmc_pool p = gr_dsmc_pool_of(d, c, 1);
             if (!local_pool(d, c, &p))
                 collide_cell(d, c, &p, rest);
         }

@@ -27,7 +27,8 @@ enum {
     GR_DSMC_BAD_DT = 1,
     GR_DSMC_BAD_CELL = 2,
     GR_DSMC_BAD_PPC = 4,
-    GR_DSMC_BAD_ENSKOG_CELL = 8,
+    /* 8: no longer used (cells under 10 d in the Enskog mode, whose
+     * displacement of partners thinned the pairs of small cells) */
     GR_DSMC_BAD_RECOLLIDE = 16, /* cell side under the pool limit (GR_DSMC_POOL_K) */
     GR_DSMC_BAD_DENSE = 32      /* during the run: a region packed beyond a gas (dsmc_dense.c) */
 };
@@ -75,6 +76,7 @@ typedef struct gr_dsmc {
     uint32_t *last, *prev; /* ranks of the last two collision partners (GR_DSMC_RANK: none) */
     int64_t *ids;          /* ids by rank (sorted) */
     uint32_t *start;       /* first particle of each cell of the shifted grid; then the gone */
+    struct gr_dsmc_cellv *cv; /* the Enskog mode's per-cell bounds of this step (dsmc_esmc.c) */
     uint32_t *hist;        /* the threaded sort's histograms, hist_threads x (cells + 1) */
     int hist_threads;
     uint64_t key;          /* the collisions' counter-based stream (Philox) */
@@ -112,6 +114,20 @@ double *gr_dsmc_bins(const gr_dsmc *d, int *bx, int *by, size_t *live);
 /* dsmc_cells.c: the grid of collision cells, shifted by a random offset
  * every step. */
 void gr_dsmc_grid(gr_dsmc *d);
+/* Index along one axis of coordinate x with offset o, cell width w. */
+static inline int gr_dsmc_axis_of(double x, double o, double w, int n, int g)
+{
+    int k = (int)floor((x + o) / w);
+    if (g == n) /* periodic */
+        return k >= n ? k - n : k < 0 ? k + n : k;
+    return k < 0 ? 0 : k >= g ? g - 1 : k;
+}
+/* The cell of this step's grid that holds (x, y). */
+static inline uint32_t gr_dsmc_cell_of(const gr_dsmc *d, double x, double y)
+{
+    int cx = gr_dsmc_axis_of(x, d->ox, d->cw, d->nx, d->gx), cy = gr_dsmc_axis_of(y, d->oy, d->ch, d->ny, d->gy);
+    return (uint32_t)(cy * d->gx + cx);
+}
 /* This step's offset and the counting sort of the particles by cell. */
 int gr_dsmc_sort(gr_dsmc *d, gr_err *err);
 /* The area of cell c of this step's grid (cells along a wall are cut). */
@@ -127,12 +143,12 @@ static inline int gr_dsmc_recent(const gr_dsmc *d, size_t i, size_t j)
     return d->last[i] == rj || d->prev[i] == rj || d->last[j] == ri || d->prev[j] == ri;
 }
 /* The pool of a pair alone in its cell: the smallest square of cells
- * around it (lo..hi per axis, wrapped across periodic sides) that holds
- * a third particle, or the whole grid. */
+ * around it, R0 or more cells from it (lo..hi per axis, wrapped across
+ * periodic sides), that holds a third particle, or the whole grid. */
 typedef struct {
     int lo[2], hi[2];
 } gr_dsmc_pool;
-gr_dsmc_pool gr_dsmc_pool_of(const gr_dsmc *d, size_t c);
+gr_dsmc_pool gr_dsmc_pool_of(const gr_dsmc *d, size_t c, int R0);
 /* A bound of |v_k - v_l| for k = i or j, l anywhere in the pool. */
 double gr_dsmc_pool_bound(const gr_dsmc *d, const gr_dsmc_pool *p, size_t i, size_t j);
 /* The particle that meets i or j in place of the other: a uniform draw u
@@ -140,6 +156,32 @@ double gr_dsmc_pool_bound(const gr_dsmc *d, const gr_dsmc_pool *p, size_t i, siz
  * when the pair is alone in it (m = 2), of the pool; (size_t)-1 when
  * there is none. */
 size_t gr_dsmc_stand_in(const gr_dsmc *d, double u, size_t a, size_t m, const gr_dsmc_pool *p, size_t i, size_t j);
+
+/* What a block of cells adds to the counters and the virial: summed per
+ * block in cell order, then over the blocks in order, so that the sums
+ * do not depend on the threads. */
+typedef struct {
+    uint64_t pairs, cand, stand_ins;
+    double virial;
+} gr_dsmc_tally;
+
+/* dsmc_esmc.c: the Enskog mode's collisions (Enskog simulation Monte
+ * Carlo). A cell's candidates touch the particles of the cells up to
+ * gr_dsmc_esmc_reach cells from it (where a partner touching one of them
+ * can sit). */
+typedef struct gr_dsmc_cellv {
+    double mx, my, r; /* mean velocity, largest distance of a velocity from it */
+    double a;         /* area */
+    double ha, ba;    /* area of the 3 cells of its row around it, of the 3 x 3 */
+    double n;         /* number density (real grains) of the 3 x 3 cells around */
+    uint32_t hc, cnt; /* particles of the 3 cells of its row around it, of the 3 x 3 */
+} gr_dsmc_cellv;
+int gr_dsmc_esmc_reach(const gr_dsmc *d);
+/* This step's bounds of every cell (d->cv), on T threads. */
+void gr_dsmc_esmc_prepare(gr_dsmc *d, int T);
+/* The candidates of cell c: they touch the particles of the cells within
+ * the reach + 1 of it. */
+void gr_dsmc_esmc_cell(gr_dsmc *d, size_t c, gr_dsmc_tally *y);
 
 /* dsmc_collide.c: the collisions of one step, cell by cell. */
 int gr_dsmc_collide(gr_dsmc *d, gr_err *err);
@@ -174,28 +216,18 @@ int gr_dsmc_stress(gr_dsmc *d, int nx, int ny, double global[4], double *cells, 
 int gr_dsmc_stress_save(const gr_dsmc *d, gr_ckpt *ck, gr_err *err);
 int gr_dsmc_stress_load(gr_dsmc *d, gr_ckpt *ck, gr_err *err);
 
-/* The stress window's share of a collision (dsmc_collide.c), after the
- * velocities changed and before any displacement: the momentum the
- * collision moves across the pair, W times, half to each partner's cell.
- * With the Enskog displacement it is what the jumps carry, the partners'
- * new momenta over +-delta n: delta n (x) (p_j' - p_i'), whose normal part
- * is sigma J. Without it nothing carries it (point particles), and the
- * stress counts the hard disks' sigma n (x) J that the collision stands
- * for, the term the virial (`virial`) sums. k: the change of normal
- * velocity, J = m k. Inline, so that dsmc_collide.c calls no other file. */
+/* The stress window's share of a collision (dsmc_collide.c, dsmc_esmc.c),
+ * after the velocities changed: the momentum the collision moves across
+ * the pair, W times, half to each partner's cell. Nothing carries it
+ * (point particles), so the stress counts the hard disks' sigma n (x) J
+ * that the collision stands for, the term the virial (`virial`) sums.
+ * k: the change of normal velocity, J = m k. Inline, so that the
+ * collision files call no other file for it. */
 static inline void gr_dsmc_stress_pair(gr_dsmc *d, size_t i, size_t j, double nx, double ny, double k)
 {
     if (!d->stress)
         return;
-    double lx, ly, Jx, Jy;
-    if (d->par.enskog) {
-        double delta = d->sigma * (1.0 + d->alpha) / (2.0 * d->alpha);
-        lx = delta * nx, ly = delta * ny;
-        Jx = d->W * d->mass * (d->vx[j] - d->vx[i]), Jy = d->W * d->mass * (d->vy[j] - d->vy[i]);
-    } else {
-        lx = d->sigma * nx, ly = d->sigma * ny;
-        Jx = d->W * d->mass * k * nx, Jy = d->W * d->mass * k * ny;
-    }
+    double lx = d->sigma * nx, ly = d->sigma * ny, Jx = d->W * d->mass * k * nx, Jy = d->W * d->mass * k * ny;
     gr_stress_acc_collision(d->stress, d->x[i], d->y[i], d->x[j], d->y[j], 0.5, lx, ly, Jx, Jy);
 }
 

@@ -90,7 +90,6 @@ static size_t m_counters(const void *s, gr_counter *out, size_t cap)
                       {"limit_dt", d->bad & GR_DSMC_BAD_DT ? d->step : 0},
                       {"limit_cell", d->bad & GR_DSMC_BAD_CELL ? d->step : 0},
                       {"limit_ppc_min", d->bad & GR_DSMC_BAD_PPC ? d->step : 0},
-                      {"limit_enskog_cell", d->bad & GR_DSMC_BAD_ENSKOG_CELL ? d->step : 0},
                       {"limit_recollision", d->bad & GR_DSMC_BAD_RECOLLIDE ? d->step : 0},
                       {"limit_dense", d->dense_steps}};
     return gr_counters_put(out, cap, c, sizeof c / sizeof c[0]);
@@ -137,11 +136,10 @@ static const gr_obs_def observables[] = {
     GR_OBS_DEF_COUNTER("candidates", "candidate pairs drawn (no-time-counter)"),
     GR_OBS_DEF_COUNTER("stand_ins", "candidates of two recent partners, one of whom met another particle instead"),
     GR_OBS_DEF_COUNTER("lost", "particles that left through an open side"),
-    GR_OBS_DEF_COUNTER("validity_warnings", "the limits broken, as bits: 1 dt, 2 cell, 4 ppc_min, 8 Enskog cell, 16 recollision, 32 dense"),
+    GR_OBS_DEF_COUNTER("validity_warnings", "the limits broken, as bits: 1 dt, 2 cell, 4 ppc_min, 16 recollision, 32 dense (8 unused)"),
     GR_OBS_DEF_LIMIT("limit_dt", "dsmc.dt", "steps with dt above half the mean free time"),
     GR_OBS_DEF_LIMIT("limit_cell", "dsmc.cell", "steps with the cell side above the mean free path"),
     GR_OBS_DEF_LIMIT("limit_ppc_min", "dsmc.ppc_min", "steps with fewer mean particles per cell than ppc_min"),
-    GR_OBS_DEF_LIMIT("limit_enskog_cell", "dsmc.cell", "steps with enskog = yes and cells under 10 d"),
     GR_OBS_DEF_LIMIT("limit_recollision", "dsmc.cell", "steps with cells under 55 (1 - alpha^2) min(1, d / (0.36 lambda)) W d, where partners collide again correlated"),
     GR_OBS_DEF_LIMIT("limit_dense", "dsmc.gas_eta_max", "steps with a region of about 32 grains packed above gas_eta_max, beyond a Boltzmann-Enskog gas (a bed, a cluster: dem, edmd or cd model it)"),
     GR_OBS_DEF_END,
@@ -150,12 +148,12 @@ static const gr_obs_def observables[] = {
 /* What each limit measured at create. */
 static void m_diagnose(const void *s, const char *name, char *msg, size_t n)
 {
-    static const char *const names[GR_DSMC_NLIMITS] = {"limit_dt", "limit_cell", "limit_ppc_min", "limit_enskog_cell",
+    /* by the bit's place (GR_DSMC_BAD_*); 3 is no longer used */
+    static const char *const names[GR_DSMC_NLIMITS] = {"limit_dt", "limit_cell", "limit_ppc_min", "",
                                                        "limit_recollision"};
     static const char *const what[GR_DSMC_NLIMITS] = {
         "dt is %g, above half the mean free time, %g", "the cell side is %g d, above the mean free path, %g d",
-        "the mean of particles per cell is %g, below ppc_min = %g",
-        "with enskog = yes, the cell side is %g d, below %g d",
+        "the mean of particles per cell is %g, below ppc_min = %g", "",
         "the cell side is %g d, below 30 W d = %g d (correlated recollisions)"};
     const gr_dsmc *d = s;
     if (!strcmp(name, "limit_dense")) {
@@ -167,7 +165,7 @@ static void m_diagnose(const void *s, const char *name, char *msg, size_t n)
         return;
     }
     for (int k = 0; k < GR_DSMC_NLIMITS; k++)
-        if (!strcmp(name, names[k]))
+        if (names[k][0] && !strcmp(name, names[k]))
             snprintf(msg, n, what[k], d->lim_val[k] / (k == 0 || k == 2 ? 1 : d->sigma),
                      d->lim_max[k] / (k == 0 || k == 2 ? 1 : d->sigma));
 }

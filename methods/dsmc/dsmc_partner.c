@@ -43,11 +43,11 @@ static size_t pool_count(const gr_dsmc *d, const gr_dsmc_pool *p)
     return tot;
 }
 
-gr_dsmc_pool gr_dsmc_pool_of(const gr_dsmc *d, size_t c)
+gr_dsmc_pool gr_dsmc_pool_of(const gr_dsmc *d, size_t c, int R0)
 {
     int cx = (int)(c % (size_t)d->gx), cy = (int)(c / (size_t)d->gx);
     gr_dsmc_pool p;
-    for (int R = 1;; R++) {
+    for (int R = R0;; R++) {
         int all = axis(cx, R, d->gx, d->gx == d->nx, &p.lo[0], &p.hi[0]);
         all &= axis(cy, R, d->gy, d->gy == d->ny, &p.lo[1], &p.hi[1]);
         if (all || pool_count(d, &p) > 2)

@@ -14,7 +14,7 @@ void gr_dsmc_free(gr_dsmc *d)
     gr_particles_free(d->view);
     free(d->x), free(d->y), free(d->vx), free(d->vy), free(d->tmp);
     free(d->rank), free(d->cell), free(d->order), free(d->ids), free(d->last), free(d->prev);
-    free(d->start), free(d->hist);
+    free(d->start), free(d->hist), free(d->cv);
     free(d);
 }
 
@@ -33,15 +33,6 @@ static int set_law(gr_dsmc *d, const gr_scene *sc, gr_err *err)
     }
     d->alpha = isnan(m->restitution) ? 1.0 : m->restitution;
     d->alpha_w = isnan(m->wall_restitution) ? d->alpha : m->wall_restitution;
-    /* the Enskog displacement sigma (1 + alpha) / (2 alpha) (dsmc_collide.c) */
-    if (d->par.enskog && d->alpha < 0.2) {
-        char where[1200];
-        gr_scene_where(sc, "dsmc", "enskog", where, sizeof where);
-        return gr_fail(err, GR_EINPUT,
-                       "%s: [dsmc] enskog = yes needs a restitution of at least 0.2 (it is %g): the partners' "
-                       "displacement sigma (1 + alpha) / (2 alpha) grows without bound",
-                       where, d->alpha);
-    }
     d->g = sc->gravity;
     d->W = sc->species[0].weight > 0 ? sc->species[0].weight : 1.0;
     d->Lx = sc->width, d->Ly = sc->height;
@@ -167,9 +158,8 @@ static int homogeneous(const gr_dsmc *d)
 
 /* The cells, then the limits, at the density the grains see: dt <= tau / 2 (tau = 1 / nu,
  * nu = 2 sqrt(pi) n sigma sqrt(T/m)), cell <= lambda (both divided by chi
- * in the Enskog mode; where the scene can hold a gradient), mean particles per cell >= ppc_min, with
- * enskog = yes cells of at least 10 d, and cells of at least pool_side
- * W d. With cell = 0 the cells meet them all where the scene allows. */
+ * in the Enskog mode; where the scene can hold a gradient), mean particles per cell >= ppc_min,
+ * and cells of at least pool_side W d. With cell = 0 the cells meet them all where the scene allows. */
 /* The number density the grains see, sum over bins of N_b (N_b - 1) / A_b
  * over N (times W): the mean density where the gas is homogeneous (for
  * grains placed at random), the bed's where grains fill part of the domain
@@ -198,9 +188,9 @@ static int make_cells(gr_dsmc *d, gr_err *err)
     /* the Enskog rate is chi times faster: mean free time and path / chi */
     double chi = d->par.enskog ? gr_dsmc_chi(fmin(0.9, n * M_PI * d->sigma * d->sigma / 4)) : 1.0;
     double lambda = 1.0 / (2.0 * M_SQRT2 * n * d->sigma * chi);
-    double enskog_min = d->par.enskog ? 10.0 * d->sigma : 0.0, pool_min = pool_side(d, lambda) * d->W * d->sigma;
+    double pool_min = pool_side(d, lambda) * d->W * d->sigma;
     double ppc_side = sqrt(d->par.ppc_min * d->W / n); /* particles per cell where the grains are */
-    double lo = fmax(fmax(enskog_min, pool_min), fmax(ppc_side, d->sigma));
+    double lo = fmax(pool_min, fmax(ppc_side, d->sigma));
     double given = d->par.cell * d->sigma;
     d->nx = cells_along(d->Lx, given, lo, lambda), d->ny = cells_along(d->Ly, given, lo, lambda);
     d->cw = d->Lx / d->nx, d->ch = d->Ly / d->ny;
@@ -216,9 +206,6 @@ static int make_cells(gr_dsmc *d, gr_err *err)
               fmax(d->cw, d->ch), lambda, err) ||
         limit(d, ppc < d->par.ppc_min, GR_DSMC_BAD_PPC, "ppc_min", "the mean of particles per cell", ppc,
               d->par.ppc_min, err) ||
-        /* the displacement thins the pairs of small cells */
-        limit(d, side < enskog_min, GR_DSMC_BAD_ENSKOG_CELL, "cell", "with enskog = yes, the cell side", side,
-              enskog_min, err) ||
         limit(d, side < pool_min, GR_DSMC_BAD_RECOLLIDE, "cell", "the cell side", side, pool_min, err))
         return err->code;
     return GR_OK;

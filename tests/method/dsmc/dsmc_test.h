@@ -69,18 +69,18 @@ static inline double ds_a2(const gr_dsmc *d)
 
 /* `method` on a periodic box of n disks at packing eta, restitution alpha;
  * dsmc's step dtf mean free times (at T = 1), its cells `cell` diameters
- * (0: half the mean free path). */
+ * (0: the default), its enskog `enskog`. */
 #define DS_HCS_GAS                                                                                                     \
     "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = periodic\nright = periodic\n"                 \
     "bottom = periodic\ntop = periodic\n[material]\nrestitution = %g\n[species]\ncount = %d\n"                         \
-    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n[dsmc]\ndt = %.17g\ncell = %g\n[edmd]\ncell = 10\n"
+    "[init]\nkind = random\nvelocity = gaussian\nv0 = 1\n[dsmc]\ndt = %.17g\ncell = %g\nenskog = %s\n[edmd]\ncell = 10\n"
 
 static inline gr_sim *ds_gas(const char *method, int seed, int n, double eta, double alpha, double dtf, double cell,
-                             gr_scene **sc)
+                             const char *enskog, gr_scene **sc)
 {
     char text[1024];
     double L = sqrt(n * M_PI / 4 / eta), nd = n / (L * L);
-    snprintf(text, sizeof text, DS_HCS_GAS, seed, L, L, alpha, n, dtf / (2 * sqrt(M_PI) * nd), cell);
+    snprintf(text, sizeof text, DS_HCS_GAS, seed, L, L, alpha, n, dtf / (2 * sqrt(M_PI) * nd), cell, enskog);
     return ds_make_method(method, text, sc);
 }
 
@@ -99,7 +99,8 @@ static inline void ds_block_stats(const double *x, int k, int b, double *mean, d
     *err = sqrt(fmax(0, s2 / nb - *mean * *mean) / (nb - 1));
 }
 
-/* The scaled HCS in one cell (no space: the Boltzmann HCS): every mean free
+/* The scaled HCS in one cell (no space: the Boltzmann HCS, so the
+ * Boltzmann rate: chi would only change the time scale): every mean free
  * time (of the rescaled gas) the peculiar velocities go back to T = 1 (a2
  * is scale free); a2 sampled then, its error from blocks of 20; the cooling
  * per collision from the temperature each interval ends at and the
@@ -108,7 +109,7 @@ static inline void ds_block_stats(const double *x, int k, int b, double *mean, d
 static inline void ds_scaled_hcs(double alpha, int n, double dtf, int K, double *a2, double *a2e, double *slope)
 {
     gr_scene *sc;
-    gr_sim *s = ds_gas("dsmc", 11, n, 0.3, alpha, dtf, 1e6, &sc);
+    gr_sim *s = ds_gas("dsmc", 11, n, 0.3, alpha, dtf, 1e6, "no", &sc);
     gr_dsmc *d = gr_sim_state(s);
     double nd = n / (d->Lx * d->Ly), tau = 1.0 / (2 * sqrt(M_PI) * nd), lnT = 0, C = 0;
     double *x = malloc(sizeof *x * (size_t)K);

@@ -84,9 +84,9 @@ static void test_dt_converges(void **state)
 
 /* Cells of 8 d with W = 1 (under the limit of 20 W d that alpha = 0.8
  * sets from packing 0.1 up) are flagged, and they do cool too slowly
- * (measured +3.6 % of T/T0, of which the Enskog displacement's thinning
- * of pairs in cells under 10 d is about half; asserted above +1.6 %: the
- * limit is real); the same cells with W = 1/4 (32 particles per cell;
+ * (measured +2.0 % of T/T0, slow +1.1 %, about the Boltzmann rate's
+ * +1.5 %; asserted above +0.8 %, three standard errors of the quick run
+ * below it: the limit is real); the same cells with W = 1/4 (32 particles per cell;
  * the real grains at the same density in a box half as wide) are within
  * the limit and the tolerance of test_dt_converges (measured +0.0 %). */
 static void test_cell_limit(void **state)
@@ -99,7 +99,7 @@ static void test_cell_limit(void **state)
             report("cells", N, 1, 0.02, side[k]);
         }
     assert_true(small.warnings & GR_DSMC_BAD_RECOLLIDE);
-    assert_true(small.mean > 0.254);
+    assert_true(small.mean > 0.252);
     assert_int_equal(many.warnings & GR_DSMC_BAD_RECOLLIDE, 0);
     assert_true(fabs(many.mean - 0.25) < 0.005);
 }

@@ -1,10 +1,11 @@
-/* The Enskog mode (rate times Henderson's chi, partners displaced as in
- * Alexander, Garcia and Alder's consistent Boltzmann algorithm) against the
+/* The Enskog mode (rate times Henderson's chi, partners drawn where they
+ * touch: Montanero and Santos' Enskog simulation Monte Carlo) against the
  * equation of state of hard disks, Henderson's Z = (1 + eta^2/8)/(1 - eta)^2:
  * in a periodic box from the collisional transfer (the virial of the
  * collisions), and in a closed box from the momentum the walls receive,
- * which only the displacement brings to Z (without it the walls see the
- * ideal gas, n T). Tolerances in each test and docs/methods/dsmc.md. */
+ * which only the partners drawn across cell boundaries bring to Z (with
+ * enskog = no the walls see the ideal gas, n T). Tolerances in each test
+ * and docs/methods/dsmc.md. */
 #include "dsmc_test.h"
 
 #define BOX                                                                                                            \
@@ -23,10 +24,9 @@ static gr_sim *box(int n, double eta, const char *side, const char *enskog, gr_s
 }
 
 /* p = n T + W sum(sigma J) / (2 A t) over 40 time units after 10, against
- * Henderson within 2 % (the statistics give 0.3 %). Cells of 10 d: the
- * displacement thins the pairs within a cell (partners jump 2 sigma
- * apart), which lowers Z by 7.6 %, 3 %, 0.7 %, 0.2 % with cells of 3, 5,
- * 10, 20 d (docs/methods/dsmc.md; `scan CELL` prints it). */
+ * Henderson within 2 % (the statistics give 0.3 %). Cells of 10 d; with
+ * 3, 5, 10, 20 d Z is 0.5 %, 0.5 %, 0.2 % low and 0.03 % high
+ * (docs/methods/dsmc.md; `scan CELL` prints it). */
 static void test_eos_virial(void **st)
 {
     (void)st;
@@ -55,7 +55,7 @@ static void test_eos_virial(void **st)
  * centres reach and p the force on a wall over the length L - sigma its
  * contacts cover (wall_pressure L / (L - sigma): the observable divides by
  * the whole side), holds when the collisional transfer reaches the walls,
- * which is what the displacement does: within 2 % (statistics 0.5 % over
+ * across the cells' boundaries: within 2 % (statistics 0.5 % over
  * 300 time units).
  * With the rate alone (enskog = no) the walls must see the ideal gas,
  * p A = N T, within 2 %, however many collisions. No density is

@@ -57,7 +57,7 @@ static void free_a2(const char *method, double alpha, int n, int seeds, double *
     int k = 0;
     for (int r = 0; r < seeds; r++) {
         gr_scene *sc;
-        gr_sim *s = ds_gas(method, 41 + r, n, 0.005, alpha, 0.1, 0, &sc);
+        gr_sim *s = ds_gas(method, 41 + r, n, 0.005, alpha, 0.1, 0, "yes", &sc);
         gr_err e = {0};
         gr_particles *p = gr_particles_create(0, &e);
         for (int c = 1; c <= 30; c++) {
