@@ -116,6 +116,20 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
     return rc;
 }
 
+/* s for a double-quoted string of gnuplot's enhanced text: _ and ^ kept
+ * as themselves, not sub- and superscripts (Z_Luding(eta_bulk)). */
+static const char *enh(const char *s, char *out, size_t n)
+{
+    size_t k = 0;
+    for (; *s && k + 4 < n; s++) {
+        if (*s == '_' || *s == '^')
+            out[k++] = '\\', out[k++] = '\\';
+        out[k++] = *s;
+    }
+    out[k] = 0;
+    return out;
+}
+
 /* Error (x) against wall time (y), log-log, a line per row with the knob
  * value written at each point and the error bar of the error; the
  * reference row, when the case has one, is not drawn (its error is zero by
@@ -125,7 +139,7 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
 static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref,
                      gr_err *err)
 {
-    char png[2048];
+    char png[2048], q[512];
     snprintf(png, sizeof png, "%s/%s.png", dir, c->name);
     FILE *gp = gr_plot_open(png, 900, 620, err);
     if (!gp)
@@ -154,14 +168,19 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
         x0 = fmin(x0, ref->sem / fabs(ref->value)), x1 = fmax(x1, ref->sem / fabs(ref->value));
     gr_plot_log_axis(gp, "x", x0, x1);
     gr_plot_log_axis(gp, "y", y0, y1);
+    /* the legend below the plot, not beside it: it took half the width */
     fprintf(gp, "set title \"%s: %s against %s\"\nset logscale xy\n"
-                "set xlabel \"relative error of %s (below 1e-16 drawn at 1e-16)\"\n"
-                "set ylabel 'wall time per run / s'\nset key outside right\nset grid\n",
-            c->name, c->quantity, rl ? rl : "the analytic value", c->quantity);
+                "set xlabel \"relative error of %s (below 10^{-16} drawn at 10^{-16}); beside each point the "
+                "knob's value\"\n"
+                "set ylabel 'wall time per run / s'\nset key below center horizontal\nset grid\n",
+            c->name, enh(c->quantity, q, sizeof q), rl ? rl : "the analytic value", q);
+    /* errors inside the reference's own error bar cannot be told apart:
+     * that band shaded */
     if (rl && ref->sem > 0)
-        fprintf(gp, "set arrow from %.6g, graph 0 to %.6g, graph 1 nohead dt 2 lc rgb 'gray40'\n"
-                    "set label \"%s's error bar\" at %.6g, graph 0.95 right offset -0.5,0 tc rgb 'gray40'\n",
-                ref->sem / fabs(ref->value), ref->sem / fabs(ref->value), rl, ref->sem / fabs(ref->value));
+        fprintf(gp, "set object 1 rect from graph 0, graph 0 to first %.6g, graph 1 behind fc rgb '#ebebeb' "
+                    "fs solid 1.0 noborder\n"
+                    "set label \"within %s's error bar\" at %.6g, graph 0.04 right offset -0.5,0 tc rgb 'gray30'\n",
+                ref->sem / fabs(ref->value), rl, ref->sem / fabs(ref->value));
     fprintf(gp, "plot ");
     for (int r = 0, first = 1; r < nrow; r++)
         if (has[r]) {
@@ -222,7 +241,7 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
     int ncases = 0;
     while (cs[ncases].name)
         ncases++;
-    fprintf(gp, ") rotate by 30 right\nset xrange [-0.5:%g]\nset grid\nset key top left\n",
+    fprintf(gp, ") rotate by 30 right\nset xrange [-0.5:%g]\nset grid\nset key below center horizontal\n",
             ncases - 0.5);
     for (int panel = 0; panel < 2; panel++) {
         gr_plot_log_axis(gp, "y", lo[panel], hi[panel]);

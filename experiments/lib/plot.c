@@ -162,6 +162,23 @@ int gr_plot_close(FILE *gp, const char *path, gr_err *err)
     return rc;
 }
 
+/* A log axis's tic label as people write it: plain from 0.01 to 9999,
+ * otherwise a power of ten, 10^{-6} or 2×10^{-6} (enhanced text), never
+ * gnuplot's 1x10-6 or 1e-06. */
+static void tic_label(char *out, size_t n, double v)
+{
+    if (v >= 0.01 && v < 1e4) {
+        snprintf(out, n, "%g", v);
+        return;
+    }
+    int e = (int)floor(log10(v) + 1e-9);
+    double m = v / pow(10, e);
+    if (fabs(m - 1) < 1e-9)
+        snprintf(out, n, "10^{%d}", e);
+    else
+        snprintf(out, n, "%g×10^{%d}", m, e);
+}
+
 /* Labelled tics on a log axis over [lo, hi]: the coarsest of three
  * mantissa sets that puts three or more in range. */
 static void log_tics(FILE *gp, const char *axis, double lo, double hi)
@@ -175,13 +192,18 @@ static void log_tics(FILE *gp, const char *axis, double lo, double hi)
             for (int j = 0; j < len[k]; j++)
                 if (sets[k][j] * dec >= lo && sets[k][j] * dec <= hi)
                     v[n++] = sets[k][j] * dec;
-        /* many decades: gnuplot's own tics are better */
-        if (n > 12 && k == 0)
+        /* many decades: gnuplot's own tics at the powers of ten */
+        if (n > 12 && k == 0) {
+            fprintf(gp, "set %stics auto\nset format %s \"10^{%%L}\"\n", axis, axis);
             return;
+        }
         if (n >= 3 || k == 2) {
             fprintf(gp, "set %stics (", axis);
-            for (int j = 0; j < n; j++)
-                fprintf(gp, "%s%g", j ? ", " : "", v[j]);
+            for (int j = 0; j < n; j++) {
+                char lab[48];
+                tic_label(lab, sizeof lab, v[j]);
+                fprintf(gp, "%s\"%s\" %.8g", j ? ", " : "", lab, v[j]);
+            }
             fprintf(gp, ")\n");
             return;
         }
