@@ -9,6 +9,7 @@
 #include "cmp.h"
 #include "table.h"
 #include "cmp_report.h"
+#include "cmp_reach.h"
 #include "h5tab.h"
 #include "plot.h"
 
@@ -262,7 +263,8 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
 /* The case's points (none when it has no runs), its table lines and
  * checks, its tables in the file. */
 static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE *txt, exp_tab_file *h,
-                    cmp_point **pts, size_t *n, cmp_refs *ref, int *bad, gr_err *err)
+                    cmp_point **pts, size_t *n, cmp_refs *ref, cmp_reach_row *rr, size_t *nrr, int *bad,
+                    gr_err *err)
 {
     *pts = malloc((pl->nunits ? pl->nunits : 1) * sizeof **pts);
     if (!*pts)
@@ -273,14 +275,39 @@ static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, F
         return GR_OK;
     text_case(stdout, c, *pts, *n, ref);
     text_case(txt, c, *pts, *n, ref);
+    *nrr = cmp_reach(*pts, *n, rr);
+    cmp_reach_text(stdout, rr, *nrr);
+    cmp_reach_text(txt, rr, *nrr);
     *bad += cmp_check(c, *pts, *n, ref);
-    if (h_case(h, c, *pts, *n, ref, err) || cmp_profiles(pl, parts, c, txt, h, err))
+    if (h_case(h, c, *pts, *n, ref, err) || cmp_reach_h5(h, c->name, rr, *nrr, err) ||
+        cmp_profiles(pl, parts, c, txt, h, err))
         return err->code;
     return GR_OK;
 }
 
 /* compare.txt and compare.h5, written whole before any figure: a study
  * whose figures cannot be drawn still leaves its data. */
+/* DIR/guide.md: the guide as a markdown table, for the docs. */
+static int write_guide(const cmp_plan *pl, const cmp_case *cs, const cmp_reach_row *const *rr, const size_t *nrr,
+                       gr_err *err)
+{
+    char path[2048], part[2100];
+    snprintf(path, sizeof path, "%s/guide.md", pl->out);
+    snprintf(part, sizeof part, "%s.part", path);
+    FILE *f = fopen(part, "w");
+    if (!f)
+        return gr_fail(err, GR_ERUN, "%s: cannot write", part);
+    fprintf(f, "The cheapest method line to reach each relative error, wall seconds per run (grano compare%s; "
+               "per case, the cost along each line's knob: compare.txt)\n\n",
+            pl->quick ? " --quick" : "");
+    cmp_reach_guide(f, 1, cs, rr, nrr);
+    if (fclose(f) || rename(part, path)) {
+        remove(part);
+        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
+    }
+    return GR_OK;
+}
+
 static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, int ncases, cmp_point **all,
                   size_t *nall, cmp_refs *refs, int *bad, gr_err *err)
 {
@@ -295,8 +322,21 @@ static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, in
     snprintf(path, sizeof path, "%s/compare.h5", pl->out);
     exp_tab_file *h = exp_tab_create(path, "grano compare: a table per case", err);
     int rc = h ? exp_tab_attr(h, "/", "mode", pl->quick ? "quick" : "full", err) : err->code;
+    cmp_reach_row(*rr)[CMP_MAXROWS] = calloc((size_t)ncases, sizeof *rr);
+    const cmp_reach_row **rp = calloc((size_t)ncases, sizeof *rp);
+    size_t *nrr = calloc((size_t)ncases, sizeof *nrr);
+    if (!rc && (!rr || !rp || !nrr))
+        rc = gr_fail(err, GR_ERUN, "out of memory");
     for (int k = 0; k < ncases && !rc; k++)
-        rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &refs[k], bad, err);
+        rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &refs[k], rr[k], &nrr[k], bad, err);
+    for (int k = 0; k < ncases && !rc; k++)
+        rp[k] = rr[k];
+    if (!rc) {
+        cmp_reach_guide(stdout, 0, cs, rp, nrr);
+        cmp_reach_guide(txt, 0, cs, rp, nrr);
+        rc = write_guide(pl, cs, rp, nrr, err);
+    }
+    free(rr), free(rp), free(nrr);
     if (h)
         rc = rc ? (exp_tab_free(h), rc) : exp_tab_close(h, err);
     if (rc) {

@@ -29,6 +29,8 @@ done
 rc=$?
 sed 's/^/# /' "$tmp/log"
 check $rc "compare --quick passes its checks"
+grep -q '^| eos | ' "$tmp/q/guide.md" && grep -q '^== guide' "$tmp/q/compare.txt"
+check $? "guide.md and compare.txt's guide: the cheapest method line per case and error"
 for f in compare.h5 compare.txt summary.png summary.gp collision.png collision.gp cooling-dilute.png \
          cooling-dense.png column.png janssen.png eos.png eos.gp vibrated.png silo.png silo.gp silo-widths.png; do
     [ -s "$tmp/q/$f" ]
@@ -92,6 +94,18 @@ dem = e["density_l2"][e["variant"] == "dem"]
 assert len(dem) and (dem < 0.1).all(), ("dem's density profile", dem)
 b = table("profiles/vibrated/bins")
 assert len(b["height"]) == 24 * len(e["variant"]), len(b["height"])
+# the cost to reach 1, 5 and 10 %: three targets per line of every case; a
+# line that reaches 1 % reaches 5 and 10 %, and one that reaches a target
+# with its errors raised by their bars reaches it with them as measured
+for c in cases:
+    r = table("reach/" + c)
+    assert set(np.round(r["target"], 3)) == {0.01, 0.05, 0.1}, (c, "targets", r["target"])
+    for v in set(r["variant"]):
+        x = {round(t, 3): (w, hi) for t, w, hi, var in zip(r["target"], r["wall_s"], r["wall_s_hi"], r["variant"])
+             if var == v}
+        reached = [np.isfinite(x[t][0]) for t in (0.01, 0.05, 0.1)]
+        assert reached == sorted(reached), (c, v, "a tighter error reached, a looser not", reached)
+        assert all(np.isfinite(x[t][0]) or not np.isfinite(x[t][1]) for t in x), (c, v, "hi without value")
 PYEOF
     check $? "compare.h5: a typed table per case read by name, two methods or more each, knob values as written; vibrated profiles; silo-widths: Q(D) grows, lgca settles near linear, dem steeper"
 else
@@ -121,12 +135,13 @@ rc=$?
     grep -q "gnuplot is not on PATH" "$tmp/err"
 check $? "compare without gnuplot: exit 0 (got $rc), compare.h5 and compare.txt written, no figure, says why"
 
-# the same runs one at a time give the same numbers (wall times aside)
+# the same runs one at a time give the same numbers (wall times aside: the
+# 5th column, and the costs to reach an error, indented, and the guide)
 "$GRANO" compare --quick -j 1 --cases collision,column --out "$tmp/j1" --no-progress >/dev/null 2>"$tmp/err"
 check $? "compare --quick -j 1 on two cases"
-grep -v "^#" "$tmp/q/compare.txt" | awk '/^== (collision|column)/{p=1} /^== (cooling|janssen|eos)/{p=0} p' |
-    awk '{$5=""; print}' >"$tmp/a"
-grep -v "^#" "$tmp/j1/compare.txt" | awk '{$5=""; print}' >"$tmp/b"
+grep -v "^#" "$tmp/q/compare.txt" | awk '/^== (collision|column)/{p=1} /^== (cooling|janssen|eos|guide)/{p=0} p' |
+    awk '!/^  /{$5=""; print}' >"$tmp/a"
+grep -v "^#" "$tmp/j1/compare.txt" | awk '/^== guide/{exit} !/^  /{$5=""; print}' >"$tmp/b"
 diff <(grep -v "^ *$" "$tmp/a") <(grep -v "^ *$" "$tmp/b") >"$tmp/err"
 check $? "results independent of -j"
 
