@@ -33,6 +33,8 @@ typedef struct gr_h5md_opts {
                            * whose [run] or [measure] changed); the file keeps its own */
     const gr_obs_def *obs; /* the observables written (NULL-name ended); NULL: the particle set */
     uint64_t obs_skip;     /* bit k: obs[k] is not written (the scene has no such quantity) */
+    const char *derived;   /* parameters/derived: what the method derived from the scene
+                            * (written when not NULL or empty) */
 } gr_h5md_opts;
 
 /* Call first thing in main: the HDF5 library then runs no exit handler.

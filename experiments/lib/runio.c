@@ -516,7 +516,10 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if (o->ckpt && (rc = gr_run_save(o->ckpt, st, k, err)))
         goto done;
     gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION,
-                       .obs = gr_method_observables(m), .obs_skip = gr_sim_obs_skip(st)};
+                       .obs = gr_method_observables(m), .obs_skip = gr_sim_obs_skip(st),
+                       .derived = gr_sim_notes(st)};
+    if (o->note && gr_sim_notes(st)[0])
+        o->note(o->warn_ctx, gr_sim_notes(st));
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
     struct stat ost;

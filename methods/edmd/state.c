@@ -7,6 +7,7 @@
 
 #include "edmd_int.h"
 #include "observe.h"
+#include "restitution.h"
 
 void gr_edmd_free(gr_edmd *s)
 {
@@ -45,9 +46,12 @@ void gr_edmd_free(gr_edmd *s)
     free(s);
 }
 
-static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
+static int setup_scene(gr_edmd *s, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     const gr_material *mt = &sc->mat;
+    gr_restitution rs;
+    if (gr_scene_restitution(sc, init, &rs, err))
+        return err->code;
     if (mt->tangential != GR_TANG_NONE && mt->tangential != GR_TANG_COULOMB) {
         char where[1200];
         gr_scene_where(sc, "material", "tangential", where, sizeof where);
@@ -63,8 +67,8 @@ static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
         s->hard[k] = sc->side[k] == GR_BC_WALL;
     s->periodic_x = sc->side[GR_LEFT] == GR_BC_PERIODIC;
     s->periodic_y = sc->side[GR_BOTTOM] == GR_BC_PERIODIC;
-    s->alpha = isnan(mt->restitution) ? 1.0 : mt->restitution;
-    s->alpha_w = isnan(mt->wall_restitution) ? s->alpha : mt->wall_restitution;
+    s->alpha = isnan(rs.e) ? 1.0 : rs.e;
+    s->alpha_w = isnan(rs.e_wall) ? s->alpha : rs.e_wall;
     s->beta = !isnan(mt->tangential_restitution) ? mt->tangential_restitution
               : mt->tangential == GR_TANG_COULOMB ? 1.0 : -1.0;
     s->mu = mt->tangential == GR_TANG_NONE && isnan(mt->tangential_restitution) ? 0.0 : mt->mu;
@@ -332,7 +336,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     s->prm = *prm;
     s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
     s->collapse_asked = prm->collapse;
-    int rc = setup_scene(s, sc, err);
+    int rc = setup_scene(s, sc, init, err);
     set_guard(s);
     if (!rc)
         rc = setup_particles(s, sc, init, err);
