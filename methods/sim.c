@@ -77,16 +77,9 @@ int gr_method_require_features(const gr_method_type *m, unsigned features, const
 
 static int refuse_features(const gr_method_type *m, const gr_scene *sc, gr_err *err)
 {
-    unsigned missing = gr_scene_features(sc) & ~m->features;
-    for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
-        if (missing & (1u << b)) {
-            char where[1200];
-            gr_scene_feature_where(sc, 1u << b, where, sizeof where);
-            return gr_fail(err, GR_EINPUT, "%s: method '%s' does not support %s", where, m->name,
-                           gr_feature_name(1u << b));
-        }
-    }
-    return GR_OK;
+    char who[64];
+    snprintf(who, sizeof who, "method '%s'", m->name);
+    return gr_scene_refuse_features(sc, gr_scene_features(sc) & ~m->features, who, err);
 }
 
 /* A table the defaults cannot complete is the backend's bug, not the user's. */

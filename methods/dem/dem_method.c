@@ -89,7 +89,7 @@ const gr_method_type gr_dem_method = {
     .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_CONTACT_HISTORY | GR_FEAT_PERIODIC |
                 GR_FEAT_OPEN_SIDE | GR_FEAT_SEGMENTS | GR_FEAT_WALL_GRAINS | GR_FEAT_ORIFICE |
                 GR_FEAT_VIBRATING_FLOOR | GR_FEAT_REINSERT | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE |
-                GR_FEAT_HERTZ | GR_FEAT_RESTITUTION,
+                GR_FEAT_HERTZ | GR_FEAT_RESTITUTION | GR_FEAT_SOFT_TANGENTIAL,
     .params = gr_dem_param_table,
     .observables = observables,
     .create = m_create,
