@@ -479,8 +479,11 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = GR_ERUN;
         goto done;
     }
-    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
+    char pushed[512];
+    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles_noted(sc, init, pushed, sizeof pushed, err)) ||
+        (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
+    gr_sim_note(st, pushed);
     if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
