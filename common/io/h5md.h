@@ -137,6 +137,7 @@ typedef struct {
     int h5md_version[2];
     char *scene_text, *scene_name, *scene_path;  /* parameters/ */
     char *method, *grano_version;
+    char *derived;        /* parameters/derived, "" when absent */
     uint64_t seed;
     size_t nparticles;    /* grains per frame (0 without frames) */
     size_t nframes;       /* complete frames */

@@ -261,13 +261,14 @@ static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
 
 int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
 {
-    char note[8];
-    return gr_init_particles_noted(sc, out, note, sizeof note, err);
+    return gr_init_particles_noted(sc, out, NULL, 0, err);
 }
 
 /* What overlap = push did, for the run's log. */
 static void say_pushed(const gr_init_relax_report *r, char *note, size_t n)
 {
+    if (!note)
+        return;
     if (r->overlap > 0)
         snprintf(note, n, "[init] overlap = push: largest overlap %.4g (%s) pushed apart in %d sweeps, "
                  "largest displacement %.4g", r->overlap, r->where, r->sweeps, r->max_displacement);
@@ -277,7 +278,8 @@ static void say_pushed(const gr_init_relax_report *r, char *note, size_t n)
 
 int gr_init_particles_noted(const gr_scene *sc, gr_particles *out, char *note, size_t n, gr_err *err)
 {
-    note[0] = 0;
+    if (note)
+        note[0] = 0;
     gr_rng *rng = gr_rng_create(sc->seed, GR_STREAM_INIT, err);
     if (!rng)
         return err->code;

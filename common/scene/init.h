@@ -29,8 +29,8 @@ typedef struct {
     int sweeps;              /* sweeps that moved grains */
 } gr_init_relax_report;
 int gr_init_push_apart(const gr_scene *sc, gr_particles *p, gr_init_relax_report *rep, gr_err *err);
-/* gr_init_particles, saying in note (n bytes, "" when nothing was done)
- * what overlap = push did. */
+/* gr_init_particles, saying in note (n bytes, "" when nothing was done;
+ * NULL: not said) what overlap = push did. */
 int gr_init_particles_noted(const gr_scene *sc, gr_particles *out, char *note, size_t n, gr_err *err);
 
 /* Place grain radius r at the reinsertion band of the silo without overlap

@@ -62,8 +62,9 @@ int gr_scene_restitution(const gr_scene *sc, const gr_particles *init, gr_restit
         return gr_fail(err, GR_EINPUT,
                        "%s: with normal = hertz, gamma_n gives a restitution that depends on the impact "
                        "speed (Schwager and Poeschel 2008), which a hard method cannot honour; add "
-                       "[material] restitution%s",
-                       where, isnan(r->e) ? "" : " and wall_restitution");
+                       "[material] %s",
+                       where, !isnan(r->e) ? "wall_restitution" : !isnan(r->e_wall) ? "restitution"
+                                                                                : "restitution and wall_restitution");
     }
     double mm = gr_mean_mobile_mass(init);
     if (isnan(r->e)) {

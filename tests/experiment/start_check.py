@@ -140,6 +140,9 @@ def main():
           "the run says the file's largest overlap and the largest displacement", note)
     # The rigid bed grows by its elastic compression: a grain moves at most
     # the overlaps of the contacts below it, one per row of the bed.
+    r = run("info", out)
+    check("derived      [init] overlap = push: largest overlap" in r.stdout, "grano info shows what the push did",
+          r.stdout)
     check(0 < disp <= 2 * height * ov0, "the largest displacement is within the bed's compression "
           "(2 x height x largest overlap)", "%g" % disp)
     check(np.all(np.diff(e) <= 1e-9 * e[0]) and e[-1] < e[0] and np.max(np.abs(xyn - xy1)) < 0.05,
