@@ -147,8 +147,9 @@ static int refuse(const gr_scene *sc, gr_err *err, const char *why, const sweep 
     char where[1200], who[200];
     gr_scene_where(sc, "init", "overlap", where, sizeof where);
     name_worst(s, who, sizeof who);
-    return gr_fail(err, GR_EINPUT, "%s: '%s': %s of the file overlap by %.4g (%.3g of their contact distance): %s",
-                   where, sc->init.file, who, s->worst_abs, s->worst, why);
+    return gr_fail(err, GR_EINPUT, "%s: %s%s%s: %s overlap by %.4g (%.3g of their contact distance): %s", where,
+                   sc->init.kind == GR_INIT_FILE ? "'" : "", sc->init.kind == GR_INIT_FILE ? sc->init.file : "the initial grains",
+                   sc->init.kind == GR_INIT_FILE ? "'" : "", who, s->worst_abs, s->worst, why);
 }
 
 static int relax(sweep *s, gr_grid *g, double rmax, gr_init_relax_report *rep, gr_err *err)
