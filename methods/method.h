@@ -153,6 +153,14 @@ void gr_sim_free(gr_sim *s);
 
 const gr_method_type *gr_sim_type(const gr_sim *s);
 const gr_scene *gr_sim_scene(const gr_sim *s);
+/* What create derived from the scene for the user to see (a hard method's
+ * restitution from gamma_n, the soft DEM's gamma_n from a restitution):
+ * create adds one phrase per derivation; the run prints them and keeps
+ * them in the result's parameters/derived. "" when nothing was derived. */
+void gr_sim_note(gr_sim *s, const char *phrase);
+const char *gr_sim_notes(const gr_sim *s);
+/* The note of a hard method's restitution (gr_scene_restitution), if any. */
+void gr_sim_note_restitution(gr_sim *s, const gr_particles *init);
 /* The backend's state: for its own per-method bench and tests only. */
 void *gr_sim_state(gr_sim *s);
 

@@ -1,6 +1,7 @@
 /* The instance: a backend's table, its state and the scene it came from,
  * with the defaults of the optional operations (methods/method.h). */
 #include "method.h"
+#include "restitution.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -18,6 +19,7 @@ struct gr_sim {
     uint64_t rng_id[MAX_STREAMS];
     gr_rng *rng[MAX_STREAMS];
     gr_particles *scratch; /* snapshots for the default fields */
+    char notes[1024];
 };
 
 static const char *const op_names[GR_OP_COUNT] = {"snapshots", "fields", "counters",
@@ -75,16 +77,9 @@ int gr_method_require_features(const gr_method_type *m, unsigned features, const
 
 static int refuse_features(const gr_method_type *m, const gr_scene *sc, gr_err *err)
 {
-    unsigned missing = gr_scene_features(sc) & ~m->features;
-    for (unsigned b = 0; b < GR_FEAT_COUNT; b++) {
-        if (missing & (1u << b)) {
-            char where[1200];
-            gr_scene_feature_where(sc, 1u << b, where, sizeof where);
-            return gr_fail(err, GR_EINPUT, "%s: method '%s' does not support %s", where, m->name,
-                           gr_feature_name(1u << b));
-        }
-    }
-    return GR_OK;
+    char who[64];
+    snprintf(who, sizeof who, "method '%s'", m->name);
+    return gr_scene_refuse_features(sc, gr_scene_features(sc) & ~m->features, who, err);
 }
 
 /* A table the defaults cannot complete is the backend's bug, not the user's. */
@@ -135,6 +130,22 @@ void gr_sim_free(gr_sim *s)
     free(s);
 }
 
+void gr_sim_note(gr_sim *s, const char *phrase)
+{
+    size_t n = strlen(s->notes);
+    if (phrase[0])
+        snprintf(s->notes + n, sizeof s->notes - n, "%s%s", n ? "; " : "", phrase);
+}
+
+const char *gr_sim_notes(const gr_sim *s) { return s->notes; }
+
+void gr_sim_note_restitution(gr_sim *s, const gr_particles *init)
+{
+    gr_restitution r;
+    gr_err ignore = {0}; /* create refused such a scene already */
+    if (!gr_scene_restitution(s->scene, init, &r, &ignore))
+        gr_sim_note(s, r.note);
+}
 const gr_method_type *gr_sim_type(const gr_sim *s) { return s->type; }
 const gr_scene *gr_sim_scene(const gr_sim *s) { return s->scene; }
 void *gr_sim_state(gr_sim *s) { return s->state; }

@@ -86,6 +86,10 @@ typedef struct {
 /* GR_INIT_OCCUPATION: no grains; a lattice backend fills its channels at
  * random with the mean occupations below (docs/scene-format.md). */
 typedef enum { GR_INIT_LATTICE = 0, GR_INIT_RANDOM, GR_INIT_FILE, GR_INIT_OCCUPATION } gr_init_kind;
+/* Overlapping grains at the start (a soft packing read from a file): left
+ * as they are (a hard method refuses them, naming the key), or pushed
+ * apart (common/scene/init_overlap.c). */
+typedef enum { GR_OVERLAP_REFUSE = 0, GR_OVERLAP_PUSH } gr_overlap_policy;
 typedef enum { GR_VEL_ZERO = 0, GR_VEL_GAUSSIAN, GR_VEL_SPEED } gr_vel_kind;
 
 typedef struct {
@@ -95,6 +99,7 @@ typedef struct {
     gr_vel_kind velocity;
     double v0;              /* gaussian: std per component; speed: modulus */
     char file[1024];        /* columns: x y [vx vy [diameter]] */
+    gr_overlap_policy overlap;
     double occupation;      /* occupation: mean occupation of each moving channel */
     double rest_occupation; /* and of the rest channel */
 } gr_init;

@@ -63,7 +63,8 @@ static int build_layout(gr_h5md *h, const gr_scene *sc, const gr_h5md_opts *o, g
           gr_h5_dset_str(g, "scene_name", sc->name) || gr_h5_dset_str(g, "scene_path", sc->path) ||
           gr_h5_dset_str(g, "method", o->method ? o->method : "") ||
           gr_h5_dset_u64(g, "seed", o->seed) ||
-          gr_h5_dset_str(g, "grano_version", o->version ? o->version : GRANO_VERSION);
+          gr_h5_dset_str(g, "grano_version", o->version ? o->version : GRANO_VERSION) ||
+          (o->derived && o->derived[0] && gr_h5_dset_str(g, "derived", o->derived));
     gr_h5_close(g);
     if (bad)
         return gr_h5_fail(err, GR_ERUN, "cannot write the parameters group");

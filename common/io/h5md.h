@@ -33,6 +33,8 @@ typedef struct gr_h5md_opts {
                            * whose [run] or [measure] changed); the file keeps its own */
     const gr_obs_def *obs; /* the observables written (NULL-name ended); NULL: the particle set */
     uint64_t obs_skip;     /* bit k: obs[k] is not written (the scene has no such quantity) */
+    const char *derived;   /* parameters/derived: what the method derived from the scene
+                            * (written when not NULL or empty) */
 } gr_h5md_opts;
 
 /* Call first thing in main: the HDF5 library then runs no exit handler.
@@ -135,6 +137,7 @@ typedef struct {
     int h5md_version[2];
     char *scene_text, *scene_name, *scene_path;  /* parameters/ */
     char *method, *grano_version;
+    char *derived;        /* parameters/derived, "" when absent */
     uint64_t seed;
     size_t nparticles;    /* grains per frame (0 without frames) */
     size_t nframes;       /* complete frames */

@@ -31,6 +31,7 @@ static void free_info(gr_h5md_info *in)
     free(in->scene_path);
     free(in->method);
     free(in->grano_version);
+    free(in->derived);
 }
 
 static char *dup_or_empty(char *s)
@@ -219,6 +220,7 @@ static void read_parameters(hid_t file, gr_h5md_info *in)
     in->scene_path = dup_or_empty(gr_h5_read_dset_str(file, "parameters/scene_path"));
     in->method = dup_or_empty(gr_h5_read_dset_str(file, "parameters/method"));
     in->grano_version = dup_or_empty(gr_h5_read_dset_str(file, "parameters/grano_version"));
+    in->derived = dup_or_empty(gr_h5_read_dset_str(file, "parameters/derived"));
     gr_h5_read_dset_u64(file, "parameters/seed", &in->seed);
     in->has_checkpoint = gr_h5_is_group(file, "checkpoint");
     unsigned intent = 0;

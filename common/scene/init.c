@@ -261,6 +261,25 @@ static int silo_grains(const gr_scene *sc, gr_particles *p, gr_err *err)
 
 int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
 {
+    return gr_init_particles_noted(sc, out, NULL, 0, err);
+}
+
+/* What overlap = push did, for the run's log. */
+static void say_pushed(const gr_init_relax_report *r, char *note, size_t n)
+{
+    if (!note)
+        return;
+    if (r->overlap > 0)
+        snprintf(note, n, "[init] overlap = push: largest overlap %.4g (%s) pushed apart in %d sweeps, "
+                 "largest displacement %.4g", r->overlap, r->where, r->sweeps, r->max_displacement);
+    else
+        snprintf(note, n, "[init] overlap = push: no grains overlapped");
+}
+
+int gr_init_particles_noted(const gr_scene *sc, gr_particles *out, char *note, size_t n, gr_err *err)
+{
+    if (note)
+        note[0] = 0;
     gr_rng *rng = gr_rng_create(sc->seed, GR_STREAM_INIT, err);
     if (!rng)
         return err->code;
@@ -279,5 +298,8 @@ int gr_init_particles(const gr_scene *sc, gr_particles *out, gr_err *err)
     for (size_t i = 0; i < out->n; i++)
         out->id[i] = (int64_t)i;
     gr_rng_free(rng);
+    gr_init_relax_report rep;
+    if (!rc && sc->init.overlap == GR_OVERLAP_PUSH && !(rc = gr_init_push_apart(sc, out, &rep, err)))
+        say_pushed(&rep, note, n);
     return rc;
 }

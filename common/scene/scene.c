@@ -26,7 +26,7 @@ static const char *const keys_silo[] = {
     "reinsert_top", "exit_below", NULL};
 static const char *const keys_wall[] = {"from", "to", "open_time", "vibrating", NULL};
 static const char *const keys_init[] = {"kind", "region", "spacing", "velocity", "v0", "file",
-                                        "occupation", "rest_occupation", NULL};
+                                        "occupation", "rest_occupation", "overlap", NULL};
 static const char *const keys_measure[] = {"window", "field_cells", NULL};
 static const char *const keys_run[] = {"until", "output_every", "observe_every", "checkpoint_every", "contacts",
                                        "thermo_every", "stress", "strict", "stall_steps", "stall_seconds",
@@ -37,6 +37,7 @@ static const char *const normal_names[] = {"linear", "hertz", NULL};
 static const char *const tang_names[] = {"none", "coulomb", "viscous", "regularised", "spring", NULL};
 static const char *const init_names[] = {"lattice", "random", "file", "occupation", NULL};
 static const char *const vel_names[] = {"zero", "gaussian", "speed", NULL};
+static const char *const overlap_names[] = {"refuse", "push", NULL};
 
 /* Densest packing of equal disks: no scene may ask for more. */
 #define GR_HEX_PACKING 0.9068996821171089
@@ -342,6 +343,9 @@ static int read_init(gr_scene *sc, gr_err *err)
     in->velocity = (gr_vel_kind)v;
     if (NONNEG("init", "v0", 1.0, &in->v0))
         return err->code;
+    if (gr_scene_get_choice(sc, "init", "overlap", overlap_names, GR_OVERLAP_REFUSE, &v, err))
+        return err->code;
+    in->overlap = (gr_overlap_policy)v;
     const gr_scene_entry *fe = gr_scene_find(sc, "init", "file");
     if (in->kind == GR_INIT_FILE)
         return read_init_file(sc, fe, err);

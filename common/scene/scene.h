@@ -28,9 +28,10 @@ enum {
     GR_FEAT_HF_FLOOR = 1u << 13,      /* high-frequency floor limits */
     GR_FEAT_WEIGHTS = 1u << 14,       /* a particle stands for several grains */
     GR_FEAT_RESTITUTION = 1u << 15,   /* a prescribed normal restitution */
-    GR_FEAT_LATTICE = 1u << 16        /* an initial state given as lattice occupations */
+    GR_FEAT_LATTICE = 1u << 16,       /* an initial state given as lattice occupations */
+    GR_FEAT_SOFT_TANGENTIAL = 1u << 17 /* a viscous or regularised tangential force */
 };
-#define GR_FEAT_COUNT 17
+#define GR_FEAT_COUNT 18
 
 /* Load and check a scene file. extra_sections lists the section names the
  * caller accepts besides the common ones (the backend names), NULL ended;
@@ -65,6 +66,9 @@ int gr_feature_known(unsigned feature_bit);
 /* The file line and key that brought in a feature, for messages:
  * writes "file:line: key 'k'" (or the file alone) into buf. */
 void gr_scene_feature_where(const gr_scene *sc, unsigned feature_bit, char *buf, size_t n);
+/* GR_EINPUT naming every feature of missing (the scene's features that
+ * `who` lacks), each with its file, line and key, in one message. */
+int gr_scene_refuse_features(const gr_scene *sc, unsigned missing, const char *who, gr_err *err);
 
 /* Entry of the file, or NULL. */
 const gr_scene_entry *gr_scene_find(const gr_scene *sc, const char *section, const char *key);

@@ -29,6 +29,8 @@ static const feature_info features[GR_FEAT_COUNT] = {
     {GR_FEAT_WEIGHTS, "particle weights (a simulated particle standing for several grains)", "species", "weight"},
     {GR_FEAT_RESTITUTION, "a normal restitution coefficient", "material", "restitution"},
     {GR_FEAT_LATTICE, "a lattice state (initial condition given as channel occupations)", "init", "kind"},
+    {GR_FEAT_SOFT_TANGENTIAL, "a viscous or regularised tangential force (a soft-contact law)", "material",
+     "tangential"},
 };
 
 unsigned gr_scene_features(const gr_scene *sc)
@@ -41,6 +43,8 @@ unsigned gr_scene_features(const gr_scene *sc)
         f |= GR_FEAT_FRICTION;
     if (m->tangential == GR_TANG_SPRING)
         f |= GR_FEAT_CONTACT_HISTORY;
+    if (m->tangential == GR_TANG_VISCOUS || m->tangential == GR_TANG_REGULARISED)
+        f |= GR_FEAT_SOFT_TANGENTIAL;
     for (int s = 0; s < 4; s++) {
         if (sc->side[s] == GR_BC_PERIODIC)
             f |= GR_FEAT_PERIODIC;
@@ -156,4 +160,34 @@ void gr_scene_feature_where(const gr_scene *sc, unsigned bit, char *buf, size_t 
         snprintf(buf, n, "%s:%d: [%s] key '%s'", sc->path, e->line, e->section, e->key);
     else
         snprintf(buf, n, "%s", sc->path);
+}
+
+/* All of them at once: a user learns in one attempt everything a method
+ * lacks for this scene. */
+int gr_scene_refuse_features(const gr_scene *sc, unsigned missing, const char *who, gr_err *err)
+{
+    int n = 0;
+    for (unsigned b = 0; b < GR_FEAT_COUNT; b++)
+        n += (missing >> b) & 1u;
+    if (!n)
+        return GR_OK;
+    if (n == 1) {
+        unsigned b = 0;
+        while (!(missing & (1u << b)))
+            b++;
+        char where[900];
+        gr_scene_feature_where(sc, 1u << b, where, sizeof where);
+        return gr_fail(err, GR_EINPUT, "%s: %s does not support %s", where, who, gr_feature_name(1u << b));
+    }
+    char list[900] = "";
+    size_t len = 0;
+    for (unsigned b = 0; b < GR_FEAT_COUNT && len < sizeof list; b++) {
+        if (!(missing & (1u << b)))
+            continue;
+        char where[600];
+        gr_scene_feature_where(sc, 1u << b, where, sizeof where);
+        len += (size_t)snprintf(list + len, sizeof list - len, "\n  %s: %s", where, gr_feature_name(1u << b));
+    }
+    return gr_fail(err, GR_EINPUT, "%s: %s does not support %d feature%s of this scene:%s", sc->path, who, n,
+                   n > 1 ? "s" : "", list);
 }

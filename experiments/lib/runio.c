@@ -479,8 +479,11 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
         rc = GR_ERUN;
         goto done;
     }
-    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles(sc, init, err)) || (rc = gr_sim_create(m, sc, init, &st, err)))
+    char pushed[512];
+    if ((rc = gr_run_check(sc, err)) || (rc = gr_init_particles_noted(sc, init, pushed, sizeof pushed, err)) ||
+        (rc = gr_sim_create(m, sc, init, &st, err)))
         goto done;
+    gr_sim_note(st, pushed);
     if ((sc->run.contacts || sc->run.stress) && (rc = want_contacts(sc, m, &io, err)))
         goto done;
     uint64_t k[3] = {0, 0, 1};
@@ -516,7 +519,10 @@ int gr_run_scene(gr_scene *sc, const gr_method_type *m, const gr_run_opts *o, gr
     if (o->ckpt && (rc = gr_run_save(o->ckpt, st, k, err)))
         goto done;
     gr_h5md_opts ho = {.method = m->name, .seed = sc->seed, .force = o->force, .version = GRANO_VERSION,
-                       .obs = gr_method_observables(m), .obs_skip = gr_sim_obs_skip(st)};
+                       .obs = gr_method_observables(m), .obs_skip = gr_sim_obs_skip(st),
+                       .derived = gr_sim_notes(st)};
+    if (o->note && gr_sim_notes(st)[0])
+        o->note(o->warn_ctx, gr_sim_notes(st));
     /* A restart continues its result file: the frames before the
      * checkpoint stay, those after it are written again. */
     struct stat ost;

@@ -23,6 +23,9 @@ typedef struct {
      * and again in the summary at the end (NULL: not told). */
     void (*warn)(void *ctx, const char *msg);
     void *warn_ctx;
+    /* Told once what the method derived from the scene (gr_sim_notes), when
+     * it derived anything (NULL: not told; the result keeps it anyway). */
+    void (*note)(void *ctx, const char *msg);
 } gr_run_opts;
 
 /* "<out minus .h5>.ckpt" */

@@ -290,6 +290,8 @@ int cmd_info(int argc, char **argv)
            in->scene_path[0] ? in->scene_path : "?", count_lines(in->scene_text));
     printf("method       %s, seed %llu\n", in->method[0] ? in->method : "?",
            (unsigned long long)in->seed);
+    if (in->derived[0])
+        printf("derived      %s\n", in->derived);
     int rc = print_frames(r, in, &err);
     /* a table file (no trajectory, no series) has no observables or fields to list */
     int series = in->nframes || in->nobs;

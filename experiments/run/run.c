@@ -169,6 +169,12 @@ static void warn_line(void *ctx, const char *msg)
     fprintf(stderr, "grano run: warning: %s\n", msg);
 }
 
+static void note_line(void *ctx, const char *msg)
+{
+    (void)ctx;
+    fprintf(stderr, "grano run: derived: %s\n", msg);
+}
+
 static int fail_msg(const gr_err *e)
 {
     fprintf(stderr, "grano run: %s\n", e->msg);
@@ -220,7 +226,8 @@ int cmd_run(int argc, char **argv)
     char notes[2048] = "";
     gr_run_opts ro = {.out = out, .ckpt = ckpt, .restart = a.restart, .force = a.force,
                       .progress = !a.quiet, .snapshot = a.snapshot, .branch = a.branch,
-                      .notes = notes, .notes_cap = sizeof notes, .warn = warn_line};
+                      .notes = notes, .notes_cap = sizeof notes, .warn = warn_line,
+                      .note = a.quiet ? NULL : note_line};
     rc = gr_run_scene(sc, m, &ro, &e);
     gr_scene_name_sets(sc, a.sets, a.nsets, &e);
     if (notes[0] && !a.quiet)

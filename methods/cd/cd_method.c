@@ -16,6 +16,7 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_cd *d;
     if (gr_cd_create(ctx->scene, init, &par, order, reins, &d, err))
         return err->code;
+    gr_sim_note_restitution(ctx->sim, init);
     *state = d;
     return GR_OK;
 }

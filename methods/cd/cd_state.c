@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cd_int.h"
+#include "restitution.h"
 #include "geom.h"
 
 void gr_cd_free(gr_cd *d)
@@ -23,9 +24,12 @@ void gr_cd_free(gr_cd *d)
 /* Coulomb friction only: the soft tangential laws have no meaning between
  * rigid bodies. A tangential restitution (rough collisions) is the formal
  * tangential velocity's coefficient, with Coulomb's bound. */
-static int set_law(gr_cd *d, const gr_scene *sc, gr_err *err)
+static int set_law(gr_cd *d, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     const gr_material *m = &sc->mat;
+    gr_restitution rs;
+    if (gr_scene_restitution(sc, init, &rs, err))
+        return err->code;
     if (m->tangential != GR_TANG_NONE && m->tangential != GR_TANG_COULOMB) {
         char where[1200];
         gr_scene_where(sc, "material", "tangential", where, sizeof where);
@@ -36,8 +40,8 @@ static int set_law(gr_cd *d, const gr_scene *sc, gr_err *err)
     double tr = m->tangential_restitution;
     int rough = !isnan(tr) && tr != -1.0;
     d->mu = m->tangential == GR_TANG_COULOMB || rough ? m->mu : 0.0;
-    d->en = isnan(m->restitution) ? 0.0 : m->restitution;
-    d->enw = isnan(m->wall_restitution) ? d->en : m->wall_restitution;
+    d->en = isnan(rs.e) ? 0.0 : rs.e;
+    d->enw = isnan(rs.e_wall) ? d->en : rs.e_wall;
     d->et = d->etw = rough ? tr : 0.0;
     d->g = sc->gravity;
     d->Lx = sc->side[GR_LEFT] == GR_BC_PERIODIC ? sc->width : 0.0;
@@ -147,7 +151,7 @@ int gr_cd_create(const gr_scene *sc, const gr_particles *init, const gr_cd_param
     d->par = *par;
     d->order_rng = order_rng, d->reinsert_rng = reinsert_rng;
     d->gates_open = !(sc->silo.present && isfinite(sc->silo.open_time));
-    if (set_law(d, sc, err) || alloc_arrays(d, init->n, err) || load_grains(d, init, err) ||
+    if (set_law(d, sc, init, err) || alloc_arrays(d, init->n, err) || load_grains(d, init, err) ||
         make_walls(d, err)) {
         int rc = err->code;
         gr_cd_free(d);

@@ -227,10 +227,8 @@ int gr_dem_params_read(const gr_scene *sc, gr_dem_params *p, gr_err *err);
 /* Contact time of the stiffest pair (eq. 2.2 or 2.5) and the speed used. */
 double gr_dem_contact_time(const gr_scene *sc, const gr_particles *init, double v_impact);
 double gr_dem_default_v_impact(const gr_scene *sc, const gr_particles *init);
-/* dem_damping.c: restitution of the linear law for one contact (clip: no
- * attraction), and the pair and wall damping a scene asks for (gamma_n, or
+/* dem_damping.c: the pair and wall damping a scene asks for (gamma_n, or
  * derived from [material] restitution and wall_restitution). */
-double gr_dem_restitution(double kn, double gamma, double meff, int clip);
 int gr_dem_damping(const gr_scene *sc, const gr_particles *init, double *gn, double *gw, gr_err *err);
 /* Velocity Verlet's stability bound in a dense (triangular) packing of the
  * scene's contacts; gr_dem_check_dt refuses a Verlet dt above it. */

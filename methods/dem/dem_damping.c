@@ -4,41 +4,15 @@
  * or the restitution e (what the hard methods take); the soft DEM honours e
  * by choosing gamma_n so that an isolated binary collision rebounds with
  * exactly e. For the linear spring-dashpot the restitution does not depend
- * on the impact speed (Hertz with this dashpot does, so it is refused).
- * Without clipping it is the damped oscillator's e = exp(-pi b / w); with
- * clipping (no attraction) the contact ends where the force vanishes, before
- * the overlap does, and e follows Schwager and Poeschel, Granular Matter 9,
- * 465 (2007), eqs. 19-21. */
+ * on the impact speed (Hertz with this dashpot does, so it is refused). The
+ * formula e(gamma_n) is common/scene/restitution.c: inverted here, used as
+ * it is by the hard methods, so both directions are one law. */
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 
 #include "dem.h"
-
-double gr_dem_restitution(double kn, double gamma, double meff, int clip)
-{
-    double w0 = sqrt(kn / meff), b = gamma / (2.0 * meff);
-    if (!clip) {
-        if (b >= w0)
-            return 0.0; /* critical or overdamped: the overlap never returns to zero */
-        double w = sqrt(w0 * w0 - b * b);
-        return exp(-M_PI * b / w);
-    }
-    if (b == 0.0)
-        return 1.0;
-    if (b < w0 * M_SQRT1_2) {
-        double w = sqrt(w0 * w0 - b * b);
-        return exp(-b / w * (M_PI - atan(2.0 * b * w / (w * w - b * b))));
-    }
-    if (b < w0) {
-        double w = sqrt(w0 * w0 - b * b);
-        return exp(-b / w * atan(2.0 * b * w / (b * b - w * w)));
-    }
-    if (b == w0)
-        return exp(-2.0); /* the limit of both neighbouring branches */
-    double W = sqrt(b * b - w0 * w0);
-    return exp(-b / W * log((b + W) / (b - W)));
-}
+#include "restitution.h"
 
 /* gamma giving restitution e: e falls monotonically with gamma, so bisect
  * on the damping ratio b / w0 (to machine precision: 200 halvings). */
@@ -47,31 +21,16 @@ static double gamma_for(double kn, double meff, int clip, double e)
     if (e >= 1.0)
         return 0.0;
     double z_lo = 0.0, z_hi = 1.0;
-    while (gr_dem_restitution(kn, 2.0 * meff * z_hi * sqrt(kn / meff), meff, clip) > e && z_hi < 1e12)
+    while (gr_linear_restitution(kn, 2.0 * meff * z_hi * sqrt(kn / meff), meff, clip) > e && z_hi < 1e12)
         z_hi *= 2.0;
     for (int k = 0; k < 200 && z_hi - z_lo > 1e-15 * z_hi; k++) {
         double z = 0.5 * (z_lo + z_hi);
-        if (gr_dem_restitution(kn, 2.0 * meff * z * sqrt(kn / meff), meff, clip) > e)
+        if (gr_linear_restitution(kn, 2.0 * meff * z * sqrt(kn / meff), meff, clip) > e)
             z_lo = z;
         else
             z_hi = z;
     }
     return 2.0 * meff * 0.5 * (z_lo + z_hi) * sqrt(kn / meff);
-}
-
-/* Mean mass of the mobile grains: the reference pair is two such grains
- * (m_eff = m / 2), the reference wall contact one (m_eff = m). */
-static double mean_mass(const gr_particles *init)
-{
-    double s = 0.0;
-    size_t n = 0;
-    for (size_t i = 0; i < init->n; i++) {
-        if (init->flags[i] & (GR_PF_FIXED | GR_PF_GONE))
-            continue;
-        s += init->mass[i];
-        n++;
-    }
-    return n ? s / (double)n : 1.0;
 }
 
 __attribute__((format(printf, 4, 5))) static int refuse(const gr_scene *sc, const char *key, gr_err *err,
@@ -108,7 +67,7 @@ static int pair_gamma(const gr_scene *sc, double e, double meff, double *gamma, 
         *gamma = gamma_for(m->kn, meff, m->clip_attraction, e);
         return GR_OK;
     }
-    double e_given = gr_dem_restitution(m->kn, m->gamma_n, meff, m->clip_attraction);
+    double e_given = gr_linear_restitution(m->kn, m->gamma_n, meff, m->clip_attraction);
     if (fabs(e_given - e) > 5e-3)
         return refuse(sc, "restitution", err,
                       "%g disagrees with the restitution %.4g that kn and gamma_n give for two mean "
@@ -129,7 +88,7 @@ int gr_dem_damping(const gr_scene *sc, const gr_particles *init, double *gn, dou
                       "with normal = hertz this dashpot's restitution depends on the impact speed, so "
                       "the soft DEM cannot honour %g; give gamma_n alone",
                       isnan(m->restitution) ? m->wall_restitution : m->restitution);
-    double mm = mean_mass(init);
+    double mm = gr_mean_mobile_mass(init);
     if (!isnan(m->restitution) && pair_gamma(sc, m->restitution, 0.5 * mm, gn, err))
         return err->code;
     /* Walls: their own restitution when given; else the pairs' restitution

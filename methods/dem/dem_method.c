@@ -1,9 +1,33 @@
 /* The soft DEM backend's table (methods/method.h). */
 #include <math.h>
+#include <stdio.h>
 
 #include "dem.h"
 #include "dem_params.h"
 #include "method.h"
+
+/* The damping derived from a restitution, for the run's log. */
+static void note_damping(gr_sim *sim, const gr_scene *sc, const gr_dem *d)
+{
+    const gr_material *m = &sc->mat;
+    if (isnan(m->restitution) && isnan(m->wall_restitution))
+        return;
+    char pair[96], wall[96], note[400];
+    int given = gr_scene_find(sc, "material", "gamma_n") != NULL;
+    if (given || isnan(m->restitution))
+        snprintf(pair, sizeof pair, "as given");
+    else
+        snprintf(pair, sizeof pair, "derived from restitution %g", m->restitution);
+    if (!isnan(m->wall_restitution))
+        snprintf(wall, sizeof wall, "derived from wall_restitution %g", m->wall_restitution);
+    else if (given)
+        snprintf(wall, sizeof wall, "gamma_n as given");
+    else
+        snprintf(wall, sizeof wall, "derived from restitution %g", m->restitution);
+    snprintf(note, sizeof note, "gamma_n %.6g on pairs (%s), %.6g on walls (%s), for grains of the mean mass",
+             d->gn, pair, d->gw, wall);
+    gr_sim_note(sim, note);
+}
 
 static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **state, gr_err *err)
 {
@@ -18,6 +42,7 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_dem *d;
     if (gr_dem_create(sc, init, &par, reinsert, &d, err))
         return err->code;
+    note_damping(ctx->sim, sc, d);
     *state = d;
     return GR_OK;
 }
@@ -64,7 +89,7 @@ const gr_method_type gr_dem_method = {
     .features = GR_FEAT_GRAVITY | GR_FEAT_FRICTION | GR_FEAT_CONTACT_HISTORY | GR_FEAT_PERIODIC |
                 GR_FEAT_OPEN_SIDE | GR_FEAT_SEGMENTS | GR_FEAT_WALL_GRAINS | GR_FEAT_ORIFICE |
                 GR_FEAT_VIBRATING_FLOOR | GR_FEAT_REINSERT | GR_FEAT_POLYDISPERSE | GR_FEAT_MIXTURE |
-                GR_FEAT_HERTZ | GR_FEAT_RESTITUTION,
+                GR_FEAT_HERTZ | GR_FEAT_RESTITUTION | GR_FEAT_SOFT_TANGENTIAL,
     .params = gr_dem_param_table,
     .observables = observables,
     .create = m_create,

@@ -20,6 +20,7 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_dsmc *d;
     if (gr_dsmc_create(ctx->scene, init, &par, key, floor_rng, &d, err))
         return err->code;
+    gr_sim_note_restitution(ctx->sim, init);
     *state = d;
     return GR_OK;
 }

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "dsmc_int.h"
+#include "restitution.h"
 
 void gr_dsmc_free(gr_dsmc *d)
 {
@@ -20,9 +21,12 @@ void gr_dsmc_free(gr_dsmc *d)
 
 /* Smooth disks only: any tangential law or rough collisions are refused by
  * name (the scene feature check lets a tangential restitution of -1 by). */
-static int set_law(gr_dsmc *d, const gr_scene *sc, gr_err *err)
+static int set_law(gr_dsmc *d, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     const gr_material *m = &sc->mat;
+    gr_restitution rs;
+    if (gr_scene_restitution(sc, init, &rs, err))
+        return err->code;
     double tr = m->tangential_restitution;
     const char *key = m->tangential != GR_TANG_NONE ? "tangential" : (!isnan(tr) && tr != -1.0) ? "tangential_restitution" : NULL;
     if (key) {
@@ -31,8 +35,8 @@ static int set_law(gr_dsmc *d, const gr_scene *sc, gr_err *err)
         return gr_fail(err, GR_EINPUT, "%s: dsmc collides smooth disks only (no tangential law, no rough collisions)",
                        where);
     }
-    d->alpha = isnan(m->restitution) ? 1.0 : m->restitution;
-    d->alpha_w = isnan(m->wall_restitution) ? d->alpha : m->wall_restitution;
+    d->alpha = isnan(rs.e) ? 1.0 : rs.e;
+    d->alpha_w = isnan(rs.e_wall) ? d->alpha : rs.e_wall;
     d->g = sc->gravity;
     d->W = sc->species[0].weight > 0 ? sc->species[0].weight : 1.0;
     d->Lx = sc->width, d->Ly = sc->height;
@@ -221,7 +225,7 @@ int gr_dsmc_create(const gr_scene *sc, const gr_particles *init, const gr_dsmc_p
     d->sc = *sc;
     d->par = *par;
     d->key = key, d->floor_rng = floor_rng;
-    if (set_law(d, sc, err) || load_grains(d, init, err) || make_cells(d, err)) {
+    if (set_law(d, sc, init, err) || load_grains(d, init, err) || make_cells(d, err)) {
         int rc = err->code;
         gr_dsmc_free(d);
         return rc;

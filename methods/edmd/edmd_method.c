@@ -15,6 +15,7 @@ static int m_create(const gr_method_ctx *ctx, const gr_particles *init, void **s
     gr_edmd *s;
     if (!rng || gr_edmd_create(ctx->scene, init, &prm, rng, &s, err))
         return err->code;
+    gr_sim_note_restitution(ctx->sim, init);
     *state = s;
     return GR_OK;
 }

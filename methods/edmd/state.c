@@ -7,6 +7,7 @@
 
 #include "edmd_int.h"
 #include "observe.h"
+#include "restitution.h"
 
 void gr_edmd_free(gr_edmd *s)
 {
@@ -45,9 +46,12 @@ void gr_edmd_free(gr_edmd *s)
     free(s);
 }
 
-static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
+static int setup_scene(gr_edmd *s, const gr_scene *sc, const gr_particles *init, gr_err *err)
 {
     const gr_material *mt = &sc->mat;
+    gr_restitution rs;
+    if (gr_scene_restitution(sc, init, &rs, err))
+        return err->code;
     if (mt->tangential != GR_TANG_NONE && mt->tangential != GR_TANG_COULOMB) {
         char where[1200];
         gr_scene_where(sc, "material", "tangential", where, sizeof where);
@@ -63,8 +67,8 @@ static int setup_scene(gr_edmd *s, const gr_scene *sc, gr_err *err)
         s->hard[k] = sc->side[k] == GR_BC_WALL;
     s->periodic_x = sc->side[GR_LEFT] == GR_BC_PERIODIC;
     s->periodic_y = sc->side[GR_BOTTOM] == GR_BC_PERIODIC;
-    s->alpha = isnan(mt->restitution) ? 1.0 : mt->restitution;
-    s->alpha_w = isnan(mt->wall_restitution) ? s->alpha : mt->wall_restitution;
+    s->alpha = isnan(rs.e) ? 1.0 : rs.e;
+    s->alpha_w = isnan(rs.e_wall) ? s->alpha : rs.e_wall;
     s->beta = !isnan(mt->tangential_restitution) ? mt->tangential_restitution
               : mt->tangential == GR_TANG_COULOMB ? 1.0 : -1.0;
     s->mu = mt->tangential == GR_TANG_NONE && isnan(mt->tangential_restitution) ? 0.0 : mt->mu;
@@ -206,23 +210,62 @@ static int setup_particles(gr_edmd *s, const gr_scene *sc, const gr_particles *i
     return GR_OK;
 }
 
-/* Every grain inside the domain and above the floor, no pair overlapping. */
-static int check_start(gr_edmd *s, gr_err *err)
+/* Where the grains came from, and what fixes a soft packing's overlaps:
+ * "scene.ini:12: [init] key 'file': 'bed.data', grains counted from 1 ...". */
+static void start_origin(const gr_scene *sc, char *buf, size_t n)
 {
-    double tol = 1e-9;
+    char where[1100];
+    gr_scene_where(sc, "init", sc->init.kind == GR_INIT_FILE ? "file" : "kind", where, sizeof where);
+    if (sc->init.kind == GR_INIT_FILE)
+        snprintf(buf, n, "%s: '%.900s', grains counted from 1 in its order:", where, sc->init.file);
+    else
+        snprintf(buf, n, "%s:", where);
+}
+
+#define START_HINT                                                                                  \
+    "hard disks never overlap; [init] overlap = push moves a soft packing's grains apart and inside " \
+    "its walls (docs/scene-format.md)"
+
+/* How deep grain p cuts the domain's wall sides (the floor where it is at
+ * t = 0); *side gets the deepest. */
+static double wall_depth(const gr_edmd *s, const edmd_p *p, int *side)
+{
+    double fl = s->floor == GR_FLOOR_SINE ? s->fA * cos(0.0) : s->floor == GR_FLOOR_SAWTOOTH ? -s->fA : 0.0;
+    double d[4] = {p->r - p->x, p->x - (s->W - p->r), fl + p->r - p->y, p->y - (s->H - p->r)}, worst = -INFINITY;
+    for (int k = 0; k < 4; k++)
+        if (s->hard[k] && d[k] > worst)
+            worst = d[k], *side = k;
+    return worst;
+}
+
+/* The deepest of the overlaps at the start: between grains i and j, or
+ * (j < 0) of grain i into wall side. */
+typedef struct {
+    double depth;
+    long i, j;
+    int side;
+    size_t count;
+} start_overlap;
+
+static void note_overlap(start_overlap *w, double depth, long i, long j, int side)
+{
+    w->count++;
+    if (depth > w->depth)
+        *w = (start_overlap){depth, i, j, side, w->count};
+}
+
+static void wall_overlaps(const gr_edmd *s, double tol, start_overlap *w)
+{
     for (size_t i = 0; i < s->n; i++) {
-        const edmd_p *p = &s->p[i];
-        double fl = s->floor == GR_FLOOR_SINE ? s->fA * cos(0.0)
-                    : s->floor == GR_FLOOR_SAWTOOTH ? -s->fA : 0.0;
-        int out = (s->hard[GR_LEFT] && p->x < p->r - tol) || (s->hard[GR_RIGHT] && p->x > s->W - p->r + tol) ||
-                  (s->hard[GR_BOTTOM] && p->y < fl + p->r - tol) || (s->hard[GR_TOP] && p->y > s->H - p->r + tol) ||
-                  p->x < 0.0 || p->x > s->W || p->y < s->ybot || p->y > s->H;
-        if (out)
-            return gr_fail(err, GR_EINPUT, "edmd: grain %lld at (%g, %g) is outside the domain or cuts a wall",
-                           (long long)s->id[i], p->x, p->y);
+        int side = 0;
+        double depth = wall_depth(s, &s->p[i], &side);
+        if (depth > tol)
+            note_overlap(w, depth, (long)i, -1, side);
     }
-    if (s->prm.algorithm == GR_EDMD_NAIVE)
-        return GR_OK;
+}
+
+static void pair_overlaps(const gr_edmd *s, double tol, start_overlap *w)
+{
     for (size_t i = 0; i < s->n; i++) {
         const edmd_p *p = &s->p[i];
         int c = p->cell, ix = c % s->nx, iy = c / s->nx;
@@ -245,12 +288,39 @@ static int check_start(gr_edmd *s, gr_err *err)
                         ddy = edmd_min_image(ddy, s->H - s->ybot);
                     double sig = p->r + s->p[j].r;
                     if (ddx * ddx + ddy * ddy < sig * sig * (1.0 - 2.0 * tol))
-                        return gr_fail(err, GR_EINPUT, "edmd: grains %lld and %lld overlap at the start",
-                                       (long long)s->id[i], (long long)s->id[j]);
+                        note_overlap(w, sig - hypot(ddx, ddy), (long)i, j, 0);
                 }
             }
     }
-    return GR_OK;
+}
+
+/* Every grain inside the domain and above the floor, no pair overlapping;
+ * a refusal names the deepest overlap of each kind and how many there are. */
+static int check_start(gr_edmd *s, const gr_scene *sc, gr_err *err)
+{
+    static const char *const sides[4] = {"left wall", "right wall", "floor", "top wall"};
+    double tol = 1e-9;
+    char origin[2100], pair[300] = "", wall[300] = "";
+    start_origin(sc, origin, sizeof origin);
+    for (size_t i = 0; i < s->n; i++) {
+        const edmd_p *p = &s->p[i];
+        if (p->x < 0.0 || p->x > s->W || p->y < s->ybot || p->y > s->H)
+            return gr_fail(err, GR_EINPUT, "%s grain %lld at (%g, %g) lies outside the domain", origin,
+                           (long long)s->id[i] + 1, p->x, p->y);
+    }
+    start_overlap w = {0, -1, -1, 0, 0}, pw = {0, -1, -1, 0, 0};
+    wall_overlaps(s, tol, &w);
+    if (s->prm.algorithm != GR_EDMD_NAIVE)
+        pair_overlaps(s, tol, &pw);
+    if (!w.count && !pw.count)
+        return GR_OK;
+    if (pw.count)
+        snprintf(pair, sizeof pair, " grains %lld and %lld overlap by %.4g (the deepest of %zu overlapping pairs)%s",
+                 (long long)s->id[pw.i] + 1, (long long)s->id[pw.j] + 1, pw.depth, pw.count, w.count ? ";" : "");
+    if (w.count)
+        snprintf(wall, sizeof wall, " grain %lld at (%.6g, %.6g) cuts the %s by %.4g (the deepest of %zu grains cutting walls)",
+                 (long long)s->id[w.i] + 1, s->p[w.i].x, s->p[w.i].y, sides[w.side], w.depth, w.count);
+    return gr_fail(err, GR_EINPUT, "%s%s%s: " START_HINT, origin, pair, wall);
 }
 
 static int setup_cells(gr_edmd *s, gr_err *err)
@@ -332,7 +402,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     s->prm = *prm;
     s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
     s->collapse_asked = prm->collapse;
-    int rc = setup_scene(s, sc, err);
+    int rc = setup_scene(s, sc, init, err);
     set_guard(s);
     if (!rc)
         rc = setup_particles(s, sc, init, err);
@@ -341,7 +411,7 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     if (!rc)
         rc = edmd_segments_setup(s, sc, err);
     if (!rc)
-        rc = check_start(s, err);
+        rc = check_start(s, sc, err);
     if (!rc && !(s->rng = rng) && !(s->rng = s->own_rng = gr_rng_create(sc->seed, GR_STREAM_EDMD, err)))
         rc = err->code;
     s->tshift = s->prm.tree_arity == 4 ? 2 : 1;

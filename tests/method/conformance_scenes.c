@@ -16,7 +16,9 @@ const conf_scene conf_scenes[] = {
     {"gravity", GR_FEAT_GRAVITY, DOMG MAT SP INIT, 3.0, 2, 40},
     {"restitution", GR_FEAT_RESTITUTION,
      DOMG "[material]\nkn = 1e4\nrestitution = 0.9\nwall_restitution = 0.8\n" SP INIT, 3.0, 2, 40},
-    {"friction-soft", GR_FEAT_FRICTION,
+    {"friction-coulomb", GR_FEAT_FRICTION,
+     BOX "[material]\nkn = 1e4\ntangential = coulomb\nmu = 0.5\n" SP INIT, 4.0, 2, 40},
+    {"friction-soft", GR_FEAT_SOFT_TANGENTIAL,
      BOX "[material]\nkn = 1e4\ntangential = regularised\n"
          "gamma_t = 10\nmu = 0.5\n" SP INIT,
      4.0, 2, 40},

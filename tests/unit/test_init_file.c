@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "init.h"
+#include "scene.h"
 
 static const gr_species sp = {.diameter = 1.0, .density = 4 / M_PI};
 
@@ -96,10 +97,38 @@ static void bad_files(void **s)
     }
 }
 
+/* [init] overlap = push on the simplest soft overlaps: two grains 0.02
+ * into each other move 0.01 apart each, a grain 0.01 into the left wall
+ * moves 0.01 in; nothing overlaps after, no grain moved more than the
+ * largest overlap, and the report says so. */
+static void push_apart_pair_and_wall(void **s)
+{
+    (void)s;
+    gr_err e = {0};
+    gr_scene *sc = gr_scene_parse("[domain]\nwidth = 10\nheight = 10\n[init]\nkind = lattice\noverlap = push\n",
+                                  "push.ini", NULL, &e);
+    assert_non_null(sc);
+    gr_particles *p = gr_particles_create(0, &e);
+    gr_particles_push(p, 5.0, 5.0, 0.5, 1.0, 0, 0, &e);
+    gr_particles_push(p, 5.98, 5.0, 0.5, 1.0, 0, 0, &e);
+    gr_particles_push(p, 0.49, 3.0, 0.5, 1.0, 0, 0, &e);
+    gr_init_relax_report r;
+    assert_int_equal(gr_init_push_apart(sc, p, &r, &e), GR_OK);
+    printf("# largest overlap %.6g (%s), %d sweeps, largest displacement %.9g; pair at %.9g, %.9g, wall grain %.9g\n",
+           r.overlap, r.where, r.sweeps, r.max_displacement, p->x[0], p->x[1], p->x[2]);
+    assert_true(fabs(r.overlap - 0.02) < 1e-12 && !strcmp(r.where, "grains 1 and 2"));
+    assert_true(p->x[1] - p->x[0] >= 1.0 && p->x[1] - p->x[0] < 1.0 + 1e-5 && p->x[2] >= 0.5);
+    assert_true(fabs(p->x[0] - 4.99) < 1e-5 && fabs(p->x[1] - 5.99) < 1e-5 && fabs(p->x[2] - 0.5) < 1e-5);
+    assert_true(r.max_displacement <= r.overlap && fabs(r.max_displacement - 0.01) < 1e-5);
+    gr_particles_free(p);
+    gr_scene_free(sc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {cmocka_unit_test(lammps_atomic_in_id_order),
                                        cmocka_unit_test(lammps_sphere_velocities),
-                                       cmocka_unit_test(extxyz_momenta), cmocka_unit_test(bad_files)};
+                                       cmocka_unit_test(extxyz_momenta), cmocka_unit_test(bad_files),
+                                       cmocka_unit_test(push_apart_pair_and_wall)};
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
