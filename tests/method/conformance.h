@@ -52,6 +52,8 @@ gr_sim *conf_create(const gr_method_type *m, const gr_scene *sc);
 /* Whether the backend takes the scene; a refusal must be an input error
  * naming the file. */
 int conf_accepts(const gr_method_type *m, const gr_scene *sc, const char *name);
+/* msg as the rest of a TAP comment line (its line breaks made comments). */
+void conf_print_comment(const char *msg);
 
 /* conformance_outcome.c: everything a run shows (a lattice: its fields
  * on a fine grid instead of a snapshot). */

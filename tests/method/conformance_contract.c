@@ -157,7 +157,8 @@ static void refused_by_features(const gr_method_type *m, const gr_scene *sc)
     gr_sim *s = (gr_sim *)p; /* must come back NULL */
     assert_int_equal(gr_sim_create(m, sc, p, &s, &e), GR_EINPUT);
     assert_null(s);
-    printf("# %s refuses %s by its features: %s\n", m->name, sc->name, e.msg);
+    printf("# %s refuses %s by its features: ", m->name, sc->name);
+    conf_print_comment(e.msg);
     assert_non_null(strstr(e.msg, "does not support"));
     assert_non_null(strstr(e.msg, "conformance.ini:"));
     gr_particles_free(p);

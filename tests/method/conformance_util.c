@@ -33,6 +33,18 @@ gr_sim *conf_create(const gr_method_type *m, const gr_scene *sc)
 /* A scene of declared features may still ask for a model the backend has
  * not (edmd takes rough collisions, not a soft tangential law); it must say
  * so, as an input error. */
+/* msg as the rest of a TAP comment: a refusal of several features spans
+ * lines, each then a comment of its own. */
+void conf_print_comment(const char *msg)
+{
+    for (const char *c = msg; *c; c++)
+        if (*c == '\n')
+            fputs("\n#   ", stdout);
+        else
+            putchar(*c);
+    putchar('\n');
+}
+
 int conf_accepts(const gr_method_type *m, const gr_scene *sc, const char *name)
 {
     gr_err e = {0};
@@ -43,7 +55,8 @@ int conf_accepts(const gr_method_type *m, const gr_scene *sc, const char *name)
     gr_particles_free(p);
     gr_sim_free(s);
     if (rc) {
-        printf("# %s refuses %s: %s\n", m->name, name, e.msg);
+        printf("# %s refuses %s: ", m->name, name);
+        conf_print_comment(e.msg);
         assert_int_equal(rc, GR_EINPUT);
         assert_null(s);
         assert_non_null(strstr(e.msg, "conformance.ini:"));
