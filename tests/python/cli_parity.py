@@ -13,6 +13,7 @@ issue's one-liner prints the temperature the CLI writes.
 
 usage: cli_parity.py GRANO SOURCE_ROOT WORKDIR (TAP)
 """
+import os
 import subprocess
 import sys
 
@@ -100,7 +101,10 @@ def compare_run(tap, grano, exe, root, method, scene, until):
     sim.save("py-%s.ckpt" % method)
     d = h5_diffs("py-%s.ckpt" % method, "cli-%s.ckpt" % method)
     tap.check(not d, "%s: Sim.save's checkpoint holds the same bits as grano run's" % method, d[:10])
-    # each continues the other's checkpoint
+    # each continues the other's checkpoint (into a new file: an existing
+    # --out is continued, and one left by an earlier build may not fit)
+    if os.path.exists("cont-%s.h5" % method):
+        os.remove("cont-%s.h5" % method)
     rc, err = cli(exe, "run", ini, "-m", method, "--until", 2 * until, "-o", "cont-%s.h5" % method, "-f", "-q",
                   "--restart", "py-%s.ckpt" % method, *sum((["--set", s] for s in sets), []))
     loaded = grano.Sim.load("cli-%s.ckpt" % method)
