@@ -134,16 +134,25 @@ static const cmp_reach_row *cheapest(const cmp_reach_row *r, size_t nr, int t)
     return b;
 }
 
+/* The line whose result is case c's reference, or "analytic". */
+static const char *reference(const cmp_case *c)
+{
+    for (int r = 0; c->rows[r].method; r++)
+        if (c->rows[r].role == CMP_REFERENCE)
+            return c->rows[r].label;
+    return "analytic";
+}
+
 void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_row *const *r, const size_t *nr)
 {
     if (markdown)
-        fprintf(f, "| case | 1 %% error | 5 %% error | 10 %% error |\n| --- | --- | --- | --- |\n");
+        fprintf(f, "| case | reference | 1 %% error | 5 %% error | 10 %% error |\n| --- | --- | --- | --- | --- |\n");
     else
         fprintf(f, "\n== guide: the cheapest method line to reach each relative error (wall s per run)\n");
     for (int k = 0; cs[k].name; k++) {
         if (!nr[k])
             continue;
-        fprintf(f, markdown ? "| %s |" : "%-14s", cs[k].name);
+        fprintf(f, markdown ? "| %s | %s |" : "%-14s %-10s", cs[k].name, reference(&cs[k]));
         for (int t = 0; t < CMP_NTARGETS; t++) {
             const cmp_reach_row *b = cheapest(r[k], nr[k], t);
             char s[96];
