@@ -74,6 +74,7 @@ typedef struct {
     int converged;
     double residual;
     size_t active, sliding;
+    size_t forced_open; /* contacts left open by the flip rule */
 } gr_cd_solve_info;
 
 typedef struct gr_cd {
@@ -97,6 +98,7 @@ typedef struct gr_cd {
     gr_rng *order_rng, *reinsert_rng;
     int gates_open;
     uint64_t step, sweeps, nonconv, outflow, lost;
+    uint64_t forced;         /* steps that left a contact open by the flip rule (not saved) */
     double t, last_residual, max_ovl;
     size_t last_active, last_sliding;
     double wall_impulse, wall_time;

@@ -112,10 +112,8 @@ static double momentum_dot(const gr_cd *d, size_t n)
  * over the sweep. A contact that was not pushing before the sweep, or
  * whose Jean decision the sweep changed, is left at its local solution:
  * pushed past it, it flips its neighbours' decisions, and a contact that
- * flips 8 times is left open for the step (measured on the flowing silo
- * at n = 500: 52 of 5453 solves had such a contact without momentum, 73
- * of 5459 with momentum on every contact restarted on eps alone, 38 of
- * 5453 with this rule and both restarts). */
+ * flips 8 times is left open for the step, a wrong answer (on the
+ * flowing silo, more steps had one with momentum on every contact). */
 static void extrapolate(gr_cd *d, size_t n, double beta)
 {
     double *a = d->racc;
@@ -180,7 +178,7 @@ static int check_local(const gr_cd *d, gr_err *err)
 int gr_cd_solve(gr_cd *d, gr_cd_solve_info *info, gr_err *err)
 {
     size_t n = d->cur.n;
-    *info = (gr_cd_solve_info){0, 1, 0.0, 0, 0};
+    *info = (gr_cd_solve_info){0, 1, 0.0, 0, 0, 0};
     if (!n)
         return GR_OK;
     if (check_local(d, err))
@@ -224,6 +222,7 @@ int gr_cd_solve(gr_cd *d, gr_cd_solve_info *info, gr_err *err)
         const gr_cd_contact *c = &d->cur.c[k];
         info->active += c->rn > 0;
         info->sliding += c->rn > 0 && (c->status == GR_CD_SLIDE_FWD || c->status == GR_CD_SLIDE_BWD);
+        info->forced_open += c->flips >= GR_CD_MAX_FLIPS;
     }
     return GR_OK;
 }
