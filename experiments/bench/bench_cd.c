@@ -203,8 +203,9 @@ static int time_steps(gr_cd *d, long steps, bc_result *r, gr_err *err)
     qsort(per, (size_t)steps, sizeof *per, cmp_double);
     fprintf(stderr,
             "cd %s n=%ld: %ld steps in %.3f s, %.2f sweeps per step (median %.0f, largest %.0f), %zu contacts, "
-            "largest overlap %.2e d\n",
-            r->name, r->n, steps, t, r->iter_per_step, per[steps / 2], per[steps - 1], d->prev.n, d->max_ovl);
+            "largest overlap %.2e d; %llu of the %llu steps since t = 0 left a contact open by the flip rule\n",
+            r->name, r->n, steps, t, r->iter_per_step, per[steps / 2], per[steps - 1], d->prev.n, d->max_ovl,
+            (unsigned long long)d->forced, (unsigned long long)d->step);
     free(per);
     return GR_OK;
 }

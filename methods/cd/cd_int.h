@@ -16,7 +16,13 @@
 #include "rng.h"
 #include "scene.h"
 
-typedef enum { GR_CD_SEQUENTIAL = 0, GR_CD_SHUFFLED, GR_CD_RANDOM, GR_CD_SYMMETRIC } gr_cd_order;
+typedef enum { GR_CD_SEQUENTIAL = 0, GR_CD_SHUFFLED, GR_CD_RANDOM, GR_CD_SYMMETRIC, GR_CD_HEIGHT } gr_cd_order;
+
+/* A contact's sorting key for the height order. */
+typedef struct {
+    double y;
+    size_t k;
+} gr_cd_key;
 
 /* The [cd] section (docs/methods/cd.md). */
 typedef struct {
@@ -24,6 +30,7 @@ typedef struct {
     double relax;   /* over-relaxation factor of the local updates */
     long max_iter, check_every;
     int order;      /* gr_cd_order */
+    int accel;      /* Nesterov's momentum on the sweeps */
     int strict;     /* non-convergence at max_iter is an error */
     int warm;       /* warm start from the previous step's impulses */
 } gr_cd_params;
@@ -50,6 +57,7 @@ typedef struct {
     int status;        /* last local solution: gr_cd_status */
     int closed;        /* Jean's rule in the last sweep: 1 closed, 0 open, -1 not yet */
     int flips;         /* changes of that decision in this step's sweeps */
+    int flipped;       /* the last visit changed that decision */
 } gr_cd_contact;
 
 /* The four cases of the single-contact problem. */
@@ -66,6 +74,7 @@ typedef struct {
     int converged;
     double residual;
     size_t active, sliding;
+    size_t forced_open; /* contacts left open by the flip rule */
 } gr_cd_solve_info;
 
 typedef struct gr_cd {
@@ -84,9 +93,12 @@ typedef struct gr_cd {
     gr_grid *grid;
     gr_cd_list cur, prev;    /* this step's contacts, the last committed step's */
     size_t *perm, perm_cap;  /* visiting order of a sweep */
+    gr_cd_key *key;          /* height order: contacts by height (perm_cap of them) */
+    double *racc;            /* momentum: per contact, the last sweep's impulses and its start */
     gr_rng *order_rng, *reinsert_rng;
     int gates_open;
     uint64_t step, sweeps, nonconv, outflow, lost;
+    uint64_t forced;         /* steps that left a contact open by the flip rule (not saved) */
     double t, last_residual, max_ovl;
     size_t last_active, last_sliding;
     double wall_impulse, wall_time;
@@ -124,6 +136,8 @@ void gr_cd_warm_start(gr_cd *d);
 /* cd_solve.c: the non-linear Gauss-Seidel sweeps on the new velocities
  * (which hold the free velocities plus the warm-start impulses). */
 int gr_cd_solve(gr_cd *d, gr_cd_solve_info *info, gr_err *err);
+/* cd_order.c: d->perm[0..n) for sweep s (from 1); d->perm and d->key hold n. */
+void gr_cd_visit_order(gr_cd *d, size_t n, long s);
 /* Apply impulse (dn, dt) of contact c to the new velocities. */
 void gr_cd_apply(gr_cd *d, const gr_cd_contact *c, double dn, double dtn);
 

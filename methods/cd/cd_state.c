@@ -16,7 +16,7 @@ void gr_cd_free(gr_cd *d)
         return;
     gr_particles_free(d->p);
     free(d->im), free(d->iI), free(d->vx), free(d->vy), free(d->w), free(d->x1), free(d->y1);
-    free(d->skip), free(d->wall), free(d->cur.c), free(d->prev.c), free(d->perm);
+    free(d->skip), free(d->wall), free(d->cur.c), free(d->prev.c), free(d->perm), free(d->key), free(d->racc);
     gr_grid_free(d->grid);
     free(d);
 }

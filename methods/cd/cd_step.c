@@ -121,6 +121,7 @@ static int commit(gr_cd *d, const gr_cd_solve_info *si, gr_err *err)
     d->t = (double)d->step * d->par.dt;
     d->sweeps += (uint64_t)si->sweeps;
     d->nonconv += !si->converged;
+    d->forced += si->forced_open > 0;
     d->last_residual = si->residual;
     d->last_active = si->active, d->last_sliding = si->sliding;
     gr_cd_list tmp = d->prev;
