@@ -40,7 +40,8 @@ for ini in "$SRC"/experiments/scenes/*.ini; do
             echo "ok $n - $s on $m runs${broken:+ (breaks, as the scene says: $broken)}"
         elif [ $want = refuse ] && [ $rc = 2 ] && [ ! -e "$out" ] &&
              grep -q "$s.ini:[0-9]*: \[[a-z._]*\] key '" "$tmp/err"; then
-            echo "ok $n - $s on $m refused by name: $(cut -c1-150 "$tmp/err" | sed "s|$SRC/||")"
+            echo "ok $n - $s on $m refused by name: $(head -1 "$tmp/err" | cut -c1-150 | sed "s|$SRC/||")"
+            tail -n +2 "$tmp/err" | sed "s|$SRC/||; s/^/# /"
         else
             echo "not ok $n - $s on $m: expected it to $want${expect:+ breaking $expect}, got exit code $rc${broken:+, breaking $broken}"
             sed 's/^/# /' "$tmp/err"

@@ -9,7 +9,9 @@ class Tap:
 
     def check(self, ok, what, detail=""):
         self.n += 1
-        print("%s %d - %s" % ("ok" if ok else "not ok", self.n, what))
+        # a message of several lines (a refusal naming several features):
+        # its lines after the first are comments
+        print("%s %d - %s" % ("ok" if ok else "not ok", self.n, str(what).replace("\n", "\n# ")))
         if not ok:
             self.fails += 1
             print("# " + str(detail).replace("\n", "\n# "))
