@@ -27,17 +27,8 @@ static long column(int N, double tol, int check)
         gr_particles_push(p, 30, 0.5 + k, 0.5, 1.0, 0, 0, &e);
     gr_sim *s = ct_sim(sc, p);
     ct_steps(s, 1);
-    gr_cd *d = ct_state(s);
-    double dt = d->par.dt, worst = 0;
-    for (int k = 0; k < N; k++) {
-        /* below disk k (from the bottom): the floor (wall 2) or disk k-1 */
-        const gr_cd_contact *c = k ? ct_contact(d, k - 1, k) : ct_contact(d, 0, N + 2);
-        assert_non_null(c);
-        double want = (N - k) * dt, got = k ? -c->rn * c->ny : c->rn;
-        worst = fmax(worst, fabs(got / want - 1));
-        if (check)
-            assert_rel(got, want, 1e-6);
-    }
+    /* the floor is wall 2, after the N disks */
+    double worst = ct_column_error(ct_state(s), N, N + 2, check);
     long sweeps = (long)ct_counter(s, "iterations");
     printf("# column N = %2d, tol %g: %6ld sweeps, largest relative impulse error %.2e\n", N, tol, sweeps, worst);
     gr_particles_free(p);
