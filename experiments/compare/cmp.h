@@ -140,6 +140,9 @@ int cmp_profiles(const cmp_plan *pl, char *const *parts, const cmp_case *c, FILE
                  gr_err *err);
 /* The names of a row's role ("sweep", "reference", "bias", "model"). */
 const char *cmp_role_name(int role);
+/* The label of case c's CMP_REFERENCE row; NULL when its reference is
+ * the analytic value. */
+const char *cmp_ref_label(const cmp_case *c);
 
 /* Tables, figures and checks from the parts (cmp_output.c): returns
  * GR_ERUN when a --quick check fails (after writing everything). *drawn:

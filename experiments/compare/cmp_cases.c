@@ -129,6 +129,14 @@ const cmp_case *cmp_cases(void)
     return cases;
 }
 
+const char *cmp_ref_label(const cmp_case *c)
+{
+    for (const cmp_row *r = c->rows; r->method; r++)
+        if (r->role == CMP_REFERENCE)
+            return r->label;
+    return NULL;
+}
+
 const char *cmp_role_name(int role)
 {
     static const char *const names[] = {"sweep", "reference", "bias", "model"};

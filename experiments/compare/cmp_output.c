@@ -17,17 +17,9 @@
 static const double floor_err = 1e-16;
 
 /* Which row, if any, is the case's reference. */
-static const char *ref_label(const cmp_case *c)
-{
-    for (const cmp_row *r = c->rows; r->method; r++)
-        if (r->role == CMP_REFERENCE)
-            return r->label;
-    return NULL;
-}
-
 static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref)
 {
-    const char *rl = ref_label(c);
+    const char *rl = cmp_ref_label(c);
     fprintf(f, "\n== %s: %s: reference %.8g +- %.2g (%s)", c->name, c->quantity, ref->value, ref->sem,
             rl ? rl : "analytic");
     if (rl && isfinite(ref->analytic))
@@ -75,7 +67,7 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
         for (int k = 0; k < 13; k++)
             num[k * m + i] = v[k];
     }
-    const char *rl = ref_label(c);
+    const char *rl = cmp_ref_label(c);
     char dq[160], dref[200], daux[160], dauxref[200], dan[200], desc[400];
     snprintf(dq, sizeof dq, "%s, mean over the finished runs", c->quantity);
     snprintf(dref, sizeof dref, "%s of the reference (%s)", c->quantity, rl ? rl : "the analytic value");
@@ -164,7 +156,7 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
         fprintf(gp, "EOD\n");
         nrow++;
     }
-    const char *rl = ref_label(c);
+    const char *rl = cmp_ref_label(c);
     if (rl && ref->sem > 0)
         x0 = fmin(x0, ref->sem / fabs(ref->value)), x1 = fmax(x1, ref->sem / fabs(ref->value));
     gr_plot_log_axis(gp, "x", x0, x1);
@@ -285,29 +277,24 @@ static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, F
     return GR_OK;
 }
 
-/* compare.txt and compare.h5, written whole before any figure: a study
- * whose figures cannot be drawn still leaves its data. */
 /* DIR/guide.md: the guide as a markdown table, for the docs. */
-static int write_guide(const cmp_plan *pl, const cmp_case *cs, const cmp_reach_row *const *rr, const size_t *nrr,
-                       gr_err *err)
+static int write_guide(const cmp_plan *pl, const cmp_case *cs, const cmp_reach_row (*rr)[CMP_MAXROWS],
+                       const size_t *nrr, gr_err *err)
 {
-    char path[2048], part[2100];
+    char path[2048];
     snprintf(path, sizeof path, "%s/guide.md", pl->out);
-    snprintf(part, sizeof part, "%s.part", path);
-    FILE *f = fopen(part, "w");
+    FILE *f = exp_dat_open(path, err);
     if (!f)
-        return gr_fail(err, GR_ERUN, "%s: cannot write", part);
+        return err->code;
     fprintf(f, "The cheapest method line to reach each relative error, wall seconds per run (grano compare%s; "
                "per case, the cost along each line's knob: compare.txt)\n\n",
             pl->quick ? " --quick" : "");
     cmp_reach_guide(f, 1, cs, rr, nrr);
-    if (fclose(f) || rename(part, path)) {
-        remove(part);
-        return gr_fail(err, GR_ERUN, "%s: cannot write", path);
-    }
-    return GR_OK;
+    return exp_dat_close(f, path, err);
 }
 
+/* compare.txt and compare.h5, written whole before any figure: a study
+ * whose figures cannot be drawn still leaves its data. */
 static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, int ncases, cmp_point **all,
                   size_t *nall, cmp_refs *refs, int *bad, gr_err *err)
 {
@@ -323,20 +310,18 @@ static int tables(const cmp_plan *pl, char *const *parts, const cmp_case *cs, in
     exp_tab_file *h = exp_tab_create(path, "grano compare: a table per case", err);
     int rc = h ? exp_tab_attr(h, "/", "mode", pl->quick ? "quick" : "full", err) : err->code;
     cmp_reach_row(*rr)[CMP_MAXROWS] = calloc((size_t)ncases, sizeof *rr);
-    const cmp_reach_row **rp = calloc((size_t)ncases, sizeof *rp);
     size_t *nrr = calloc((size_t)ncases, sizeof *nrr);
-    if (!rc && (!rr || !rp || !nrr))
+    if (!rc && (!rr || !nrr))
         rc = gr_fail(err, GR_ERUN, "out of memory");
     for (int k = 0; k < ncases && !rc; k++)
         rc = one_case(pl, parts, &cs[k], txt, h, &all[k], &nall[k], &refs[k], rr[k], &nrr[k], bad, err);
-    for (int k = 0; k < ncases && !rc; k++)
-        rp[k] = rr[k];
     if (!rc) {
-        cmp_reach_guide(stdout, 0, cs, rp, nrr);
-        cmp_reach_guide(txt, 0, cs, rp, nrr);
-        rc = write_guide(pl, cs, rp, nrr, err);
+        const cmp_reach_row(*cr)[CMP_MAXROWS] = (const cmp_reach_row(*)[CMP_MAXROWS])rr;
+        cmp_reach_guide(stdout, 0, cs, cr, nrr);
+        cmp_reach_guide(txt, 0, cs, cr, nrr);
+        rc = write_guide(pl, cs, cr, nrr, err);
     }
-    free(rr), free(rp), free(nrr);
+    free(rr), free(nrr);
     if (h)
         rc = rc ? (exp_tab_free(h), rc) : exp_tab_close(h, err);
     if (rc) {

@@ -134,16 +134,8 @@ static const cmp_reach_row *cheapest(const cmp_reach_row *r, size_t nr, int t)
     return b;
 }
 
-/* The line whose result is case c's reference, or "analytic". */
-static const char *reference(const cmp_case *c)
-{
-    for (int r = 0; c->rows[r].method; r++)
-        if (c->rows[r].role == CMP_REFERENCE)
-            return c->rows[r].label;
-    return "analytic";
-}
-
-void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_row *const *r, const size_t *nr)
+void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_row (*r)[CMP_MAXROWS],
+                     const size_t *nr)
 {
     if (markdown)
         fprintf(f, "| case | reference | 1 %% error | 5 %% error | 10 %% error |\n| --- | --- | --- | --- | --- |\n");
@@ -152,7 +144,8 @@ void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_
     for (int k = 0; cs[k].name; k++) {
         if (!nr[k])
             continue;
-        fprintf(f, markdown ? "| %s | %s |" : "%-14s %-10s", cs[k].name, reference(&cs[k]));
+        fprintf(f, markdown ? "| %s | %s |" : "%-14s %-10s", cs[k].name,
+                cmp_ref_label(&cs[k]) ? cmp_ref_label(&cs[k]) : "analytic");
         for (int t = 0; t < CMP_NTARGETS; t++) {
             const cmp_reach_row *b = cheapest(r[k], nr[k], t);
             char s[96];

@@ -28,6 +28,7 @@ void cmp_reach_text(FILE *f, const cmp_reach_row *r, size_t nr);
 int cmp_reach_h5(exp_tab_file *h, const char *cname, const cmp_reach_row *r, size_t nr, gr_err *err);
 /* Per case, the cheapest sweep line at each target: as text, or as a
  * markdown table (markdown = 1). r[k], nr[k]: case k's lines. */
-void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_row *const *r, const size_t *nr);
+void cmp_reach_guide(FILE *f, int markdown, const cmp_case *cs, const cmp_reach_row (*r)[CMP_MAXROWS],
+                     const size_t *nr);
 
 #endif

@@ -3,12 +3,12 @@
  * draws the impact direction s first, uniform on the circle, then its
  * partner j from the cell that holds r_i + sigma s, where a hard disk
  * touching i would sit; it is accepted with probability
- * n_B chi(eta at r_i + sigma s / 2) (g.s)+ / omega_max. The momentum of a
+ * n chi(n) (g.s)+ / omega_max, n the density around that cell. The momentum of a
  * collision then crosses a cell boundary as often as between hard disks
  * (whose centres lie on either side of it), so no partner is displaced and
  * the pairs of a small cell do not thin, as they did under the consistent
  * Boltzmann algorithm's jump (docs/methods/dsmc.md, Enskog mode). Calls
- * dsmc_cells.c (cell areas) and dsmc_partner.c (stand-ins). */
+ * only dsmc_int.h's inlines (the cell of a point, recent partners). */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>

@@ -63,6 +63,20 @@ static inline double ct_column_error(const gr_cd *d, int N, int64_t floor, int c
     return worst;
 }
 
+/* nx x ny unit disks on a hexagonal lattice resting on the floor, odd
+ * rows shifted by half a diameter. */
+static inline gr_particles *ct_hex_pile(int nx, int ny)
+{
+    gr_err e = {0};
+    gr_particles *p = gr_particles_create((size_t)nx * (size_t)ny, &e);
+    assert_non_null(p);
+    double h = sqrt(3.0) / 2;
+    for (int r = 0; r < ny; r++)
+        for (int k = 0; k < nx; k++)
+            gr_particles_push(p, k + 0.5 + 0.5 * (r % 2), 0.5 + r * h, 0.5, 1.0, 0, 0, &e);
+    return p;
+}
+
 static inline uint64_t ct_counter(gr_sim *s, const char *name)
 {
     uint64_t v = 0;

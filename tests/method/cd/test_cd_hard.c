@@ -84,12 +84,7 @@ static void hyperstatic_pile(void **unused)
                             "[material]\ntangential = coulomb\nmu = 0.5\n[species]\ncount = 1\n"
                             "[cd]\ndt = 1e-3\ntol = 1e-10\nmax_iter = 10000000\nstrict = yes\n"
                             "warm_start = no\ngap = 0.01\n");
-    gr_err e = {0};
-    gr_particles *p = gr_particles_create(NX * NY, &e);
-    double h = sqrt(3.0) / 2;
-    for (int r = 0; r < NY; r++)
-        for (int k = 0; k < NX; k++)
-            gr_particles_push(p, k + 0.5 + 0.5 * (r % 2), 0.5 + r * h, 0.5, 1.0, 0, 0, &e);
+    gr_particles *p = ct_hex_pile(NX, NY);
     gr_sim *s = ct_sim(sc, p);
     ct_steps(s, 1);
     gr_cd *d = ct_state(s);

@@ -57,12 +57,7 @@ static void column_of_disks(void **unused)
 
 static long pile(const char *accel)
 {
-    gr_err e = {0};
-    gr_particles *p = gr_particles_create(NX * NY, &e);
-    double h = sqrt(3.0) / 2;
-    for (int r = 0; r < NY; r++)
-        for (int k = 0; k < NX; k++)
-            gr_particles_push(p, k + 0.5 + 0.5 * (r % 2), 0.5 + r * h, 0.5, 1.0, 0, 0, &e);
+    gr_particles *p = ct_hex_pile(NX, NY);
     gr_scene *sc;
     gr_sim *s = one_step(accel, 1, p, &sc);
     gr_cd *d = ct_state(s);
