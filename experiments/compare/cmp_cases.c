@@ -108,7 +108,7 @@ static const cmp_case cases[] = {
          {"dem", "dem-long", "run.until", "200", "40", "dem.dt=1.25e-4", CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4", "5e-4", NULL, 0},
          {"cd", "cd", "cd.tol", "1e-2,1e-3,1e-4", "1e-2,1e-3", "cd.dt=2e-3", 0},
-         {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-3", "edmd.collapse=tc", 0},
+         {"edmd", "edmd", "edmd.tc", "1e-3,1e-4,1e-5", "1e-3", NULL, 0},
      }},
     {.name = "silo-widths", .scene = "silo.ini", .quantity = "Q(4 d) / Q(6 d)", .aux = "Q(8 d) / Q(6 d)",
      .unit = "1", .aux_unit = "1",

@@ -43,9 +43,16 @@ static void remedy(const gr_sim *st, char *buf, size_t n)
         }
 }
 
+/* The reference rate is at least this many steps per grain and unit
+ * time: a run that starts in free fall (a silo filled from above, a bed
+ * dropped from a lattice) has almost no events in its first unit, and any
+ * packing's collisions would then count as a crawl. */
+#define FLOOR_PER_GRAIN 10.0
+
 /* After a chunk: s steps (events) so far at simulated time t. */
-static int check(exp_watch *w, const gr_sim *st, const gr_runctl *rc, uint64_t s, gr_err *err)
+static int check(exp_watch *w, const gr_sim *st, const gr_scene *sc, uint64_t s, gr_err *err)
 {
+    const gr_runctl *rc = &sc->run;
     double t = gr_sim_time(st), now = gr_wall_seconds();
     char why[200];
     if (t - w->t_moved > 1e-9 * fmax(1.0, fabs(rc->until))) {
@@ -61,8 +68,11 @@ static int check(exp_watch *w, const gr_sim *st, const gr_runctl *rc, uint64_t s
     }
     if (t - w->t_win >= w->span) {
         w->rate = (double)(s - w->s_win) / (t - w->t_win);
-        if (!(w->ref_rate > 0))
-            w->ref_rate = w->rate;
+        if (!(w->ref_rate > 0)) {
+            double floor = FLOOR_PER_GRAIN * (double)gr_scene_count(sc);
+            w->ref_floor = w->rate < floor;
+            w->ref_rate = fmax(w->rate, floor);
+        }
         w->t_win = t, w->s_win = s;
     }
     if (rc->max_cost_growth > 0 && w->ref_rate > 0) {
@@ -71,11 +81,17 @@ static int check(exp_watch *w, const gr_sim *st, const gr_runctl *rc, uint64_t s
         double grown = fmax(w->rate, (double)(s - w->s_win) >= 16 * CHUNK ? now_rate : 0) / w->ref_rate;
         if (grown > rc->max_cost_growth) {
             remedy(st, why, sizeof why);
+            char ref[120];
+            if (w->ref_floor)
+                snprintf(ref, sizeof ref, "%.4g (%g per grain, more than the run's first %.3g had)", w->ref_rate,
+                         FLOOR_PER_GRAIN, w->span);
+            else
+                snprintf(ref, sizeof ref, "%.4g of the run's first %.3g", w->ref_rate, w->span);
             return gr_fail(err, GR_ERUN,
                            "the cost grew past its bound at t = %.10g: %.4g %s per unit time, %.0f times the "
-                           "%.4g of the run's first %.3g (as when a bed comes to rest or collapses)%s; [run] "
-                           "max_cost_growth sets this bound (0: none)",
-                           t, w->ref_rate * grown, w->unit, grown, w->ref_rate, w->span, why);
+                           "%s (as when a bed comes to rest or collapses)%s; [run] max_cost_growth sets this "
+                           "bound (0: none)",
+                           t, w->ref_rate * grown, w->unit, grown, ref, why);
         }
     }
     return GR_OK;
@@ -90,7 +106,7 @@ int exp_watch_advance(exp_watch *w, gr_sim *st, const gr_scene *sc, double t_end
         if (gr_sim_advance(st, t_end, CHUNK, err))
             return err->code;
         uint64_t after = steps_of(st, &w->unit);
-        if (check(w, st, &sc->run, after, err))
+        if (check(w, st, sc, after, err))
             return err->code;
         gr_progress_cost(pg, gr_sim_time(st), w->unit, w->rate);
         /* a stop signal is the caller's to act on, between two chunks */

@@ -4,7 +4,8 @@
  * stops advancing ([run] stall_steps steps and stall_seconds wall seconds
  * without moving by 1e-9 of the run's length: an inelastic collapse, a
  * Zeno sequence), or whose steps per unit time grow past [run]
- * max_cost_growth times those of its first unit of time, stops with a
+ * max_cost_growth times those of its first unit of time (at least 10 per
+ * grain), stops with a
  * diagnostic naming the cause and the keys. Chunks change nothing in the
  * run: a method's advance resumes where a step limit stopped it. */
 #ifndef GR_EXP_WATCH_H
@@ -20,7 +21,9 @@
 typedef struct {
     const char *unit;          /* "events" or "steps" (the counter read) */
     double span;               /* the span of the reference and of a window */
-    double ref_rate;           /* steps per unit time over the first span (0: not yet) */
+    double ref_rate;           /* steps per unit time over the first span, at least 10 per
+                                  grain (0: not yet) */
+    int ref_floor;             /* ref_rate is the floor, above the first span's rate */
     double t_moved, wall_moved;
     uint64_t s_moved;          /* steps at the last real advance of time */
     double t_win;

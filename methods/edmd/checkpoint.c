@@ -148,6 +148,8 @@ int gr_edmd_load(gr_edmd *s, gr_ckpt *ck, gr_err *err)
     if (gr_stress_acc_load(&s->stress, ck, "edmd.stress", s->W, s->H, s->periodic_x, s->periodic_y, err))
         return err->code;
     unpack(s, sc);
+    /* a gate that opened by s->t has woken the sleepers already */
+    s->t_gate = edmd_next_gate(s, s->t);
     /* The queue is a function of the slabs (ties go to the lower index in
      * both the tree and the calendar): rebuilt, not stored, so either queue
      * resumes a checkpoint written with the other. */

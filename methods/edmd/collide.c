@@ -89,6 +89,27 @@ static inline void pair_impulse(gr_edmd *s, int32_t i, int32_t j, double mi, dou
     *Jt_out = Jt;
 }
 
+/* Under the sleep model two grains woken at rest fall side by side at
+ * the same speed: touching, with no normal speed between them, they have
+ * their next contact at once, with no impulse, for ever, as a grain on a
+ * static contact has (lift, below). Once a grain has woken, pairs leave
+ * each other at v_threshold at least (before, no two grains can share a
+ * velocity exactly, and a run whose grains never sleep, a vibrated bed,
+ * stays the one of collapse = tc bit for bit); the energy this gives enters the budget as negative
+ * dissipation. Returns the normal impulse added. */
+static inline double pair_lift(edmd_p *a, edmd_p *b, double mi, double mj, double nx, double ny, double v)
+{
+    double gn = (b->vx - a->vx) * nx + (b->vy - a->vy) * ny;
+    if (!(gn < v))
+        return 0.0;
+    double J = (v - gn) * mi * mj / (mi + mj);
+    a->vx -= J * nx / mi;
+    a->vy -= J * ny / mi;
+    b->vx += J * nx / mj;
+    b->vy += J * ny / mj;
+    return J;
+}
+
 /* The counters every pair collision moves, and the observer's hook, which
  * sees the pair by identity (smaller id first) rather than by the slot
  * that a reordering may change. */
@@ -132,6 +153,8 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t)
     double Jn = 0.0, Jt = 0.0;
     if (gn < 0.0)
         pair_impulse(s, i, j, mi, mj, nx, ny, gn, t, &Jn, &Jt);
+    if (s->sleep_on && s->cnt.wakes)
+        Jn += pair_lift(a, b, mi, mj, nx, ny, s->prm.v_threshold);
     /* the running sums take the change, not a recount, so that a step
      * costs O(1) whatever N */
     double e1 = grain_energy(s, a, i, mi, &ri1), f1 = grain_energy(s, b, j, mj, &rj1);
@@ -265,7 +288,7 @@ static void maybe_sleep(gr_edmd *s, int32_t i, double ny, double since)
     if (!s->sleep_on || !(ny > 0.0))
         return;
     double v = sqrt(a->vx * a->vx + a->vy * a->vy) + (s->rough ? fabs(s->w[i]) * a->r : 0.0);
-    if (!(v < s->prm.v_sleep) && !(since < s->prm.tc))
+    if ((!(v < s->prm.v_sleep) && !(since < s->prm.tc)) || !edmd_held(s, i))
         return;
     double m = s->m[i], rot, e = grain_energy(s, a, i, m, &rot);
     s->m_K -= e;
@@ -342,8 +365,7 @@ void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t)
         maybe_sleep(s, i, ny, since);
 }
 
-/* Sleeping grain j wakes at rest where it slept, falling again. */
-static void wake(gr_edmd *s, int32_t j, double t)
+void edmd_wake(gr_edmd *s, int32_t j, double t)
 {
     edmd_p *b = &s->p[j];
     b->t = t;
@@ -373,7 +395,7 @@ void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t)
     double dist = sqrt(dx * dx + dy * dy), nx = dx / dist, ny = dy / dist;
     double gn = a->vx * nx + a->vy * ny;
     if (-gn > s->prm.v_wake) {
-        wake(s, j, t);
+        edmd_wake(s, j, t);
         edmd_collide_pair(s, i, j, t);
         return;
     }

@@ -121,6 +121,8 @@ struct gr_edmd {
     gr_edmd_params prm;
     gr_edmd_collapse collapse_asked; /* prm.collapse is it only while collisions dissipate */
     int sleep_on;            /* collapse = sleep under gravity: slow supported grains sleep */
+    int32_t *wake_stack;     /* sleep: the sleepers a wake frees of a support, n of them at most */
+    double t_gate;           /* sleep: the next gate opening, when every sleeper wakes */
     size_t n;
     edmd_p *p;
     double *w, *m, *inertia, *tlast, *tacc;
@@ -288,6 +290,41 @@ static inline int edmd_engine_prefetches(const gr_edmd *s)
     return s->P >= EDMD_PREFETCH_P && !s->q->looks_ahead;
 }
 
+static inline int edmd_wrap_cell(const gr_edmd *s, int ix, int iy)
+{
+    if (ix < 0 || ix >= s->nx) {
+        if (!s->periodic_x)
+            return -1;
+        ix = (ix + s->nx) % s->nx;
+    }
+    if (iy < 0 || iy >= s->ny) {
+        if (!s->periodic_y)
+            return -1;
+        iy = (iy + s->ny) % s->ny;
+    }
+    return ix + s->nx * iy;
+}
+
+/* The 3x3 block of cells around grain i (no repeats in narrow periodic
+ * boxes), in the order the pair loops visit them. */
+static inline int edmd_block_cells(const gr_edmd *s, int32_t i, int cells[9])
+{
+    int c = s->p[i].cell, ix = c % s->nx, iy = c / s->nx;
+    int ns = 0;
+    for (int dy = -1; dy <= 1; dy++)
+        for (int dx = -1; dx <= 1; dx++) {
+            int cc = edmd_wrap_cell(s, ix + dx, iy + dy);
+            if (cc < 0)
+                continue;
+            int dup = 0;
+            for (int k = 0; k < ns; k++)
+                dup |= cells[k] == cc;
+            if (!dup)
+                cells[ns++] = cc;
+        }
+    return ns;
+}
+
 /* Files, bottom-up (docs/methods/edmd.md, "Files and layers"). */
 
 /* alloc.c */
@@ -333,6 +370,16 @@ double edmd_segment_time(const gr_edmd *s, int32_t i, int k, double t_from, doub
 /* unit normal from segment k to a grain at (x, y), and its distance */
 double edmd_segment_normal(const gr_edmd *s, int k, double x, double y, double *nx, double *ny);
 
+/* rest.c (collapse = sleep): 1 if grain i's static and slow contacts hold
+ * it up against gravity; 1 if grain i moves slower than v_sleep; the
+ * sleepers that may rest on grain j (touching it, beside or above), at
+ * most cap of them into out; the first time after t a gate opens (INF:
+ * none, or no sleep model) */
+int edmd_held(const gr_edmd *s, int32_t i);
+int edmd_slow(const gr_edmd *s, int32_t i);
+size_t edmd_rests_on(const gr_edmd *s, int32_t j, int32_t *out, size_t cap);
+double edmd_next_gate(const gr_edmd *s, double t);
+
 /* predict.c */
 double edmd_pair_time(const gr_edmd *s, const edmd_p *a, const edmd_p *b);
 double edmd_wall_time(gr_edmd *s, int32_t i, int wall, double t_from, double horizon);
@@ -366,6 +413,8 @@ void edmd_collide_pair(gr_edmd *s, int32_t i, int32_t j, double t);
 void edmd_collide_wall(gr_edmd *s, int32_t i, int wall, double t);
 /* Moving grain i meets sleeping grain j: j wakes, or i bounces off it. */
 void edmd_collide_sleeper(gr_edmd *s, int32_t i, int32_t j, double t);
+/* Sleeping grain j wakes at rest where it slept, falling again. */
+void edmd_wake(gr_edmd *s, int32_t j, double t);
 int edmd_exit(gr_edmd *s, int32_t i, double t, gr_err *err);
 
 /* sort.c: renumber grains along a Morton curve over the cells */

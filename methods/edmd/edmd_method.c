@@ -112,13 +112,15 @@ static void m_diagnose(const void *st, const char *name, char *msg, size_t n)
     gr_edmd_counters c;
     gr_edmd_get_counters(s, &c);
     (void)name;
+    /* the guard acts on wall and floor collisions too */
+    unsigned long long all = (unsigned long long)(c.pair + c.wall + c.floor);
     if (s->prm.collapse == GR_EDMD_COLLAPSE_TC || s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP)
-        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = %s: a partner collided less than "
-                 "tc = %g ago)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair,
+        snprintf(msg, n, "%llu of %llu collisions made elastic (collapse = %s: a partner collided less than "
+                 "tc = %g ago)", (unsigned long long)c.elastic_guard, all,
                  s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP ? "sleep" : "tc", s->prm.tc);
     else
-        snprintf(msg, n, "%llu of %llu pair collisions made elastic (collapse = threshold: normal speed below "
-                 "v_threshold = %g)", (unsigned long long)c.elastic_guard, (unsigned long long)c.pair,
+        snprintf(msg, n, "%llu of %llu collisions made elastic (collapse = threshold: normal speed below "
+                 "v_threshold = %g)", (unsigned long long)c.elastic_guard, all,
                  s->prm.v_threshold);
 }
 

@@ -4,6 +4,7 @@
  * state-changing events (pair, wall and floor collisions) as steps. */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "edmd_int.h"
 
@@ -16,6 +17,7 @@ int edmd_schedule_all(gr_edmd *s, gr_err *err)
             return gr_fail(err, GR_ERUN, "edmd: out of memory for events");
     if (s->q->build(s))
         return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
+    s->t_gate = edmd_next_gate(s, s->t);
     return GR_OK;
 }
 
@@ -125,15 +127,80 @@ static int after_collision(gr_edmd *s, int32_t i)
     return edmd_sleep_neighbours(s, i) || s->q->update(s, i);
 }
 
+/* Sleeping grain m wakes at time t with a new collision count, so that
+ * its moving neighbours' contacts with it as a sleeper go stale, and its
+ * own events. */
+static int rouse(gr_edmd *s, int32_t m, double t)
+{
+    edmd_wake(s, m, t);
+    s->p[m].ncol++;
+    edmd_list_clear(s, m);
+    return edmd_predict_all(s, m) || s->q->update(s, m);
+}
+
+/* Grain j no longer holds the sleepers beside or above it: they wake at
+ * time t, and those beside or above them, and so on. A grain woken at
+ * rest is about to move and holds nobody: a sleeper over it would pin it
+ * at zero gap, where its bounces take no time. A moving grain j that left
+ * a collision fast (`moving`) is no support either (rest.c counts only
+ * sleepers and slow grains), but it frees only the sleepers nothing else
+ * holds: a grain sliding under a bed it touches would otherwise wake the
+ * whole bed at each of its bounces. */
+static int wake_above(gr_edmd *s, int32_t j, double t, int moving)
+{
+    if (!s->wake_stack && !(s->wake_stack = malloc(s->n * sizeof *s->wake_stack)))
+        return GR_ERUN;
+    int32_t *st = s->wake_stack;
+    size_t top = 0;
+    st[top++] = j;
+    while (top) {
+        int32_t k = st[--top];
+        size_t got = edmd_rests_on(s, k, st + top, s->n - top), kept = top;
+        for (size_t q = top; q < top + got; q++) {
+            if (moving && k == j && edmd_held(s, st[q]))
+                continue;
+            if (rouse(s, st[q], t))
+                return GR_ERUN;
+            st[kept++] = st[q];
+        }
+        top = kept;
+    }
+    return GR_OK;
+}
+
+/* A sleeper may rest on a slow moving grain (rest.c); once that grain
+ * leaves a collision faster than v_sleep it is no support. */
+static int release(gr_edmd *s, int32_t k, double t)
+{
+    if (!s->sleep_on || !edmd_any_asleep(s) || s->p[k].asleep || edmd_slow(s, k))
+        return GR_OK;
+    return wake_above(s, k, t, 1);
+}
+
+/* A gate opens at s->t_gate: the grains over it were no sleeper's
+ * support, but a sleeper may lean on one that rested on the gate, so
+ * every sleeper wakes there. */
+static int gate_opens(gr_edmd *s, gr_err *err)
+{
+    double t = s->t_gate;
+    edmd_measure_advance(s, t);
+    s->t = t;
+    for (size_t m = 0; m < s->n && edmd_any_asleep(s); m++)
+        if (s->p[m].asleep && rouse(s, (int32_t)m, t))
+            return oom(s, err);
+    s->t_gate = edmd_next_gate(s, t);
+    return 0;
+}
+
 /* Moving grain i meets sleeping grain j, which wakes or stays put. */
 static int on_sleeper(gr_edmd *s, int32_t i, int32_t j, double t, gr_err *err)
 {
     s->t = t;
     edmd_collide_sleeper(s, i, j, t);
     edmd_list_clear(s, i);
-    if (!s->p[j].asleep && (edmd_predict_all(s, j) || s->q->update(s, j)))
+    if (!s->p[j].asleep && (edmd_predict_all(s, j) || s->q->update(s, j) || wake_above(s, j, t, 0)))
         return oom(s, err);
-    return after_collision(s, i) ? oom(s, err) : 1;
+    return after_collision(s, i) || release(s, i, t) ? oom(s, err) : 1;
 }
 
 static inline int on_pair(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
@@ -154,7 +221,8 @@ static inline int on_pair(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr
     edmd_collide_pair(s, i, j, t);
     edmd_list_clear(s, i);
     edmd_list_clear(s, j);
-    if (edmd_predict_all(s, i) || edmd_predict_all(s, j) || s->q->update(s, i) || s->q->update(s, j))
+    if (edmd_predict_all(s, i) || edmd_predict_all(s, j) || s->q->update(s, i) || s->q->update(s, j) ||
+        release(s, i, t) || release(s, j, t))
         return oom(s, err);
     return 1;
 }
@@ -177,7 +245,7 @@ static inline int on_wall(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr
     }
     edmd_collide_wall(s, i, w, t);
     edmd_list_clear(s, i);
-    return after_collision(s, i) ? oom(s, err) : 1;
+    return after_collision(s, i) || release(s, i, t) ? oom(s, err) : 1;
 }
 
 static inline int on_cross(gr_edmd *s, int32_t i, const edmd_ev *ev, double t, gr_err *err)
@@ -207,6 +275,11 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         int32_t i = q->top(s, &t);
         if (i == -2)
             return gr_fail(err, GR_ERUN, "edmd: out of memory for the event queue");
+        if (s->t_gate <= t && s->t_gate <= t_end) {
+            if (gate_opens(s, err))
+                return err->code;
+            continue;
+        }
         if (!(t <= t_end) || t == EDMD_INF)
             break;
         q->pop(s);
@@ -229,6 +302,8 @@ int edmd_advance_tree(gr_edmd *s, double t_end, uint64_t max_coll, gr_err *err)
         done += (uint64_t)r;
         s->steps += (uint64_t)r;
     }
+    if (s->t_gate <= t_end && gate_opens(s, err))
+        return err->code;
     if (t_end < EDMD_INF && t_end > s->t)
         s->t = t_end;
     return GR_OK;

@@ -14,7 +14,7 @@ void gr_edmd_params_default(gr_edmd_params *p)
 {
     p->algorithm = GR_EDMD_TREE;
     p->cell = 0.0;
-    p->collapse = GR_EDMD_COLLAPSE_TC;
+    p->collapse = GR_EDMD_COLLAPSE_SLEEP;
     p->tc = 1e-5;
     p->v_threshold = 1e-4;
     p->v_sleep = 1e-2;
@@ -29,8 +29,8 @@ const gr_param gr_edmd_param_table[] = {
     {"algorithm", GR_PARAM_CHOICE, GR_EDMD_TREE, 0, 0, 0, algo_names, "",
      "tree: O(log N) per event; naive: the slides' v1.0, O(N^2)"},
     {"cell", GR_PARAM_REAL, 0.0, 0, INFINITY, 0, NULL, "d", "minimum cell side; 0: the largest diameter"},
-    {"collapse", GR_PARAM_CHOICE, GR_EDMD_COLLAPSE_TC, 0, 0, 0, collapse_names, "",
-     "guard against inelastic collapse"},
+    {"collapse", GR_PARAM_CHOICE, GR_EDMD_COLLAPSE_SLEEP, 0, 0, 0, collapse_names, "",
+     "guard against inelastic collapse; sleep: and held grains come to rest (tc under algorithm = naive)"},
     {"tc", GR_PARAM_REAL, 1e-5, 0, INFINITY, 0, NULL, "tau",
      "TC model: elastic if a partner collided less than tc ago"},
     {"v_threshold", GR_PARAM_REAL, 1e-4, 0, INFINITY, 0, NULL, "d tau-1",
@@ -64,6 +64,9 @@ int gr_edmd_params_from(const gr_scene *sc, const gr_param_values *pv, gr_edmd_p
     p->sort_every = gr_param_get(pv, "sort_every");
     p->tree_arity = (int)gr_param_get(pv, "tree_arity");
     p->calendar = (int)gr_param_get(pv, "queue");
+    /* the naive loop's pair times know no sleepers: its default is tc */
+    if (p->collapse == GR_EDMD_COLLAPSE_SLEEP && p->algorithm == GR_EDMD_NAIVE && !gr_scene_find(sc, "edmd", "collapse"))
+        p->collapse = GR_EDMD_COLLAPSE_TC;
     if (p->collapse == GR_EDMD_COLLAPSE_SLEEP && p->algorithm == GR_EDMD_NAIVE) {
         char where[1200];
         gr_scene_where(sc, "edmd", "collapse", where, sizeof where);

@@ -264,41 +264,6 @@ static int push_cross_and_walls(gr_edmd *s, int32_t i)
     return GR_OK;
 }
 
-static int wrap_cell(const gr_edmd *s, int ix, int iy)
-{
-    if (ix < 0 || ix >= s->nx) {
-        if (!s->periodic_x)
-            return -1;
-        ix = (ix + s->nx) % s->nx;
-    }
-    if (iy < 0 || iy >= s->ny) {
-        if (!s->periodic_y)
-            return -1;
-        iy = (iy + s->ny) % s->ny;
-    }
-    return ix + s->nx * iy;
-}
-
-/* The 3x3 block of cells around grain i (no repeats in narrow periodic
- * boxes), in the order the pair loops visit them. */
-static int block_cells(const gr_edmd *s, int32_t i, int cells[9])
-{
-    int c = s->p[i].cell, ix = c % s->nx, iy = c / s->nx;
-    int ns = 0;
-    for (int dy = -1; dy <= 1; dy++)
-        for (int dx = -1; dx <= 1; dx++) {
-            int cc = wrap_cell(s, ix + dx, iy + dy);
-            if (cc < 0)
-                continue;
-            int dup = 0;
-            for (int k = 0; k < ns; k++)
-                dup |= cells[k] == cc;
-            if (!dup)
-                cells[ns++] = cc;
-        }
-    return ns;
-}
-
 /* At large N an event's grains are anywhere in memory and the pair loops
  * then wait on one cache miss after another: a cell head, its first grain,
  * that grain's successor... Walking the nine cell lists side by side, one
@@ -328,7 +293,7 @@ static void walk_side_by_side(const gr_edmd *s, const int *cells, int ns)
 void edmd_prefetch_block(const gr_edmd *s, int32_t i)
 {
     int cells[9];
-    walk_side_by_side(s, cells, block_cells(s, i, cells));
+    walk_side_by_side(s, cells, edmd_block_cells(s, i, cells));
 }
 
 /* All events of particle i (its list is empty): crossing, walls, pairs in
@@ -338,7 +303,7 @@ int edmd_predict_all(gr_edmd *s, int32_t i)
     if (push_cross_and_walls(s, i))
         return GR_ERUN;
     int cells[9];
-    int ns = block_cells(s, i, cells);
+    int ns = edmd_block_cells(s, i, cells);
     for (int k = 0; k < ns; k++)
         if (push_pairs_in_cell(s, i, cells[k]))
             return GR_ERUN;
@@ -350,7 +315,7 @@ int edmd_predict_all(gr_edmd *s, int32_t i)
 static int sleepers_again(gr_edmd *s, int32_t i, const int *seen, int nseen)
 {
     int cells[9];
-    int ns = block_cells(s, i, cells);
+    int ns = edmd_block_cells(s, i, cells);
     for (int k = 0; k < ns; k++) {
         int fresh = 0;
         for (int q = 0; q < nseen; q++)
@@ -371,10 +336,10 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
     for (int k = -1; k <= 1; k++) {
         int cc;
         switch (dir) {
-        case DIR_RIGHT: cc = wrap_cell(s, ix + 1, iy + k); break;
-        case DIR_LEFT: cc = wrap_cell(s, ix - 1, iy + k); break;
-        case DIR_UP: cc = wrap_cell(s, ix + k, iy + 1); break;
-        default: cc = wrap_cell(s, ix + k, iy - 1); break;
+        case DIR_RIGHT: cc = edmd_wrap_cell(s, ix + 1, iy + k); break;
+        case DIR_LEFT: cc = edmd_wrap_cell(s, ix - 1, iy + k); break;
+        case DIR_UP: cc = edmd_wrap_cell(s, ix + k, iy + 1); break;
+        default: cc = edmd_wrap_cell(s, ix + k, iy - 1); break;
         }
         if (cc < 0)
             continue;
@@ -400,7 +365,7 @@ int edmd_predict_cross(gr_edmd *s, int32_t i, int dir)
 int edmd_sleep_neighbours(gr_edmd *s, int32_t i)
 {
     int cells[9];
-    int ns = block_cells(s, i, cells);
+    int ns = edmd_block_cells(s, i, cells);
     double now = s->t;
     for (int k = 0; k < ns; k++)
         for (int32_t j = s->chead[cells[k]]; j >= 0; j = s->p[j].cnext) {

@@ -40,6 +40,7 @@ void gr_edmd_free(gr_edmd *s)
     free(s->cseg_start);
     free(s->cseg);
     free(s->gone);
+    free(s->wake_stack);
     free(s->sc_silo);
     gr_particles_free(s->scratch);
     gr_rng_free(s->own_rng);
@@ -369,10 +370,6 @@ static int setup_cells(gr_edmd *s, gr_err *err)
         if (s->sort_period && edmd_sort_setup(s, err))
             return err->code;
     }
-    /* the naive loop's pair times know no sleepers (their contacts need a
-     * horizon, the next cell crossing) */
-    if (s->prm.collapse == GR_EDMD_COLLAPSE_SLEEP && s->prm.algorithm == GR_EDMD_NAIVE)
-        return gr_fail(err, GR_EINPUT, "edmd: collapse = sleep needs algorithm = tree");
     if (s->prm.fields) {
         if (s->prm.algorithm == GR_EDMD_NAIVE)
             return gr_fail(err, GR_EINPUT, "edmd: fields need algorithm = tree");
@@ -402,6 +399,11 @@ int gr_edmd_create(const gr_scene *sc, const gr_particles *init, const gr_edmd_p
     s->prm = *prm;
     s->q = prm->calendar && prm->algorithm == GR_EDMD_TREE ? &edmd_queue_calendar : &edmd_queue_tree;
     s->collapse_asked = prm->collapse;
+    /* the naive loop's pair times know no sleepers (their contacts need a
+     * horizon, the next cell crossing): the default sleep is tc there (a
+     * scene that asks for both is refused, params.c) */
+    if (s->collapse_asked == GR_EDMD_COLLAPSE_SLEEP && prm->algorithm == GR_EDMD_NAIVE)
+        s->collapse_asked = GR_EDMD_COLLAPSE_TC;
     int rc = setup_scene(s, sc, init, err);
     set_guard(s);
     if (!rc)

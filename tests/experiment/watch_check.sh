@@ -2,10 +2,10 @@
 # A run's cost watched: a bed of 200 disks settling under gravity on edmd
 # (tests/hard/bed.ini: its events per unit time grow as it comes to rest
 # under the tc and threshold guards) stops with a diagnostic naming the
-# cause and the keys, its last good state kept, within seconds, under the
-# default collapse model and under threshold; a stop signal during a crawl
-# is honoured between two chunks of the advance. The same bed at rest under
-# collapse = sleep, and on dsmc, is tests/hard's. TAP.
+# cause and the keys, its last good state kept, within seconds, under
+# collapse = tc and threshold; a stop signal during a crawl is honoured
+# between two chunks of the advance. The same bed at rest under the default
+# (collapse = sleep), and on dsmc, is tests/hard's. TAP.
 set -u
 . "$(dirname "$0")/tap.sh"
 GRANO=$1

@@ -1,10 +1,12 @@
 /* The sleep model (collapse = sleep): a bed of 200 disks settling under
  * gravity comes to rest at a bounded cost, its energy bookkeeping stays
  * exact across the sleeping grains, none overlaps, and a checkpoint taken
- * while some grains sleep and others move restarts bit for bit. The bed of
- * the scene file is watched by tests/experiment/watch_check.sh; this one
- * is dropped from the whole box, and its first unit of time, in free
- * fall, has few events (115): its bound is 100 times those. */
+ * while some grains sleep and others move restarts bit for bit, and a
+ * grain on one slanted support rolls off it rather than sleeping there.
+ * The bed of the scene file is watched by tests/experiment/watch_check.sh
+ * and tests/hard/hard_cases.py (at most 10 times the events of its first
+ * unit of time); this one is dropped from the whole box, and its first
+ * unit, in free fall, has few events (115): its bound is per grain. */
 #include "test.h"
 
 #include <stdlib.h>
@@ -56,8 +58,9 @@ static double kinetic_of(gr_edmd *s)
     return energy_at(s, 0.0);
 }
 
-/* Events per unit time within 100 times those of the first unit
- * (measured 90 times); the bed reaches K < 1e-6 K0 by t = 60 with every
+/* At most 150 events per grain in any unit of time (measured 107: a grain
+ * sleeps only where its supports hold it, so the bed's last grains roll
+ * into place first); the bed reaches K < 1e-6 K0 by t = 60 with every
  * grain asleep; E(t) - E(0) = -dissipated (the energy of each grain put to
  * sleep counts as dissipated) to 1e-9 E0; no overlap beyond 1e-9. */
 static void bed_comes_to_rest(void **st)
@@ -92,7 +95,7 @@ static void bed_comes_to_rest(void **st)
            "overlap %.2e\n",
            first, worst, worst / first, K1 / K0, t_rest, (unsigned long long)(c.sleeps - c.wakes),
            (unsigned long long)c.sleeps, (unsigned long long)c.wakes, fabs(E1 - E0 + diss - inj) / E0, ov);
-    assert_true(worst <= 100.0 * first);
+    assert_true(worst <= 150.0 * 200);
     assert_true(c.sleeps - c.wakes == 200);
     assert_true(t_rest > 0 && K1 < 1e-6 * K0);
     assert_true(fabs(E1 - E0 + diss - inj) < 1e-9 * E0);
@@ -153,11 +156,45 @@ static void sleeping_checkpoint(void **st)
     gr_edmd_free(b);
 }
 
+/* Grain B dropped on grain A, which rests on the floor, a third of a
+ * diameter off A's top: a disk on one slanted support is no equilibrium,
+ * so B rolls off A, then along the floor to the side wall (a rolling
+ * disk loses nothing), which stops it beside A (the rule
+ * that let a grain sleep on any support from below held it on A's
+ * shoulder, 1.4 d up). */
+static void rolls_off(void **st)
+{
+    (void)st;
+    gr_scene sc = edmd_box(8, 10, 0, 0.5);
+    sc.gravity = 1.0;
+    gr_edmd_params prm;
+    gr_edmd_params_default(&prm);
+    gr_err e = {0};
+    gr_particles *p0 = gr_particles_create(2, &e);
+    gr_particles_push(p0, 5.0, 0.5, 0.5, 1.0, 0, 0, &e);
+    gr_particles_push(p0, 5.3, 2.0, 0.5, 1.0, 0, 0, &e);
+    gr_edmd *s = NULL;
+    assert_int_equal(gr_edmd_create(&sc, p0, &prm, NULL, &s, &e), GR_OK);
+    assert_int_equal(gr_edmd_advance(s, 300.0, 0, &e), GR_OK);
+    gr_particles *p = gr_particles_create(0, &e);
+    assert_int_equal(gr_edmd_snapshot(s, p, &e), GR_OK);
+    gr_edmd_counters c;
+    gr_edmd_get_counters(s, &c);
+    printf("# grain dropped 0.3 d off another's top: at rest at (%.4f, %.6f), v %.3g %.3g w %.3g, A at %.4f, %llu asleep\n", p->x[1], p->y[1], p->vx[1], p->vy[1], p->omega[1], p->x[0],
+           (unsigned long long)(c.sleeps - c.wakes));
+    assert_true(fabs(p->y[1] - 0.5) < 1e-3 && fabs(p->x[1] - p->x[0]) >= 1.0 - 1e-9);
+    assert_true(c.sleeps - c.wakes == 2);
+    gr_particles_free(p);
+    gr_particles_free(p0);
+    gr_edmd_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(bed_comes_to_rest),
         cmocka_unit_test(sleeping_checkpoint),
+        cmocka_unit_test(rolls_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
