@@ -287,8 +287,7 @@ static void maybe_sleep(gr_edmd *s, int32_t i, double ny, double since)
     edmd_p *a = &s->p[i];
     if (!s->sleep_on || !(ny > 0.0))
         return;
-    double v = sqrt(a->vx * a->vx + a->vy * a->vy) + (s->rough ? fabs(s->w[i]) * a->r : 0.0);
-    if ((!(v < s->prm.v_sleep) && !(since < s->prm.tc)) || !edmd_held(s, i))
+    if ((!edmd_slow(s, i) && !(since < s->prm.tc)) || !edmd_held(s, i))
         return;
     double m = s->m[i], rot, e = grain_energy(s, a, i, m, &rot);
     s->m_K -= e;
