@@ -16,6 +16,7 @@
 #include "method.h"
 #include "particles.h"
 #include "scene.h"
+#include "watch.h"
 
 #define CMP_MAXV 8      /* knob values per row */
 #define CMP_MAXROWS 8   /* rows per case */
@@ -28,26 +29,36 @@ typedef struct {
     const char *full;    /* comma-separated values of the full comparison */
     const char *quick;   /* those of --quick */
     const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
-    int role;            /* CMP_SWEEP, CMP_REFERENCE, CMP_BIAS or CMP_MODEL */
+    int role;            /* CMP_SWEEP, CMP_REFERENCE, CMP_BIAS, CMP_MODEL or CMP_LIMIT */
     const char *scene;   /* the row's own variant of the case's scene (same geometry, the
                             method's own model of what it cannot represent), or NULL */
+    const char *why;     /* CMP_LIMIT: what the method lacks that the case needs (the
+                            tables print it beside the row's outcome) */
 } cmp_row;
 enum {
     CMP_SWEEP = 0,     /* its error must not grow as the knob is tightened (--quick checks) */
     CMP_REFERENCE = 1, /* its result is the case's reference (a long or exact run) */
     CMP_BIAS = 2,      /* shows a bias that grows along the knob: reported, not checked */
-    CMP_MODEL = 3      /* converges to its own model's answer, not the reference's: its
+    CMP_MODEL = 3,     /* converges to its own model's answer, not the reference's: its
                           value must settle as the knob is tightened (checked), its error
                           against the reference is reported */
+    CMP_LIMIT = 4      /* the method models the scene's features but not the physics the
+                          case measures: its outcome (a failed run with its diagnostic, or
+                          an error beyond the case's tolerance) is the row's result, and
+                          a value that clearly reaches the tolerance fails the check (the
+                          row is then no limit: it must become a sweep) */
 };
 
 /* What a measurement gives: the quantity, its statistical error from
  * within the run (NaN when the run gives none), a second quantity (aux),
  * and the steps or events done. */
 #define CMP_NBINS 24 /* profile bins, 1 d high from the floor's mean height */
+#define CMP_DIAG 400 /* the validity limits a run broke, as text */
 typedef struct {
     double value, sem, aux;
     double steps;
+    char diag[CMP_DIAG];          /* "name count/steps (key), ..." or "" */
+    exp_watch *watch;             /* the run's cost watch (cmp_advance), or NULL */
     int nprof;                    /* 4 * CMP_NBINS when the case measures profiles, else 0 */
     double prof[4 * CMP_NBINS];   /* number density, its error bar, temperature, its error bar */
 } cmp_meas;
@@ -72,8 +83,10 @@ struct cmp_case {
     int seeds_full, seeds_quick; /* independent realisations */
     double tol_edmd;       /* edmd's relative deviation from the analytic value must stay
                               below this (--quick test); 0: none */
-    double tol_all;        /* so must every row's at its finest setting (the static
-                              cases), CMP_BIAS rows aside; 0: none */
+    double tol;            /* the error a user of the case accepts, against its reference:
+                              a sweep row's finest setting must reach it within its error
+                              bar, a limit row's must not clearly reach it (bias and model
+                              rows are reported against it, not checked) */
     cmp_measure_fn measure;
     cmp_ref_fn reference;
     cmp_prepare_fn prepare;   /* NULL: the scene's [init] */
@@ -99,6 +112,12 @@ int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas 
 int cmp_measure_silo_widths(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 double cmp_ref_silo_widths(const gr_scene *sc, double *aux_ref);
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+
+/* Advance the unit's instance to t as grano run does: watched for a time
+ * that stalls or a cost that grows past [run] max_cost_growth (an
+ * inelastic collapse stops with the diagnostic instead of running for
+ * ever), when m has a watch (cmp_unit.c). */
+int cmp_advance(gr_sim *s, const gr_scene *sc, const cmp_meas *m, double t, gr_err *err);
 
 /* The runs of a comparison: one per (case, row, knob value, seed). */
 typedef struct {

@@ -170,8 +170,8 @@ int cmp_measure_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_me
     if (!rc && tau > sc->run.until)
         rc = gr_fail(err, GR_EINPUT, "%s: [run] until = %g is shorter than Haff's time %g", sc->path,
                      sc->run.until, tau);
-    rc = rc || gr_sim_advance(s, tau / 2, 0, err) || temperature(s, p, &T1, err) ||
-         gr_sim_advance(s, tau, 0, err) || temperature(s, p, &T2, err) || steps_done(s, &out->steps, err);
+    rc = rc || cmp_advance(s, sc, out, tau / 2, err) || temperature(s, p, &T1, err) ||
+         cmp_advance(s, sc, out, tau, err) || temperature(s, p, &T2, err) || steps_done(s, &out->steps, err);
     gr_particles_free(p);
     if (rc)
         return err->code ? err->code : GR_ERUN;
@@ -220,13 +220,13 @@ int cmp_measure_eos(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
     (void)c;
     double R[NBLOCKS], eta = 0, t0 = sc->run.until / 5, d = sc->species[0].diameter;
     gr_particles *p = gr_particles_create(0, err);
-    int rc = !p || gr_sim_advance(s, t0, 0, err);
+    int rc = !p || cmp_advance(s, sc, out, t0, err);
     for (int b = 0; b < NBLOCKS && !rc; b++) {
         gr_obs o;
         double n = 0, T = 0;
         gr_sim_reset_window(s);
         for (int k = 1; k <= NSAMP && !rc; k++) {
-            rc = gr_sim_advance(s, t0 + (sc->run.until - t0) * (b * NSAMP + k) / (NBLOCKS * NSAMP), 0, err) ||
+            rc = cmp_advance(s, sc, out, t0 + (sc->run.until - t0) * (b * NSAMP + k) / (NBLOCKS * NSAMP), err) ||
                  gr_sim_snapshot(s, p, err);
             gr_obs_from_particles(p, 0, &o);
             n += bulk_density(p, sc) / NSAMP, T += o.temperature / NSAMP;
@@ -311,13 +311,13 @@ int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *
     double H[NBLOCKS], T[NBLOCKS], t0 = sc->run.until / 5, sem;
     double cnt[NBLOCKS][CMP_NBINS] = {{0}}, ke[NBLOCKS][CMP_NBINS] = {{0}};
     gr_particles *p = gr_particles_create(0, err);
-    int rc = !p || gr_sim_advance(s, t0, 0, err);
+    int rc = !p || cmp_advance(s, sc, out, t0, err);
     for (int b = 0; b < NBLOCKS && !rc; b++) {
         H[b] = T[b] = 0;
         for (int k = 1; k <= BED_SAMPLES && !rc; k++) {
             double t = t0 + (sc->run.until - t0) * (b * BED_SAMPLES + k) / (NBLOCKS * BED_SAMPLES);
             gr_obs o;
-            if ((rc = gr_sim_advance(s, t, 0, err) || gr_sim_snapshot(s, p, err) || below_floor(p, sc, t, err)))
+            if ((rc = cmp_advance(s, sc, out, t, err) || gr_sim_snapshot(s, p, err) || below_floor(p, sc, t, err)))
                 break;
             gr_obs_from_particles(p, sc->gravity, &o);
             H[b] += o.epot_grav / (sc->gravity * (double)o.n_mobile) / BED_SAMPLES;
@@ -346,11 +346,11 @@ int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas 
     if (!(t0 < sc->run.until))
         return gr_fail(err, GR_EINPUT, "%s: the silo case needs [silo] open_time + 5 < [run] until", sc->path);
     gr_obs o;
-    int rc = gr_sim_advance(s, t0, 0, err) || gr_sim_observe(s, &o, err);
+    int rc = cmp_advance(s, sc, out, t0, err) || gr_sim_observe(s, &o, err);
     uint64_t last = o.outflow;
     for (int b = 0; b < NBLOCKS && !rc; b++) {
         double t1 = t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS;
-        if ((rc = gr_sim_advance(s, t1, 0, err) || gr_sim_observe(s, &o, err)))
+        if ((rc = cmp_advance(s, sc, out, t1, err) || gr_sim_observe(s, &o, err)))
             break;
         W[b] = (double)(o.outflow - last) / ((sc->run.until - t0) / NBLOCKS);
         K[b] = o.ekin_trans / (double)(o.n_mobile ? o.n_mobile : 1);

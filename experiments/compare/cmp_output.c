@@ -24,7 +24,10 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
             rl ? rl : "analytic");
     if (rl && isfinite(ref->analytic))
         fprintf(f, ", analytic %.8g", ref->analytic);
-    fprintf(f, "; %s: reference %.6g\n", c->aux, ref->aux);
+    fprintf(f, "; %s: reference %.6g", c->aux, ref->aux);
+    if (c->tol > 0)
+        fprintf(f, "; tolerance %.3g", c->tol);
+    fprintf(f, "\n");
     fprintf(f, "%-9s %-14s %-9s %5s %9s %11s %-24s %-20s %12s %s\n", "method", "knob", "value", "runs", "wall/s",
             "steps", "measured +- error bar", "relative error", c->aux, "");
     for (size_t i = 0; i < n; i++) {
@@ -32,15 +35,24 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
         char meas[64], er[64];
         snprintf(meas, sizeof meas, "%.7g +- %.2g", p->mean, p->sem);
         snprintf(er, sizeof er, "%.3g +- %.2g", p->error, p->error_sem);
-        fprintf(f, "%-9s %-14s %-9s %2d/%-2d %9.3g %11.4g %-24s %-20s %12.5g %s\n", p->row->label,
-                p->row->knob ? p->row->knob : "-", p->value[0] ? p->value : "-", p->nok, p->n, p->wall, p->steps,
-                meas, er, p->aux,
-                p->nok < p->n ? "FAILED"
+        int limit = p->row->role == CMP_LIMIT;
+        fprintf(f, "%-9s %-14s %-9s %2d/%-2d %9.3g %11.4g %-24s %-20s %12.5g %s%s%s\n", p->row->label,
+                p->row->knob ? p->row->knob : "-", p->value[0] ? p->value : "-", p->nok, p->n,
+                p->nok ? p->wall : p->fail_wall, p->steps, meas, er, p->aux,
+                p->nok < p->n ? (limit ? "(failed: the method's limit)" : "FAILED")
                 : p->row->role == CMP_REFERENCE ? "(reference)"
                 : p->row->role == CMP_MODEL && p->error > 2 * p->error_sem ? "(its own model's answer)"
-                : p->error > 2 * p->error_sem ? "" : "(within the error bar)");
+                : p->error > 2 * p->error_sem ? "" : "(within the error bar)",
+                p->row->role == CMP_REFERENCE || p->outcome == CMP_OUT_NONE || p->nok < p->n ? "" : " tolerance: ",
+                p->row->role == CMP_REFERENCE || p->outcome == CMP_OUT_NONE || p->nok < p->n
+                    ? ""
+                    : cmp_outcome_name(p->outcome));
+        if (limit && (i == 0 || pts[i - 1].row != p->row))
+            fprintf(f, "          limit: %s\n", p->row->why ? p->row->why : "");
         if (p->msg[0])
             fprintf(f, "          %s\n", p->msg);
+        if (p->diag[0])
+            fprintf(f, "          validity limits broken: %s\n", p->diag);
     }
 }
 
@@ -50,21 +62,23 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
                    gr_err *err)
 {
     size_t m = n ? n : 1;
-    const char **str = malloc(5 * m * sizeof *str);
-    double *num = malloc(13 * m * sizeof *num);
+    const char **str = malloc(8 * m * sizeof *str);
+    double *num = malloc(14 * m * sizeof *num);
     if (!str || !num) {
         free(str), free(num);
         return gr_fail(err, GR_ERUN, "out of memory");
     }
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
-        const char *s[5] = {p->row->method, p->row->label, p->row->knob ? p->row->knob : "", p->value,
-                            cmp_role_name(p->row->role)};
-        double v[13] = {p->n, p->nok, p->wall, p->steps, p->mean, p->sem, ref->value, ref->sem, p->error,
-                        p->error_sem, p->aux, ref->aux, ref->analytic};
-        for (int k = 0; k < 5; k++)
+        const char *s[8] = {p->row->method, p->row->label, p->row->knob ? p->row->knob : "", p->value,
+                            cmp_role_name(p->row->role),
+                            p->row->role == CMP_REFERENCE ? "reference" : cmp_outcome_name(p->outcome),
+                            p->msg, p->diag};
+        double v[14] = {p->n, p->nok, p->wall, p->steps, p->mean, p->sem, ref->value, ref->sem, p->error,
+                        p->error_sem, p->aux, ref->aux, ref->analytic, p->fail_wall};
+        for (int k = 0; k < 8; k++)
             str[k * m + i] = s[k];
-        for (int k = 0; k < 13; k++)
+        for (int k = 0; k < 14; k++)
             num[k * m + i] = v[k];
     }
     const char *rl = cmp_ref_label(c);
@@ -83,7 +97,13 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
          str + 2 * m, 0},
         {"knob_value", "", "the knob's value as written in the case (':' between the values of two keys)",
          EXP_STR, str + 3 * m, 0},
-        {"role", "", "sweep, reference, bias or model (docs/comparison.md)", EXP_STR, str + 4 * m, 0},
+        {"role", "", "sweep, reference, bias, model or limit (docs/comparison.md)", EXP_STR, str + 4 * m, 0},
+        {"outcome", "", "against the case's tolerance: within, beyond or unclear (error +- 2 error bars), "
+                        "failed, some runs failed, reference, no tolerance", EXP_STR, str + 5 * m, 0},
+        {"message", "", "the first failed run's message, where it stopped (empty: none failed)", EXP_STR,
+         str + 6 * m, 0},
+        {"diagnostics", "", "validity limits the first run broke: name, count, the key that changes it",
+         EXP_STR, str + 7 * m, 0},
         {"runs", "1", "independent runs (seeds)", EXP_INT, num, 0},
         {"finished", "1", "runs that finished with finite numbers", EXP_INT, num + m, 0},
         {"wall_s", "s", "wall time per run", EXP_F64, num + 2 * m, 0},
@@ -98,11 +118,16 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
         {"aux", c->aux_unit, daux, EXP_F64, num + 10 * m, 0},
         {"aux_reference", c->aux_unit, dauxref, EXP_F64, num + 11 * m, 0},
         {"analytic", c->unit, dan, EXP_F64, num + 12 * m, 0},
+        {"failed_wall_s", "s", "wall time per failed run, to its failure (NaN: none failed)", EXP_F64,
+         num + 13 * m, 0},
     };
     char name[128];
     snprintf(name, sizeof name, "cases/%s", c->name);
     int rc = exp_tab_write(h, name, desc, n, cols, sizeof cols / sizeof cols[0], err);
+    char tol[32];
+    snprintf(tol, sizeof tol, "%.6g", c->tol);
     rc = rc || exp_tab_attr(h, name, "quantity", c->quantity, err) || exp_tab_attr(h, name, "aux", c->aux, err) ||
+         exp_tab_attr(h, name, "tolerance", tol, err) ||
          exp_tab_attr(h, name, "reference", rl ? rl : "analytic", err) ||
          exp_tab_attr(h, name, "scene", c->scene, err);
     free(str), free(num);
@@ -177,10 +202,11 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
     fprintf(gp, "plot ");
     for (int r = 0, first = 1; r < nrow; r++)
         if (has[r]) {
-            fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 lc %d t '%s%s%s', $r%d u 1:2:3:4 w xerrorbars lc %d notitle, "
+            fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 lc %d t '%s%s%s%s', $r%d u 1:2:3:4 w xerrorbars lc %d notitle, "
                         "$r%d u 1:2:5 w labels offset 0.8,0.8 font ',9' notitle",
                     first ? "" : ", ", r, r + 1, c->rows[r].label, c->rows[r].knob ? " by " : "",
-                    c->rows[r].knob ? c->rows[r].knob : "", r, r + 1, r);
+                    c->rows[r].knob ? c->rows[r].knob : "", c->rows[r].role == CMP_LIMIT ? " (its limit)" : "", r,
+                    r + 1, r);
             first = 0;
         }
     fprintf(gp, "\n");
@@ -270,7 +296,7 @@ static int one_case(const cmp_plan *pl, char *const *parts, const cmp_case *c, F
     *nrr = cmp_reach(*pts, *n, rr);
     cmp_reach_text(stdout, rr, *nrr);
     cmp_reach_text(txt, rr, *nrr);
-    *bad += cmp_check(c, *pts, *n, ref);
+    *bad += cmp_check(c, *pts, *n, ref, pl->quick);
     if (h_case(h, c, *pts, *n, ref, err) || cmp_reach_h5(h, c->name, rr, *nrr, err) ||
         cmp_profiles(pl, parts, c, txt, h, err))
         return err->code;

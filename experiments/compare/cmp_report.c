@@ -11,40 +11,73 @@
 #include "parts.h"
 #include "table.h"
 
-/* One part's result: ok, value, sem, aux, steps, wall. */
-static int read_part(const char *path, double v[6], char *msg, size_t n, gr_err *err)
+/* Text entry `name` of an open part into out (n bytes), "" if absent. */
+static void get_text(gr_ckpt *ck, const char *name, char *out, size_t n)
+{
+    size_t len;
+    gr_err e = {0};
+    out[0] = 0;
+    if (!gr_ckpt_len(ck, name, &len, &e) && len < n)
+        gr_ckpt_get_bytes(ck, name, out, len, &e);
+}
+
+/* One part's result: ok, value, sem, aux, steps, wall; its failure's
+ * message and its broken validity limits. */
+static int read_part(const char *path, double v[6], char *msg, size_t n, char *diag, size_t nd, gr_err *err)
 {
     gr_ckpt *ck = gr_ckpt_open(path, err);
     if (!ck)
         return err->code;
     int rc = gr_ckpt_get_f64(ck, "result", v, 6, err);
-    size_t len;
     gr_err e = {0};
-    msg[0] = 0;
-    if (!rc && !gr_ckpt_len(ck, "message", &len, &e) && len < n)
-        gr_ckpt_get_bytes(ck, "message", msg, len, &e);
+    get_text(ck, "message", msg, n);
+    get_text(ck, "diag", diag, nd);
     gr_ckpt_close(ck, &e);
     return rc;
+}
+
+const char *cmp_outcome_name(int outcome)
+{
+    static const char *const names[] = {"failed", "some runs failed", "within", "beyond", "unclear",
+                                        "no tolerance"};
+    return outcome >= 0 && outcome <= CMP_OUT_NONE ? names[outcome] : "?";
+}
+
+/* The point's outcome against tolerance tol (0: none). */
+static int outcome(const cmp_point *p, double tol)
+{
+    if (!p->nok)
+        return CMP_OUT_FAILED;
+    if (p->nok < p->n)
+        return CMP_OUT_SOME_FAILED;
+    if (!(tol > 0))
+        return CMP_OUT_NONE;
+    if (p->error + 2 * p->error_sem <= tol)
+        return CMP_OUT_WITHIN;
+    return p->error - 2 * p->error_sem > tol ? CMP_OUT_BEYOND : CMP_OUT_UNCLEAR;
 }
 
 /* Pool the seeds of point *pt (units first..first+nseeds-1). */
 static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point *pt, gr_err *err)
 {
     double sum = 0, sum2 = 0, semw = 0;
-    int nsem = 0;
+    int nsem = 0, nfail = 0;
     pt->wall = pt->steps = pt->aux = 0;
     for (size_t k = first; k < pl->nunits && pl->units[k].c == pl->units[first].c &&
                            pl->units[k].row == pl->units[first].row &&
                            !strcmp(pl->units[k].value, pl->units[first].value);
          k++) {
         double v[6];
-        char msg[600];
-        if (read_part(parts[k], v, msg, sizeof msg, err))
+        char msg[1100], diag[CMP_DIAG];
+        if (read_part(parts[k], v, msg, sizeof msg, diag, sizeof diag, err))
             return err->code;
         pt->n++;
+        if (!pt->diag[0])
+            snprintf(pt->diag, sizeof pt->diag, "%s", diag);
         if (!(v[0] > 0)) {
             if (!pt->msg[0])
-                snprintf(pt->msg, sizeof pt->msg, "seed %d: %.200s", pl->units[k].seed, msg);
+                snprintf(pt->msg, sizeof pt->msg, "seed %d: %.600s", pl->units[k].seed, msg);
+            pt->fail_wall += v[5], nfail++;
             continue;
         }
         pt->nok++;
@@ -54,6 +87,7 @@ static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point 
         pt->aux += v[3], pt->steps += v[4], pt->wall += v[5];
     }
     int m = pt->nok;
+    pt->fail_wall = nfail ? pt->fail_wall / nfail : NAN;
     pt->mean = m ? sum / m : NAN;
     pt->aux = m ? pt->aux / m : NAN;
     pt->wall = m ? pt->wall / m : NAN;
@@ -120,6 +154,7 @@ int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_p
         pt->error = is_ref ? 0 : fabs(pt->mean - ref->value) / fabs(ref->value);
         /* against a measured reference the two error bars add */
         pt->error_sem = is_ref ? 0 : hypot(pt->sem, ref->sem) / fabs(ref->value);
+        pt->outcome = outcome(pt, is_ref ? 0 : c->tol);
     }
     return GR_OK;
 }
@@ -138,35 +173,68 @@ static int settles(const cmp_case *c, const cmp_point *p, const cmp_point *q, co
     return 1;
 }
 
+/* Whether the last value of a row's quick list is that of its full one:
+ * a quick run checks the tolerance only at the setting the full run ends
+ * on (a row's coarse settings may miss it by design). */
+static int ends_as_full(const cmp_row *r)
+{
+    const char *a = strrchr(r->quick, ','), *b = strrchr(r->full, ',');
+    return !strcmp(a ? a + 1 : r->quick, b ? b + 1 : r->full);
+}
+
+/* The tolerance checks of point p, the last of its row when finest: a
+ * sweep row's finest setting reaches the case's tolerance (its error minus
+ * two error bars within it); a limit row's settings do not clearly reach
+ * it (a run failed, or its error plus two error bars beyond it), and a
+ * limit row whose runs all finish without a number fails. */
+static int tolerance(const cmp_case *c, const cmp_point *p, int finest, int quick)
+{
+    int role = p->row->role;
+    if (role == CMP_SWEEP && finest && c->tol > 0 && p->outcome == CMP_OUT_BEYOND && (!quick || ends_as_full(p->row))) {
+        printf("  CHECK FAILED %s %s %s: error %.3g +- %.2g, beyond the case's tolerance %.3g\n", c->name,
+               p->row->label, p->value, p->error, p->error_sem, c->tol);
+        return 1;
+    }
+    if (role == CMP_LIMIT && p->outcome == CMP_OUT_WITHIN) {
+        printf("  CHECK FAILED %s %s %s: error %.3g +- %.2g reaches the tolerance %.3g: the row is no limit "
+               "(make it a sweep)\n", c->name, p->row->label, p->value, p->error, p->error_sem, c->tol);
+        return 1;
+    }
+    return 0;
+}
+
 /* The checks of docs/comparison.md: each swept row's error does not grow as
  * its knob is tightened (values are listed coarse to fine) beyond the error
- * bars, which is how it falls until the statistical floor; a model row's
- * value settles (its error against the reference is its model's); edmd within the
- * case's tolerance of the analytic value; every run finished with finite
+ * bars, which is how it falls until the statistical floor, and its finest
+ * setting reaches the case's tolerance; a model row's value settles (its
+ * error against the reference is its model's); a limit row does not reach
+ * the tolerance, and its failures are its result; edmd within the case's
+ * tolerance of the analytic value; every other run finished with finite
  * numbers. Failures are printed; returns how many. */
-int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref)
+int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref, int quick)
 {
     int bad = 0;
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
-        if (p->nok < p->n || !isfinite(p->mean) || !isfinite(p->aux) || !isfinite(p->error_sem)) {
+        int limit = p->row->role == CMP_LIMIT;
+        if (!limit && (p->nok < p->n || !isfinite(p->mean) || !isfinite(p->aux) || !isfinite(p->error_sem))) {
             printf("  CHECK FAILED %s %s %s: %s\n", c->name, p->row->label, p->value,
                    p->msg[0] ? p->msg : "a non-finite number");
             bad++;
         }
+        if (limit && p->nok && !isfinite(p->mean)) {
+            printf("  CHECK FAILED %s %s %s: finished without a number, and said nothing\n", c->name,
+                   p->row->label, p->value);
+            bad++;
+        }
         double dev = fabs(p->mean - ref->analytic) / fabs(ref->analytic);
-        if (!strcmp(p->row->method, "edmd") && c->tol_edmd > 0 && !(dev <= c->tol_edmd)) {
+        if (!limit && !strcmp(p->row->method, "edmd") && c->tol_edmd > 0 && !(dev <= c->tol_edmd)) {
             printf("  CHECK FAILED %s edmd: %.3g from the analytic value, beyond the tolerance %.3g\n", c->name,
                    dev, c->tol_edmd);
             bad++;
         }
         int finest = i + 1 == n || pts[i + 1].row != p->row;
-        if (c->tol_all > 0 && finest && p->row->role != CMP_BIAS && p->row->role != CMP_MODEL &&
-            !(dev <= c->tol_all)) {
-            printf("  CHECK FAILED %s %s %s: %.3g from the analytic value, beyond the tolerance %.3g\n", c->name,
-                   p->row->label, p->value, dev, c->tol_all);
-            bad++;
-        }
+        bad += tolerance(c, p, finest, quick);
         if (p->row->role == CMP_MODEL && i + 2 < n && pts[i + 2].row == p->row)
             bad += settles(c, p, p + 1, p + 2);
         if (p->row->role == CMP_SWEEP && i + 1 < n && pts[i + 1].row == p->row) {

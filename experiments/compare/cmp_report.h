@@ -14,8 +14,19 @@ typedef struct {
     double aux;            /* the second quantity (mean over seeds) */
     double wall, steps;    /* per run */
     double error, error_sem; /* |mean - ref| / |ref| and sem / |ref| */
-    char msg[240];         /* the first failure */
+    char msg[640];         /* the first failure */
+    char diag[CMP_DIAG];   /* the first run's broken validity limits ("" if none) */
+    double fail_wall;      /* mean wall time of the failed runs to their failure */
+    int outcome;           /* against the case's tolerance (CMP_OUT_*) */
 } cmp_point;
+
+/* A point's outcome against its case's tolerance: every run failed, some
+ * failed, the error clearly within the tolerance (error + 2 error bars),
+ * clearly beyond it (error - 2 error bars), or the error bar straddles it. */
+enum { CMP_OUT_FAILED, CMP_OUT_SOME_FAILED, CMP_OUT_WITHIN, CMP_OUT_BEYOND, CMP_OUT_UNCLEAR, CMP_OUT_NONE };
+/* Its name in the tables ("failed", "some runs failed", "within", "beyond",
+ * "unclear", "no tolerance"). */
+const char *cmp_outcome_name(int outcome);
 
 /* A case's references: the value errors are taken against (the
  * CMP_REFERENCE row's result, or the analytic value), its error bar, and
@@ -29,7 +40,8 @@ typedef struct {
  * references (NaN when the case has no runs). */
 int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_point *pts, size_t *npts,
                 cmp_refs *ref, gr_err *err);
-/* The checks (printed); returns how many failed. */
-int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref);
+/* The checks (printed); returns how many failed. quick: the plan is
+ * --quick's (the tolerance is checked where a row ends as in the full). */
+int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs *ref, int quick);
 
 #endif

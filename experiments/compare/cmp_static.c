@@ -1,5 +1,6 @@
 /* grano compare's resting column and pile: the force on the floor, read
- * from the method's contact network (dem and cd give one), against the
+ * from the method's contact network (dem and cd give one) or, for a method
+ * of instantaneous collisions, from its stress at the floor, against the
  * static answer, and the packing fraction of the bulk.
  *
  * The static answer is Janssen's law in 2-D: the walls' friction carries
@@ -14,6 +15,7 @@
  * mu (docs/comparison.md says how it was chosen and how well it holds).
  */
 #include <math.h>
+#include <stdlib.h>
 
 #include "cmp.h"
 #include "contacts.h"
@@ -35,20 +37,48 @@ static double janssen_lambda(const gr_scene *sc)
     return sc->mat.tangential != GR_TANG_NONE && sc->mat.mu > 0 ? sc->width / (2 * sc->mat.mu * k0) : INFINITY;
 }
 
+/* The floor's force from a method without a contact network (hard
+ * disks, DSMC): its collisional and kinetic stress over the window since
+ * the last call, in the bottom row of cells 1 d high, plus the weight that
+ * row's own grains put on the floor. In a static column the force through
+ * height y is F - g (mass below y); averaged over the row it is
+ * F - g sum m_i (1 - y_i / h), which is exact for grains stacked one
+ * above the other and close for a packing. p NULL: start the window. */
+static int floor_from_stress(gr_sim *s, const gr_scene *sc, const gr_particles *p, double *base, gr_err *err)
+{
+    int ny = (int)fmax(1, round(sc->height / sc->species[0].diameter));
+    double global[4], *cells = malloc((size_t)ny * 4 * sizeof *cells), h = sc->height / ny, w = 0;
+    if (!cells)
+        return gr_fail(err, GR_ERUN, "out of memory");
+    int rc = gr_sim_stress(s, 1, ny, global, cells, err);
+    for (size_t i = 0; !rc && p && i < p->n; i++)
+        if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)) && p->y[i] < h)
+            w += p->mass[i] * (1 - fmax(p->y[i], 0) / h);
+    *base = rc ? NAN : sc->width * cells[3] + sc->gravity * w;
+    free(cells);
+    return rc;
+}
+
 /* The floor's force over Janssen's, and the packing fraction of the bulk
  * (grains with centres between a quarter and three quarters of the
- * height of the highest grain's top), at the present time. */
+ * height of the highest grain's top), at the present time: from the
+ * contact network where the method gives one, else from its stress. */
 static int pile_now(gr_sim *s, const gr_scene *sc, gr_particles *p, gr_contacts *k, double *ratio, double *phi,
                     gr_err *err)
 {
     if (sc->side[GR_BOTTOM] != GR_BC_WALL)
         return gr_fail(err, GR_EINPUT, "%s: the column cases need a floor ([domain] bottom = wall)", sc->path);
-    if (gr_sim_snapshot(s, p, err) || gr_sim_contacts(s, k, err))
-        return err->code;
     double base = 0, M = 0, top = 0, a = 0, mb = 0;
-    for (size_t r = 0; r < k->n; r++)
-        if (k->j[r] == floor_wall(sc))
-            base += k->fn[r];
+    if (gr_sim_snapshot(s, p, err))
+        return err->code;
+    if (gr_method_ops(gr_sim_type(s)) & GR_OP_CONTACTS) {
+        if (gr_sim_contacts(s, k, err))
+            return err->code;
+        for (size_t r = 0; r < k->n; r++)
+            if (k->j[r] == floor_wall(sc))
+                base += k->fn[r];
+    } else if (floor_from_stress(s, sc, p, &base, err))
+        return err->code;
     for (size_t i = 0; i < p->n; i++)
         if (!(p->flags[i] & (GR_PF_FIXED | GR_PF_GONE)))
             M += p->mass[i], top = fmax(top, p->y[i] + p->radius[i]);
@@ -72,8 +102,12 @@ int cmp_measure_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_mea
     gr_particles *p = gr_particles_create(0, err);
     gr_contacts *k = p ? gr_contacts_create(64, err) : NULL;
     int rc = !k;
+    double first;
+    int by_stress = !(gr_method_ops(gr_sim_type(s)) & GR_OP_CONTACTS);
+    if (!rc && by_stress) /* the first window of the stress starts at t0 */
+        rc = cmp_advance(s, sc, out, t0, err) || floor_from_stress(s, sc, NULL, &first, err);
     for (int b = 0; b < NBLOCKS && !rc; b++)
-        rc = gr_sim_advance(s, t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS, 0, err) ||
+        rc = cmp_advance(s, sc, out, t0 + (sc->run.until - t0) * (b + 1) / NBLOCKS, err) ||
              pile_now(s, sc, p, k, &R[b], &phi[b], err);
     gr_contacts_free(k);
     gr_particles_free(p);

@@ -110,6 +110,34 @@ gr_scene *cmp_unit_scene(const cmp_plan *pl, const cmp_unit *u, gr_err *err)
     return sc;
 }
 
+/* The validity limits the run broke, "name count in N steps (key), ...",
+ * and for a run that failed, where it stopped: what a row that meets its
+ * method's limit reports beside the failure. */
+static void diagnose(gr_sim *s, int failed, cmp_meas *m, gr_err *err)
+{
+    gr_diag dg[GR_OBS_MAX];
+    size_t n = gr_sim_diagnostics(s, dg, GR_OBS_MAX), k = 0;
+    uint64_t steps = 0;
+    const char *unit = "steps";
+    if (!gr_sim_counter(s, "steps", &steps) && gr_sim_counter(s, "events", &steps))
+        unit = "events";
+    for (size_t i = 0; i < n && k + 1 < sizeof m->diag; i++)
+        k += (size_t)snprintf(m->diag + k, sizeof m->diag - k, "%s%s %llu in %llu %s (%s)", i ? "; " : "",
+                              dg[i].name, (unsigned long long)dg[i].count, (unsigned long long)steps, unit,
+                              dg[i].key);
+    if (failed) {
+        size_t e = strlen(err->msg);
+        snprintf(err->msg + e, sizeof err->msg - e, " [stopped at t = %.4g after %llu %s]", gr_sim_time(s),
+                 (unsigned long long)steps, unit);
+        m->steps = (double)steps;
+    }
+}
+
+int cmp_advance(gr_sim *s, const gr_scene *sc, const cmp_meas *m, double t, gr_err *err)
+{
+    return m->watch ? exp_watch_advance(m->watch, s, sc, t, NULL, err) : gr_sim_advance(s, t, 0, err);
+}
+
 /* Measure the unit: scene, initial grains, instance, measurement; the
  * wall time covers the instance and the measurement (not the preparation). */
 static int measure(const cmp_plan *pl, const cmp_unit *u, cmp_meas *m, double *wall, gr_err *err)
@@ -124,9 +152,16 @@ static int measure(const cmp_plan *pl, const cmp_unit *u, cmp_meas *m, double *w
         rc = u->c->prepare ? u->c->prepare(sc, p, err) : gr_init_particles(sc, p, err);
     gr_sim *s = NULL;
     double t0 = gr_wall_seconds();
-    if (!rc)
-        rc = gr_sim_create(mt, sc, p, &s, err) || u->c->measure(u->c, s, sc, m, err);
+    exp_watch w;
+    if (!rc && !(rc = gr_sim_create(mt, sc, p, &s, err))) {
+        exp_watch_init(&w, s, &sc->run);
+        m->watch = &w;
+        rc = u->c->measure(u->c, s, sc, m, err);
+        m->watch = NULL;
+    }
     *wall = gr_wall_seconds() - t0;
+    if (s)
+        diagnose(s, rc, m, err);
     gr_sim_free(s);
     gr_particles_free(p);
     gr_scene_free(sc);
@@ -134,7 +169,9 @@ static int measure(const cmp_plan *pl, const cmp_unit *u, cmp_meas *m, double *w
 }
 
 /* The part: key, ok, value, sem, aux, steps, wall; a failed run leaves its
- * message (a method may go unstable at a coarse setting: that is a result). */
+ * message (a method may go unstable at a coarse setting: that is a result),
+ * and the run its broken validity limits. The wall time and steps of a
+ * failed run are those to the failure. */
 int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, volatile double *progress,
                  gr_err *err)
 {
@@ -153,6 +190,7 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
     double v[6] = {rc ? 0 : 1, m.value, m.sem, m.aux, m.steps, wall};
     int w = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err) || gr_ckpt_put_f64(ck, "result", v, 6, err) ||
             (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err)) ||
+            (m.diag[0] && gr_ckpt_put_bytes(ck, "diag", m.diag, strlen(m.diag) + 1, err)) ||
             (!rc && m.nprof && gr_ckpt_put_f64(ck, "profile", m.prof, (size_t)m.nprof, err));
     if (w) {
         gr_ckpt_discard(ck);
@@ -180,6 +218,6 @@ void cmp_unit_key(size_t unit, void *ctx, char *key, size_t n)
     for (const char *t = sc ? sc->text : ""; *t; t++)
         h = h * 33 + (unsigned char)*t;
     gr_scene_free(sc);
-    snprintf(key, n, "compare v3 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
+    snprintf(key, n, "compare v4 %s %s %s %s scene %016llx", u->c->name, u->row->label, u->row->method,
              pl->quick ? "quick" : "full", h);
 }

@@ -43,8 +43,14 @@ static int rate_at(const cmp_case *c, const gr_sim *s, const gr_scene *sc, doubl
     gr_scene *sd = cmp_scene_with(sc, set, err);
     gr_particles *p = sd ? gr_particles_create(0, err) : NULL;
     gr_sim *sim = NULL;
-    int rc = !p || gr_init_particles(sd, p, err) || gr_sim_create(gr_sim_type(s), sd, p, &sim, err) ||
-             cmp_measure_silo(c, sim, sd, m, err);
+    exp_watch w;
+    int rc = !p || gr_init_particles(sd, p, err) || gr_sim_create(gr_sim_type(s), sd, p, &sim, err);
+    if (!rc) {
+        exp_watch_init(&w, sim, &sd->run);
+        m->watch = &w;
+        rc = cmp_measure_silo(c, sim, sd, m, err);
+        m->watch = NULL;
+    }
     gr_sim_free(sim);
     gr_particles_free(p);
     gr_scene_free(sd);
@@ -64,7 +70,7 @@ int cmp_measure_silo_widths(const cmp_case *c, gr_sim *s, const gr_scene *sc, cm
     if (fabs(sc->silo.orifice - D_REF) > 1e-9)
         return gr_fail(err, GR_EINPUT, "%s: case %s needs [silo] orifice = %g (its reference width)", sc->path,
                        c->name, D_REF);
-    cmp_meas ref = {0}, q0 = {0}, q1 = {0};
+    cmp_meas ref = {.watch = out->watch}, q0 = {0}, q1 = {0};
     int rc = cmp_measure_silo(c, s, sc, &ref, err) || rate_at(c, s, sc, widths[0], &q0, err) ||
              rate_at(c, s, sc, widths[1], &q1, err);
     if (rc)
