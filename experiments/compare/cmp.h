@@ -87,6 +87,8 @@ struct cmp_case {
                               a sweep row's finest setting must reach it within its error
                               bar, a limit row's must not clearly reach it (bias and model
                               rows are reported against it, not checked) */
+    int advisory;          /* a user's scene (grano compare SCENE.ini): its checks are printed
+                              as notes and do not fail the comparison */
     cmp_measure_fn measure;
     cmp_ref_fn reference;
     cmp_prepare_fn prepare;   /* NULL: the scene's [init] */
@@ -128,6 +130,7 @@ typedef struct {
 } cmp_unit;
 
 typedef struct {
+    const cmp_case *cases; /* NULL-name ended; NULL: the built-in cases (cmp_cases) */
     int quick, jobs, force, progress;
     const char *out;     /* results folder */
     const char *scenes;  /* folder of the case scenes */
@@ -135,6 +138,15 @@ typedef struct {
     size_t nunits;
     char notes[4096];    /* "case: method: not modelled: <feature>" lines */
 } cmp_plan;
+
+/* Whether name is in the comma-separated list (NULL: every name is). */
+int cmp_listed(const char *list, const char *name);
+/* The plan's cases: pl->cases, or the built-in ones. */
+const cmp_case *cmp_plan_cases(const cmp_plan *pl);
+/* A user's scene's measurement: the case's quantity is an observable's
+ * name, block-averaged over 10 instants of the run's second half; aux: its
+ * value at the end (cmp_own.c). */
+int cmp_measure_observable(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 
 /* Every unit of the chosen cases and methods (comma-separated lists, NULL:
  * all), with notes on the methods left out (cmp_plan.c). */

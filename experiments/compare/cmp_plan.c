@@ -8,7 +8,12 @@
 
 #include "cmp.h"
 
-static int listed(const char *list, const char *name)
+const cmp_case *cmp_plan_cases(const cmp_plan *pl)
+{
+    return pl->cases ? pl->cases : cmp_cases();
+}
+
+int cmp_listed(const char *list, const char *name)
 {
     if (!list)
         return 1;
@@ -107,7 +112,7 @@ static int plan_case(cmp_plan *pl, size_t *cap, const cmp_case *c, const char *m
         return err->code;
     int rc = GR_OK;
     for (const gr_method_type *const *m = gr_method_all(); *m && !rc; m++)
-        if (listed(methods, (*m)->name))
+        if (cmp_listed(methods, (*m)->name))
             rc = method_rows(pl, cap, c, *m, sc, err);
     for (const cmp_row *r = c->rows; r->method; r++)
         if (!gr_method_find(r->method))
@@ -119,8 +124,8 @@ static int plan_case(cmp_plan *pl, size_t *cap, const cmp_case *c, const char *m
 int cmp_plan_build(cmp_plan *pl, const char *cases, const char *methods, gr_err *err)
 {
     size_t cap = 0;
-    for (const cmp_case *c = cmp_cases(); c->name; c++)
-        if (listed(cases, c->name) && plan_case(pl, &cap, c, methods, err))
+    for (const cmp_case *c = cmp_plan_cases(pl); c->name; c++)
+        if (cmp_listed(cases, c->name) && plan_case(pl, &cap, c, methods, err))
             return err->code;
     if (!pl->nunits)
         return gr_fail(err, GR_EINPUT, "no method of --methods has a row in the cases of --cases");

@@ -15,7 +15,8 @@ PY=/usr/bin/python3
 "$GRANO" compare --help >"$tmp/out" 2>&1 && grep -q "usage: grano compare" "$tmp/out"
 check $? "compare --help"
 for args in "--bogus:--bogus" "-j 0:-j" "--jobs x:-j" "--cases nope:--cases" "--methods nope:--methods" \
-            "--cases collision,nope:--cases" "extra:extra" "--out:--out"; do
+            "--cases collision,nope:--cases" "extra:extra" "--out:--out" "--resume --out $tmp/none:--resume" \
+            "--resume --force:--resume"; do
     cmd=${args%%:*}
     flag=${args##*:}
     # shellcheck disable=SC2086
@@ -29,6 +30,11 @@ done
 rc=$?
 sed 's/^/# /' "$tmp/log"
 check $rc "compare --quick passes its checks"
+# --resume on the finished comparison: every run kept, none redone
+"$GRANO" compare --quick --cases collision --resume --out "$tmp/q" --no-progress >"$tmp/res" 2>"$tmp/err"
+rc=$?
+[ $rc = 0 ] && grep -Eq '^([0-9]+) runs in .* \(\1 reused' "$tmp/res"
+check $? "compare --resume keeps every finished run (got $rc: $(grep ' runs in ' "$tmp/res"))"
 # the holes: a method that models a case's scene and has no row in it.
 # The list may only shrink: a new hole (a method that gained the case's
 # features) or a filled one still listed fails, so that it is seen
