@@ -12,6 +12,7 @@ int cmd_silo_flow(int argc, char **argv);
 int cmd_course(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_advise(int argc, char **argv);
 int cmd_plot(int argc, char **argv);
 int cmd_movie(int argc, char **argv);
 

@@ -27,6 +27,7 @@ static const subcommand commands[] = {
     {"movie", "a result's frames as a movie (MP4 through ffmpeg, or GIF)", cmd_movie},
     {"export", "a result's trajectory for LAMMPS, OVITO, VMD, ASE (dump, extxyz, csv)", cmd_export},
     {"compare", "the same scenes on every method: speed against error", cmd_compare},
+    {"advise", "the cheapest method for a scene at an accepted error, from compare's results", cmd_advise},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
 

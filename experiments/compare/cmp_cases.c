@@ -67,7 +67,9 @@ static const cmp_case cases[] = {
          {"edmd", "edmd", NULL, "", "", NULL, CMP_REFERENCE},
          {"dem", "dem", "dem.dt", "5e-4,2.5e-4,1.25e-4", "5e-4,1.25e-4", NULL},
          {"cd", "cd", "cd.dt", "1e-2,5e-3,2.5e-3", "1e-2,2.5e-3", NULL},
-         {"dsmc", "dsmc", "dsmc.dt", "0.2,0.1,0.05,0.02", "0.2,0.05", "dsmc.cell=30"},
+         {"dsmc", "dsmc", "dsmc.dt", "0.2,0.1,0.05,0.02", "0.2,0.05", "dsmc.cell=30", CMP_LIMIT, NULL,
+          "Enskog's kinetic theory, which dsmc solves, has no velocity correlations: at a packing of 0.3 the "
+          "hard disks cool 7 % more slowly than Enskog-Sonine predicts, and dsmc follows the theory"},
          {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.05", CMP_BIAS},
      }},
     {.name = "column", .scene = "column.ini", .quantity = "base force / weight", .aux = "bulk packing fraction",

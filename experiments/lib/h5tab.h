@@ -50,4 +50,14 @@ int exp_tab_close(exp_tab_file *f, gr_err *err);
 /* Close and remove the unfinished file; accepts NULL. */
 void exp_tab_free(exp_tab_file *f);
 
+/* Column col of table group in the file at path, read back: numbers
+ * (*v malloc'd, n of them) or text (*v and each string malloc'd; free
+ * with exp_tab_strs_free). GR_EINPUT naming the file and column if it
+ * cannot be read. */
+int exp_tab_read_f64(const char *path, const char *group, const char *col, double **v, size_t *n, gr_err *err);
+int exp_tab_read_str(const char *path, const char *group, const char *col, char ***v, size_t *n, gr_err *err);
+void exp_tab_strs_free(char **v, size_t n);
+/* Text attribute name of object obj (a table's group) into out. */
+int exp_tab_read_attr(const char *path, const char *obj, const char *name, char *out, size_t n, gr_err *err);
+
 #endif

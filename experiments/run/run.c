@@ -18,6 +18,7 @@
 #include "plot.h"
 #include "progress.h"
 #include "runio.h"
+#include "compare/cmp_advise.h"
 
 static void usage(FILE *f)
 {
@@ -30,7 +31,13 @@ static void usage(FILE *f)
     const gr_method_type *const *all = gr_method_all();
     for (size_t i = 0; all[i]; i++)
         fprintf(f, "%s%s", i ? ", " : "", all[i]->name);
-    fprintf(f, " (default dem)\n"
+    fprintf(f, " (default dem); auto: the cheapest\n"
+        "                       that reaches --tolerance on the nearest case of a comparison\n"
+        "                       (grano advise; its setting applied unless --set gives it)\n"
+        "      --tolerance X    for --method auto: accepted relative error (default: the\n"
+        "                       nearest case's own tolerance)\n"
+        "      --from FILE      for --method auto: the comparison's compare.h5 (default\n"
+        "                       compare-out/compare.h5)\n"
         "  -u, --until T        simulated time to run to (default: [run] until)\n"
         "  -s, --seed S         seed of every random stream (default: [scene] seed)\n"
         "  -o, --out FILE       result file (default results/<scene>-<method>.h5)\n"
@@ -53,7 +60,9 @@ static void usage(FILE *f)
 }
 
 typedef struct {
-    const char *scene, *method, *out, *restart, *snapshot;
+    const char *scene, *method, *out, *restart, *snapshot, *from;
+    double tol;
+    char auto_method[32], auto_set[200]; /* --method auto's choice and its setting */
     const char *sets[64];
     size_t nsets;
     double until;
@@ -70,8 +79,9 @@ static int parse_args(int argc, char **argv, run_args *a)
         {"snapshot", required_argument, NULL, 'P'}, {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},         {"set", required_argument, NULL, 'S'},
         {"version", no_argument, NULL, 'V'},    {"branch", no_argument, NULL, 'B'},
+        {"tolerance", required_argument, NULL, 'T'}, {"from", required_argument, NULL, 'F'},
         {NULL, 0, NULL, 0}};
-    *a = (run_args){.method = "dem", .until = NAN, .seed = -1};
+    *a = (run_args){.method = "dem", .until = NAN, .seed = -1, .tol = 0, .from = "compare-out/compare.h5"};
     int c;
     opterr = 0;
     optind = 1;
@@ -95,6 +105,15 @@ static int parse_args(int argc, char **argv, run_args *a)
             }
             break;
         case 'o': a->out = optarg; break;
+        case 'T': {
+            gr_err te = {0};
+            if (cmp_parse_tolerance("--tolerance", optarg, &a->tol, &te)) {
+                fprintf(stderr, "grano run: %s\n", te.msg);
+                return 2;
+            }
+            break;
+        }
+        case 'F': a->from = optarg; break;
         case 'f': a->force = 1; break;
         case 'r': a->restart = optarg; break;
         case 'P': a->snapshot = optarg; break;
@@ -175,6 +194,37 @@ static void note_line(void *ctx, const char *msg)
     fprintf(stderr, "grano run: derived: %s\n", msg);
 }
 
+/* --method auto: the advice of grano advise for the scene, told on
+ * stderr; its setting joins the --set list unless one sets that key. */
+static int choose_method(run_args *a)
+{
+    cmp_advice adv;
+    char *set = a->auto_set;
+    const char *names[GR_MAX_METHODS + 1];
+    gr_method_names(names, GR_MAX_METHODS + 1);
+    gr_err e = {0};
+    gr_scene *sc = gr_scene_load_set(a->scene, names, a->sets, a->nsets, &e);
+    if (!sc || cmp_advise(sc, a->from, a->tol, &adv, &e)) {
+        fprintf(stderr, "grano run: --method auto: %s\n", e.msg);
+        gr_scene_free(sc);
+        return 2;
+    }
+    gr_scene_free(sc);
+    snprintf(a->auto_method, sizeof a->auto_method, "%s", adv.method);
+    a->method = a->auto_method;
+    size_t k = strlen(adv.method);
+    int own_key = adv.knob[0] && !strncmp(adv.knob, adv.method, k) && adv.knob[k] == '.' && !strchr(adv.knob, '+');
+    for (size_t i = 0; own_key && i < a->nsets; i++)
+        own_key = strncmp(a->sets[i], adv.knob, strlen(adv.knob)) || a->sets[i][strlen(adv.knob)] != '=';
+    if (own_key && a->nsets < sizeof a->sets / sizeof a->sets[0]) {
+        snprintf(set, sizeof a->auto_set, "%s=%s", adv.knob, adv.value);
+        a->sets[a->nsets++] = set;
+    }
+    fprintf(stderr, "grano run: --method auto: %s%s%s: %s\n", adv.method, own_key ? " with " : "", own_key ? set : "",
+            adv.why);
+    return 0;
+}
+
 static int fail_msg(const gr_err *e)
 {
     fprintf(stderr, "grano run: %s\n", e->msg);
@@ -189,6 +239,8 @@ int cmd_run(int argc, char **argv)
         return rc;
     gr_err e = {0};
     const gr_method_type *m;
+    if (!strcmp(a.method, "auto") && (rc = choose_method(&a)))
+        return rc;
     if (gr_method_lookup(a.method, "grano run: --method", &m, &e)) {
         fprintf(stderr, "%s\n", e.msg);
         return 2;

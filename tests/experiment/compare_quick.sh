@@ -31,10 +31,35 @@ rc=$?
 sed 's/^/# /' "$tmp/log"
 check $rc "compare --quick passes its checks"
 # --resume on the finished comparison: every run kept, none redone
-"$GRANO" compare --quick --cases collision --resume --out "$tmp/q" --no-progress >"$tmp/res" 2>"$tmp/err"
+mkdir -p "$tmp/r"
+cp -r "$tmp/q/parts" "$tmp/r/parts"
+"$GRANO" compare --quick --cases collision --resume --out "$tmp/r" --no-progress >"$tmp/res" 2>"$tmp/err"
 rc=$?
 [ $rc = 0 ] && grep -Eq '^([0-9]+) runs in .* \(\1 reused' "$tmp/res"
 check $? "compare --resume keeps every finished run (got $rc: $(grep ' runs in ' "$tmp/res"))"
+# grano advise from the quick run's results: every shipped scene gets a
+# method and the compare row it relies on (or is the one method that
+# models it); a tolerance no row reaches exits 2 naming --tolerance;
+# grano run --method auto runs the advice with its setting
+src=$(cd "$(dirname "$0")/../.." && pwd)
+bad=""
+for sc in "$src"/experiments/scenes/*.ini "$src"/experiments/scenes/compare/*.ini "$src"/tests/hard/bed.ini; do
+    "$GRANO" advise "$sc" --from "$tmp/q/compare.h5" >"$tmp/adv" 2>>"$tmp/adv.err" &&
+        grep -Eq '^(dem|edmd|cd|dsmc|lgca)( with [a-z]+\.[a-z_]+ = [0-9.e-]+)?$' "$tmp/adv" &&
+        grep -Eq 'compare row|the only method' "$tmp/adv" || bad="$bad $(basename "$sc")"
+done
+[ -z "$bad" ]
+check $? "grano advise names a method and its compare row on every shipped scene (failed:$bad)"
+"$GRANO" advise "$src/experiments/scenes/compare/eos.ini" --from "$tmp/q/compare.h5" --tolerance 1e-6 \
+    >/dev/null 2>"$tmp/err"
+rc=$?
+[ $rc = 2 ] && grep -q -- "--tolerance" "$tmp/err"
+check $? "grano advise refuses a tolerance no row reaches, naming --tolerance (got $rc)"
+"$GRANO" run "$src/tests/hard/bed.ini" --method auto --from "$tmp/q/compare.h5" --until 0.5 --quiet \
+    --out "$tmp/auto.h5" >/dev/null 2>"$tmp/err"
+rc=$?
+[ $rc = 0 ] && grep -q -- "--method auto: dem with dem.dt=" "$tmp/err"
+check $? "grano run --method auto runs the advice with its setting (got $rc)"
 # the holes: a method that models a case's scene and has no row in it.
 # The list may only shrink: a new hole (a method that gained the case's
 # features) or a filled one still listed fails, so that it is seen
