@@ -9,6 +9,38 @@
 
 #include <hdf5.h>
 
+/* The file opened read-only with HDF5's error printing off (the status
+ * says enough), and closed with it restored. */
+typedef struct {
+    hid_t f;
+    H5E_auto2_t fn;
+    void *data;
+} reader;
+
+static int reader_open(reader *r, const char *path, gr_err *err)
+{
+    H5Eget_auto2(H5E_DEFAULT, &r->fn, &r->data);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+    r->f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    return r->f < 0 ? gr_fail(err, GR_EINPUT, "%s: cannot open it as HDF5", path) : GR_OK;
+}
+
+static void reader_close(reader *r)
+{
+    if (r->f >= 0)
+        H5Fclose(r->f);
+    H5Eset_auto2(H5E_DEFAULT, r->fn, r->data);
+}
+
+/* A variable-length UTF-8 string type. */
+static hid_t utf8(void)
+{
+    hid_t t = H5Tcopy(H5T_C_S1);
+    H5Tset_size(t, H5T_VARIABLE);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    return t;
+}
+
 /* The column's dataset and its length; -1 and err set if absent. */
 static hid_t column(hid_t file, const char *path, const char *group, const char *col, size_t *n, gr_err *err)
 {
@@ -34,13 +66,9 @@ static hid_t column(hid_t file, const char *path, const char *group, const char 
 int exp_tab_read_f64(const char *path, const char *group, const char *col, double **v, size_t *n, gr_err *err)
 {
     *v = NULL;
-    H5E_auto2_t fn;
-    void *data;
-    H5Eget_auto2(H5E_DEFAULT, &fn, &data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    int rc = f < 0 ? gr_fail(err, GR_EINPUT, "%s: cannot open it as HDF5", path) : GR_OK;
-    hid_t d = rc ? -1 : column(f, path, group, col, n, err);
+    reader rd;
+    int rc = reader_open(&rd, path, err);
+    hid_t d = rc ? -1 : column(rd.f, path, group, col, n, err);
     rc = rc || d < 0;
     if (!rc && !(*v = malloc((*n ? *n : 1) * sizeof **v)))
         rc = gr_fail(err, GR_ERUN, "out of memory");
@@ -48,9 +76,7 @@ int exp_tab_read_f64(const char *path, const char *group, const char *col, doubl
         rc = gr_fail(err, GR_EINPUT, "%s: cannot read %s/%s as numbers", path, group, col);
     if (d >= 0)
         H5Dclose(d);
-    if (f >= 0)
-        H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, fn, data);
+    reader_close(&rd);
     if (rc) {
         free(*v);
         *v = NULL;
@@ -62,17 +88,11 @@ int exp_tab_read_f64(const char *path, const char *group, const char *col, doubl
 int exp_tab_read_str(const char *path, const char *group, const char *col, char ***v, size_t *n, gr_err *err)
 {
     *v = NULL;
-    H5E_auto2_t fn;
-    void *data;
-    H5Eget_auto2(H5E_DEFAULT, &fn, &data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    int rc = f < 0 ? gr_fail(err, GR_EINPUT, "%s: cannot open it as HDF5", path) : GR_OK;
-    hid_t d = rc ? -1 : column(f, path, group, col, n, err);
+    reader rd;
+    int rc = reader_open(&rd, path, err);
+    hid_t d = rc ? -1 : column(rd.f, path, group, col, n, err);
     rc = rc || d < 0;
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
-    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t t = utf8();
     char **raw = rc ? NULL : calloc(*n ? *n : 1, sizeof *raw);
     if (!rc && (!raw || !(*v = calloc(*n ? *n : 1, sizeof **v))))
         rc = gr_fail(err, GR_ERUN, "out of memory");
@@ -90,9 +110,7 @@ int exp_tab_read_str(const char *path, const char *group, const char *col, char 
     H5Tclose(t);
     if (d >= 0)
         H5Dclose(d);
-    if (f >= 0)
-        H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, fn, data);
+    reader_close(&rd);
     if (rc) {
         exp_tab_strs_free(*v, *v ? *n : 0);
         *v = NULL;
@@ -110,19 +128,14 @@ void exp_tab_strs_free(char **v, size_t n)
 
 int exp_tab_read_attr(const char *path, const char *obj, const char *name, char *out, size_t n, gr_err *err)
 {
-    H5E_auto2_t fn;
-    void *data;
-    H5Eget_auto2(H5E_DEFAULT, &fn, &data);
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
-    hid_t f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    hid_t a = f >= 0 && H5Aexists_by_name(f, obj, name, H5P_DEFAULT) > 0
-                  ? H5Aopen_by_name(f, obj, name, H5P_DEFAULT, H5P_DEFAULT)
+    reader rd;
+    int rc = reader_open(&rd, path, err);
+    hid_t a = !rc && H5Aexists_by_name(rd.f, obj, name, H5P_DEFAULT) > 0
+                  ? H5Aopen_by_name(rd.f, obj, name, H5P_DEFAULT, H5P_DEFAULT)
                   : -1;
-    hid_t t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, H5T_VARIABLE);
-    H5Tset_cset(t, H5T_CSET_UTF8);
+    hid_t t = utf8();
     char *v = NULL;
-    int rc = a < 0 || H5Aread(a, t, &v) < 0 || !v;
+    rc = rc || a < 0 || H5Aread(a, t, &v) < 0 || !v;
     if (!rc)
         snprintf(out, n, "%s", v);
     if (v) {
@@ -133,8 +146,6 @@ int exp_tab_read_attr(const char *path, const char *obj, const char *name, char 
     H5Tclose(t);
     if (a >= 0)
         H5Aclose(a);
-    if (f >= 0)
-        H5Fclose(f);
-    H5Eset_auto2(H5E_DEFAULT, fn, data);
+    reader_close(&rd);
     return rc ? gr_fail(err, GR_EINPUT, "%s: no attribute %s of %s", path, name, obj) : GR_OK;
 }

@@ -10,3 +10,18 @@ ok() { n=$((n + 1)); echo "ok $n - $1"; }
 notok() { n=$((n + 1)); echo "not ok $n - $1"; fails=$((fails + 1)); [ -f "$tmp/err" ] && sed 's/^/# /' "$tmp/err"; }
 check() { if [ "$1" = 0 ]; then ok "$2"; else notok "$2"; fi; }
 finish() { echo "1..$n"; exit $((fails > 0)); }
+# refusals SUB "ARGS:FLAG" ...: each `$GRANO SUB ARGS` (split on spaces)
+# exits 2 naming FLAG on stderr.
+refusals() {
+    local sub=$1 args cmd flag rc
+    shift
+    for args in "$@"; do
+        cmd=${args%%:*}
+        flag=${args##*:}
+        # shellcheck disable=SC2086
+        "$GRANO" "$sub" $cmd >"$tmp/out" 2>"$tmp/err"
+        rc=$?
+        [ $rc = 2 ] && grep -q -- "$flag" "$tmp/err"
+        check $? "$sub $cmd exits 2 naming $flag (got $rc)"
+    done
+}
