@@ -129,6 +129,8 @@ static void fill(cmp_advice *a, const rows_t *r, long i)
     snprintf(a->knob, sizeof a->knob, "%s", r->knob[i]);
     snprintf(a->value, sizeof a->value, "%s", r->value[i]);
     a->error = r->err[i], a->error_sem = r->sem[i], a->wall = r->wall[i];
+    size_t k = strlen(a->method);
+    a->setting = !strncmp(a->knob, a->method, k) && a->knob[k] == '.' && !strchr(a->knob, '+');
 }
 
 int cmp_advise(const gr_scene *sc, const char *from, double tol, cmp_advice *a, gr_err *err)

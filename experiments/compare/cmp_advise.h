@@ -13,6 +13,8 @@ typedef struct {
     char case_name[32];  /* the nearest case of grano compare */
     char row[64], knob[64], value[64]; /* the compare row relied on ("" when none was needed) */
     double error, error_sem, wall;     /* its relative error, error bar, wall s per run */
+    int setting;         /* the knob is one key of the method's own section ("dem.dt"): a
+                            setting to run with (grano run --method auto applies it) */
     char why[2048];      /* the choice and why, one sentence */
 } cmp_advice;
 

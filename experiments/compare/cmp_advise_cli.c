@@ -81,7 +81,7 @@ int cmd_advise(int argc, char **argv)
         return 2;
     }
     printf("%s", adv.method);
-    if (adv.knob[0] && strchr(adv.knob, '.') && !strncmp(adv.knob, adv.method, strlen(adv.method)))
+    if (adv.setting)
         printf(" with %s = %s", adv.knob, adv.value);
     printf("\n  %s\n", adv.why);
     gr_scene_free(sc);

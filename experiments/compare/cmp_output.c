@@ -36,6 +36,7 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
         snprintf(meas, sizeof meas, "%.7g +- %.2g", p->mean, p->sem);
         snprintf(er, sizeof er, "%.3g +- %.2g", p->error, p->error_sem);
         int limit = p->row->role == CMP_LIMIT;
+        int told = !(p->row->role == CMP_REFERENCE || p->outcome == CMP_OUT_NONE || p->nok < p->n);
         fprintf(f, "%-9s %-14s %-9s %2d/%-2d %9.3g %11.4g %-24s %-20s %12.5g %s%s%s\n", p->row->label,
                 p->row->knob ? p->row->knob : "-", p->value[0] ? p->value : "-", p->nok, p->n,
                 p->nok ? p->wall : p->fail_wall, p->steps, meas, er, p->aux,
@@ -43,10 +44,7 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
                 : p->row->role == CMP_REFERENCE ? "(reference)"
                 : p->row->role == CMP_MODEL && p->error > 2 * p->error_sem ? "(its own model's answer)"
                 : p->error > 2 * p->error_sem ? "" : "(within the error bar)",
-                p->row->role == CMP_REFERENCE || p->outcome == CMP_OUT_NONE || p->nok < p->n ? "" : " tolerance: ",
-                p->row->role == CMP_REFERENCE || p->outcome == CMP_OUT_NONE || p->nok < p->n
-                    ? ""
-                    : cmp_outcome_name(p->outcome));
+                told ? " tolerance: " : "", told ? cmp_outcome_name(p->outcome) : "");
         if (limit && (i == 0 || pts[i - 1].row != p->row))
             fprintf(f, "          limit: %s\n", p->row->why ? p->row->why : "");
         if (p->msg[0])

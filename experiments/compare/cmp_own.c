@@ -95,10 +95,10 @@ static double default_dt(const gr_method_type *m, const gr_scene *sc)
 static int usable(const gr_method_type *m, const gr_scene *sc, const char *obs, cmp_own *own)
 {
     gr_err e = {0};
-    size_t n = strlen(own->notes);
     if (gr_method_require_features(m, gr_scene_features(sc), sc->path, &e))
         return 0; /* the plan notes it */
     if (find_obs(gr_method_observables(m), obs) < 0) {
+        size_t n = strlen(own->notes);
         snprintf(own->notes + n, sizeof own->notes - n,
                  "# %s: %s: has no observable '%s' (grano methods %s lists its observables)\n", own->name, m->name,
                  obs, m->name);

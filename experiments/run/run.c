@@ -212,8 +212,7 @@ static int choose_method(run_args *a)
     gr_scene_free(sc);
     snprintf(a->auto_method, sizeof a->auto_method, "%s", adv.method);
     a->method = a->auto_method;
-    size_t k = strlen(adv.method);
-    int own_key = adv.knob[0] && !strncmp(adv.knob, adv.method, k) && adv.knob[k] == '.' && !strchr(adv.knob, '+');
+    int own_key = adv.setting;
     for (size_t i = 0; own_key && i < a->nsets; i++)
         own_key = strncmp(a->sets[i], adv.knob, strlen(adv.knob)) || a->sets[i][strlen(adv.knob)] != '=';
     if (own_key && a->nsets < sizeof a->sets / sizeof a->sets[0]) {
