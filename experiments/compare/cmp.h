@@ -21,34 +21,6 @@
 #define CMP_MAXV 8      /* knob values per row */
 #define CMP_MAXROWS 8   /* rows per case */
 
-/* One line of a case's plot: a method swept over one knob. */
-typedef struct {
-    const char *method;  /* registered backend */
-    const char *label;   /* line label ("dem", "dem-gear") */
-    const char *knob;    /* "section.key" set for each value; NULL: no knob */
-    const char *full;    /* comma-separated values of the full comparison */
-    const char *quick;   /* those of --quick */
-    const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
-    int role;            /* CMP_SWEEP, CMP_REFERENCE, CMP_BIAS, CMP_MODEL or CMP_LIMIT */
-    const char *scene;   /* the row's own variant of the case's scene (same geometry, the
-                            method's own model of what it cannot represent), or NULL */
-    const char *why;     /* CMP_LIMIT: what the method lacks that the case needs (the
-                            tables print it beside the row's outcome) */
-} cmp_row;
-enum {
-    CMP_SWEEP = 0,     /* its error must not grow as the knob is tightened (--quick checks) */
-    CMP_REFERENCE = 1, /* its result is the case's reference (a long or exact run) */
-    CMP_BIAS = 2,      /* shows a bias that grows along the knob: reported, not checked */
-    CMP_MODEL = 3,     /* converges to its own model's answer, not the reference's: its
-                          value must settle as the knob is tightened (checked), its error
-                          against the reference is reported */
-    CMP_LIMIT = 4      /* the method models the scene's features but not the physics the
-                          case measures: its outcome (a failed run with its diagnostic, or
-                          an error beyond the case's tolerance) is the row's result, and
-                          a value that clearly reaches the tolerance fails the check (the
-                          row is then no limit: it must become a sweep) */
-};
-
 /* What a measurement gives: the quantity, its statistical error from
  * within the run (NaN when the run gives none), a second quantity (aux),
  * and the steps or events done. */
@@ -56,6 +28,7 @@ enum {
 #define CMP_DIAG 400 /* the validity limits a run broke, as text */
 typedef struct {
     double value, sem, aux;
+    double own, own_aux;          /* a CMP_OWN row's own answers for this run (else NaN) */
     double steps;
     char diag[CMP_DIAG];          /* "name count/steps (key), ..." or "" */
     exp_watch *watch;             /* the run's cost watch (cmp_advance), or NULL */
@@ -72,6 +45,46 @@ typedef int (*cmp_measure_fn)(const cmp_case *c, gr_sim *s, const gr_scene *sc, 
 typedef double (*cmp_ref_fn)(const gr_scene *sc, double *aux_ref);
 /* The initial grains (NULL: the scene's [init]). */
 typedef int (*cmp_prepare_fn)(const gr_scene *sc, gr_particles *p, gr_err *err);
+
+/* One line of a case's plot: a method swept over one knob. */
+typedef struct {
+    const char *method;  /* registered backend */
+    const char *label;   /* line label ("dem", "dem-gear") */
+    const char *knob;    /* "section.key" set for each value; NULL: no knob */
+    const char *full;    /* comma-separated values of the full comparison */
+    const char *quick;   /* those of --quick */
+    const char *fixed;   /* further "section.key=value" settings, ';'-separated, or NULL */
+    int role;            /* CMP_SWEEP, CMP_REFERENCE, CMP_BIAS, CMP_MODEL, CMP_LIMIT or CMP_OWN */
+    const char *scene;   /* the row's own variant of the case's scene (same geometry, the
+                            method's own model of what it cannot represent), or NULL */
+    const char *why;     /* CMP_LIMIT: what the method lacks that the case needs (the
+                            tables print it beside the row's outcome) */
+    /* CMP_OWN: the row's own measurement of the case's quantity (NULL: the
+     * case's; when set, on the scene's [init], not the case's prepare),
+     * which also gives its model's own answer for the state the run
+     * realised (cmp_meas.own); what that answer is (the tables print it);
+     * the tolerance against it (0: the case's) */
+    cmp_measure_fn measure;
+    const char *own_label;
+    double tol;
+} cmp_row;
+enum {
+    CMP_SWEEP = 0,     /* its error must not grow as the knob is tightened (--quick checks) */
+    CMP_REFERENCE = 1, /* its result is the case's reference (a long or exact run) */
+    CMP_BIAS = 2,      /* shows a bias that grows along the knob: reported, not checked */
+    CMP_MODEL = 3,     /* converges to its own model's answer, not the reference's: its
+                          value must settle as the knob is tightened (checked), its error
+                          against the reference is reported */
+    CMP_LIMIT = 4,     /* the method models the scene's features but not the physics the
+                          case measures: its outcome (a failed run with its diagnostic, or
+                          an error beyond the case's tolerance) is the row's result, and
+                          a value that clearly reaches the tolerance fails the check (the
+                          row is then no limit: it must become a sweep) */
+    CMP_OWN = 5        /* the method's model states the case's quantity differently from
+                          the grains (a lattice gas): its errors are against its model's
+                          own answer for each run (cmp_meas.own) and checked as a sweep's;
+                          the guide and grano advise leave it out */
+};
 
 struct cmp_case {
     const char *name;
@@ -114,6 +127,9 @@ int cmp_measure_silo(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas 
 int cmp_measure_silo_widths(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 double cmp_ref_silo_widths(const gr_scene *sc, double *aux_ref);
 int cmp_measure_bed(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+/* The lattice gas's own rows (cmp_lattice.c): each run's own answer in out->own. */
+int cmp_measure_lattice_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
+int cmp_measure_lattice_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err);
 
 /* Advance the unit's instance to t as grano run does: watched for a time
  * that stalls or a cost that grows past [run] max_cost_growth (an

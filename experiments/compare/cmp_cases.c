@@ -57,6 +57,10 @@ static const cmp_case cases[] = {
          {"dsmc", "dsmc-cell", "dsmc.cell", "8,4,2,1", "", "dsmc.dt=0.1", CMP_BIAS},
          {"dsmc", "dsmc-weight", "species.count+species.weight", "64:16,256:4,1024:1", "64:4,256:1",
           "dsmc.dt=0.1;dsmc.cell=8"},
+         /* knob: the lattice spacing in the case's box (--quick's smaller box too; no grains) */
+         {"lgca", "lgca", "species.diameter", "1,0.5,0.25", "1,0.5", "species.count=0", CMP_OWN, "cooling-lgca.ini",
+          .measure = cmp_measure_lattice_cooling, .own_label = "the Boltzmann map of its collision table",
+          .tol = 0.01},
      }},
     {.name = "cooling-dense", .scene = "cooling-dense.ini", .quantity = "T/T0 at Haff's time",
      .aux = "T/T0 at half Haff's time", .unit = "1", .aux_unit = "1",
@@ -82,6 +86,10 @@ static const cmp_case cases[] = {
          {"edmd", "edmd", NULL, "", "", NULL, CMP_LIMIT, NULL, EDMD_AT_REST},
          {"dsmc", "dsmc", "dsmc.dt", "1e-2,1e-3", "1e-2", NULL, CMP_LIMIT, NULL,
           "point particles with no excluded volume and no lasting contact: a column at rest is not a gas"},
+         /* knob: lattice spacing : lgca.dt (spacing / 5) */
+         {"lgca", "lgca", "species.diameter+lgca.dt", "1:0.2,0.5:0.1,0.25:0.05", "1:0.2,0.5:0.1", NULL, CMP_OWN,
+          "column-lgca.ini", .measure = cmp_measure_lattice_column,
+          .own_label = "the lattice's mean-field hydrostatics", .tol = 0.01},
      }},
     {.name = "janssen", .scene = "janssen.ini", .quantity = "base force / Janssen's", .aux = "bulk packing fraction",
      .unit = "1", .aux_unit = "1",
@@ -162,6 +170,6 @@ const char *cmp_ref_label(const cmp_case *c)
 
 const char *cmp_role_name(int role)
 {
-    static const char *const names[] = {"sweep", "reference", "bias", "model", "limit"};
-    return role >= 0 && role <= CMP_LIMIT ? names[role] : "?";
+    static const char *const names[] = {"sweep", "reference", "bias", "model", "limit", "own"};
+    return role >= 0 && role <= CMP_OWN ? names[role] : "?";
 }

@@ -43,10 +43,14 @@ static void text_case(FILE *f, const cmp_case *c, const cmp_point *pts, size_t n
                 p->nok < p->n ? (limit ? "(failed: the method's limit)" : "FAILED")
                 : p->row->role == CMP_REFERENCE ? "(reference)"
                 : p->row->role == CMP_MODEL && p->error > 2 * p->error_sem ? "(its own model's answer)"
+                : p->row->role == CMP_OWN ? "(against its own model)"
                 : p->error > 2 * p->error_sem ? "" : "(within the error bar)",
                 told ? " tolerance: " : "", told ? cmp_outcome_name(p->outcome) : "");
         if (limit && (i == 0 || pts[i - 1].row != p->row))
             fprintf(f, "          limit: %s\n", p->row->why ? p->row->why : "");
+        if (p->row->role == CMP_OWN)
+            fprintf(f, "          against its own model, not the case's reference: %s %.7g; %s %.6g\n",
+                    p->row->own_label ? p->row->own_label : "", p->ref, c->aux, p->aux_ref);
         if (p->msg[0])
             fprintf(f, "          %s\n", p->msg);
         if (p->diag[0])
@@ -60,31 +64,33 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
                    gr_err *err)
 {
     size_t m = n ? n : 1;
-    const char **str = malloc(8 * m * sizeof *str);
-    double *num = malloc(14 * m * sizeof *num);
+    const char **str = malloc(9 * m * sizeof *str);
+    double *num = malloc(15 * m * sizeof *num);
     if (!str || !num) {
         free(str), free(num);
         return gr_fail(err, GR_ERUN, "out of memory");
     }
     for (size_t i = 0; i < n; i++) {
         const cmp_point *p = &pts[i];
-        const char *s[8] = {p->row->method, p->row->label, p->row->knob ? p->row->knob : "", p->value,
+        const char *s[9] = {p->row->method, p->row->label, p->row->knob ? p->row->knob : "", p->value,
                             cmp_role_name(p->row->role),
                             p->row->role == CMP_REFERENCE ? "reference" : cmp_outcome_name(p->outcome),
-                            p->msg, p->diag};
-        double v[14] = {p->n, p->nok, p->wall, p->steps, p->mean, p->sem, ref->value, ref->sem, p->error,
-                        p->error_sem, p->aux, ref->aux, ref->analytic, p->fail_wall};
-        for (int k = 0; k < 8; k++)
+                            p->msg, p->diag, p->row->role == CMP_OWN && p->row->own_label ? p->row->own_label : ""};
+        double v[15] = {p->n, p->nok, p->wall, p->steps, p->mean, p->sem, p->ref, p->ref_sem, p->error,
+                        p->error_sem, p->aux, p->aux_ref, ref->analytic, p->fail_wall, cmp_row_tol(c, p->row)};
+        for (int k = 0; k < 9; k++)
             str[k * m + i] = s[k];
-        for (int k = 0; k < 14; k++)
+        for (int k = 0; k < 15; k++)
             num[k * m + i] = v[k];
     }
     const char *rl = cmp_ref_label(c);
     char dq[160], dref[200], daux[160], dauxref[200], dan[200], desc[400];
     snprintf(dq, sizeof dq, "%s, mean over the finished runs", c->quantity);
-    snprintf(dref, sizeof dref, "%s of the reference (%s)", c->quantity, rl ? rl : "the analytic value");
+    snprintf(dref, sizeof dref, "%s of the reference (%s; an own row's: its own, named in against)", c->quantity,
+             rl ? rl : "the analytic value");
     snprintf(daux, sizeof daux, "%s, mean over the finished runs", c->aux);
-    snprintf(dauxref, sizeof dauxref, "%s of the reference (%s)", c->aux, rl ? rl : "the analytic value");
+    snprintf(dauxref, sizeof dauxref, "%s of the reference (%s; an own row's: its own)", c->aux,
+             rl ? rl : "the analytic value");
     snprintf(dan, sizeof dan, "analytic or published %s (NaN: none)", c->quantity);
     snprintf(desc, sizeof desc, "%s against %s: one row per (method line, knob value), seeds pooled", c->quantity,
              rl ? rl : "the analytic value");
@@ -95,13 +101,15 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
          str + 2 * m, 0},
         {"knob_value", "", "the knob's value as written in the case (':' between the values of two keys)",
          EXP_STR, str + 3 * m, 0},
-        {"role", "", "sweep, reference, bias, model or limit (docs/comparison.md)", EXP_STR, str + 4 * m, 0},
+        {"role", "", "sweep, reference, bias, model, limit or own (docs/comparison.md)", EXP_STR, str + 4 * m, 0},
         {"outcome", "", "against the case's tolerance: within, beyond or unclear (error +- 2 error bars), "
                         "failed, some runs failed, reference, no tolerance", EXP_STR, str + 5 * m, 0},
         {"message", "", "the first failed run's message, where it stopped (empty: none failed)", EXP_STR,
          str + 6 * m, 0},
         {"diagnostics", "", "validity limits the first run broke: name, count, the key that changes it",
          EXP_STR, str + 7 * m, 0},
+        {"against", "", "an own row's reference, its model's own answer (empty: the case's reference)", EXP_STR,
+         str + 8 * m, 0},
         {"runs", "1", "independent runs (seeds)", EXP_INT, num, 0},
         {"finished", "1", "runs that finished with finite numbers", EXP_INT, num + m, 0},
         {"wall_s", "s", "wall time per run", EXP_F64, num + 2 * m, 0},
@@ -118,6 +126,8 @@ static int h_case(exp_tab_file *h, const cmp_case *c, const cmp_point *pts, size
         {"analytic", c->unit, dan, EXP_F64, num + 12 * m, 0},
         {"failed_wall_s", "s", "wall time per failed run, to its failure (NaN: none failed)", EXP_F64,
          num + 13 * m, 0},
+        {"tolerance", "1", "the relative error the row is held to (the case's; an own row's may be its own)",
+         EXP_F64, num + 14 * m, 0},
     };
     char name[128];
     snprintf(name, sizeof name, "cases/%s", c->name);
@@ -203,7 +213,9 @@ static int plot_case(const char *dir, const cmp_case *c, const cmp_point *pts, s
             fprintf(gp, "%s$r%d u 1:2 w lp lw 2 pt 7 lc %d t '%s%s%s%s', $r%d u 1:2:3:4 w xerrorbars lc %d notitle, "
                         "$r%d u 1:2:5 w labels offset 0.8,0.8 font ',9' notitle",
                     first ? "" : ", ", r, r + 1, c->rows[r].label, c->rows[r].knob ? " by " : "",
-                    c->rows[r].knob ? c->rows[r].knob : "", c->rows[r].role == CMP_LIMIT ? " (its limit)" : "", r,
+                    c->rows[r].knob ? c->rows[r].knob : "",
+                    c->rows[r].role == CMP_LIMIT ? " (its limit)"
+                    : c->rows[r].role == CMP_OWN ? " (against its own model)" : "", r,
                     r + 1, r);
             first = 0;
         }
@@ -260,7 +272,15 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
         ncases++;
     fprintf(gp, ") rotate by 30 right\nset xrange [-0.5:%g]\nset grid\nset key below center horizontal\n",
             ncases - 0.5);
+    int any = 0;
+    for (int m = 0; m < nm; m++)
+        any += count[m];
     for (int panel = 0; panel < 2; panel++) {
+        if (!any) { /* only rows against their own models, or none finished */
+            fprintf(gp, "set ylabel '%s'\nset label 1 'no method line against a case reference' at graph 0.5, "
+                        "graph 0.5 center\nset yrange [0:1]\nunset ytics\nplot -1 notitle\n", panel ? "wall time per run / s" : "relative error");
+            continue;
+        }
         gr_plot_log_axis(gp, "y", lo[panel], hi[panel]);
         fprintf(gp, "set ylabel '%s'\nplot ", panel ? "wall time per run / s" : "relative error");
         for (int m = 0, first = 1; m < nm; m++)

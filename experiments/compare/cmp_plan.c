@@ -95,7 +95,7 @@ static int method_rows(cmp_plan *pl, size_t *cap, const cmp_case *c, const gr_me
         if (!own_sc)
             return err->code;
         if (models(pl, c, m, own_sc, r->scene)) {
-            note(pl, "# %s: %s: runs its own scene %s (same geometry, the method's own model; "
+            note(pl, "# %s: %s: runs its own scene %s (the method's own model of the case; "
                      "docs/comparison.md)\n", c->name, r->label, r->scene);
             rc = row_units(pl, cap, c, r, err);
         }

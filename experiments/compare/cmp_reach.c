@@ -86,7 +86,8 @@ void cmp_reach_text(FILE *f, const cmp_reach_row *r, size_t nr)
         char a[3][64];
         for (int t = 0; t < CMP_NTARGETS; t++)
             cell(a[t], sizeof a[t], &r[i], t);
-        fprintf(f, "  %-12s %-26s %-26s %-26s\n", r[i].row->label, a[0], a[1], a[2]);
+        fprintf(f, "  %-12s %-26s %-26s %-26s%s\n", r[i].row->label, a[0], a[1], a[2],
+                r[i].row->role == CMP_OWN ? " (against its own model)" : "");
     }
 }
 

@@ -21,15 +21,20 @@ static void get_text(gr_ckpt *ck, const char *name, char *out, size_t n)
         gr_ckpt_get_bytes(ck, name, out, len, &e);
 }
 
-/* One part's result: ok, value, sem, aux, steps, wall; its failure's
- * message and its broken validity limits. */
-static int read_part(const char *path, double v[6], char *msg, size_t n, char *diag, size_t nd, gr_err *err)
+/* One part's result: ok, value, sem, aux, steps, wall, and an own row's
+ * answers (NaN when none); its failure's message and its broken validity
+ * limits. */
+static int read_part(const char *path, double v[8], char *msg, size_t n, char *diag, size_t nd, gr_err *err)
 {
     gr_ckpt *ck = gr_ckpt_open(path, err);
     if (!ck)
         return err->code;
     int rc = gr_ckpt_get_f64(ck, "result", v, 6, err);
     gr_err e = {0};
+    size_t len;
+    v[6] = v[7] = NAN;
+    if (!rc && !gr_ckpt_len(ck, "own", &len, &e) && len == 2)
+        rc = gr_ckpt_get_f64(ck, "own", v + 6, 2, err);
     get_text(ck, "message", msg, n);
     get_text(ck, "diag", diag, nd);
     gr_ckpt_close(ck, &e);
@@ -60,14 +65,14 @@ static int outcome(const cmp_point *p, double tol)
 /* Pool the seeds of point *pt (units first..first+nseeds-1). */
 static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point *pt, gr_err *err)
 {
-    double sum = 0, sum2 = 0, semw = 0;
-    int nsem = 0, nfail = 0;
-    pt->wall = pt->steps = pt->aux = 0;
+    double sum = 0, sum2 = 0, semw = 0, rsum = 0, rsum2 = 0;
+    int nsem = 0, nfail = 0, nown = 0;
+    pt->wall = pt->steps = pt->aux = pt->ref = pt->aux_ref = 0;
     for (size_t k = first; k < pl->nunits && pl->units[k].c == pl->units[first].c &&
                            pl->units[k].row == pl->units[first].row &&
                            !strcmp(pl->units[k].value, pl->units[first].value);
          k++) {
-        double v[6];
+        double v[8];
         char msg[1100], diag[CMP_DIAG];
         if (read_part(parts[k], v, msg, sizeof msg, diag, sizeof diag, err))
             return err->code;
@@ -85,8 +90,15 @@ static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point 
         if (isfinite(v[2]))
             semw += v[2] * v[2], nsem++;
         pt->aux += v[3], pt->steps += v[4], pt->wall += v[5];
+        if (isfinite(v[6])) { /* an own row: each run against its own answer */
+            double r = v[1] / v[6];
+            rsum += r, rsum2 += r * r, pt->ref += v[6], pt->aux_ref += v[7], nown++;
+        }
     }
     int m = pt->nok;
+    pt->ref = nown ? pt->ref / nown : NAN, pt->aux_ref = nown ? pt->aux_ref / nown : NAN;
+    pt->own_ratio = nown ? rsum / nown : NAN;
+    pt->own_ratio_sem = nown >= 2 ? sqrt(fmax(rsum2 / nown - pt->own_ratio * pt->own_ratio, 0) / (nown - 1)) : 0;
     pt->fail_wall = nfail ? pt->fail_wall / nfail : NAN;
     pt->mean = m ? sum / m : NAN;
     pt->aux = m ? pt->aux / m : NAN;
@@ -124,6 +136,11 @@ static int references(const cmp_plan *pl, const cmp_case *c, size_t first_unit, 
     return GR_OK;
 }
 
+double cmp_row_tol(const cmp_case *c, const cmp_row *r)
+{
+    return r->tol > 0 ? r->tol : c->tol;
+}
+
 int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_point *pts, size_t *npts,
                 cmp_refs *ref, gr_err *err)
 {
@@ -151,10 +168,19 @@ int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_p
     for (size_t i = 0; i < *npts; i++) {
         cmp_point *pt = &pts[i];
         int is_ref = pt->row->role == CMP_REFERENCE;
-        pt->error = is_ref ? 0 : fabs(pt->mean - ref->value) / fabs(ref->value);
-        /* against a measured reference the two error bars add */
-        pt->error_sem = is_ref ? 0 : hypot(pt->sem, ref->sem) / fabs(ref->value);
-        pt->outcome = outcome(pt, is_ref ? 0 : c->tol);
+        if (pt->row->role == CMP_OWN) {
+            /* each run against its own answer: the ratios' scatter is the error bar */
+            pt->ref_sem = 0;
+            pt->error = fabs(pt->own_ratio - 1), pt->error_sem = pt->own_ratio_sem;
+            if (pt->nok == 1)
+                pt->error_sem = pt->sem / fabs(pt->ref);
+        } else {
+            pt->ref = ref->value, pt->ref_sem = ref->sem, pt->aux_ref = ref->aux;
+            pt->error = is_ref ? 0 : fabs(pt->mean - pt->ref) / fabs(pt->ref);
+            /* against a measured reference the two error bars add */
+            pt->error_sem = is_ref ? 0 : hypot(pt->sem, pt->ref_sem) / fabs(pt->ref);
+        }
+        pt->outcome = outcome(pt, is_ref ? 0 : cmp_row_tol(c, pt->row));
     }
     return GR_OK;
 }
@@ -190,9 +216,11 @@ static int ends_as_full(const cmp_row *r)
 static int tolerance(const cmp_case *c, const cmp_point *p, int finest, int quick)
 {
     int role = p->row->role;
-    if (role == CMP_SWEEP && finest && c->tol > 0 && p->outcome == CMP_OUT_BEYOND && (!quick || ends_as_full(p->row))) {
-        printf("  CHECK FAILED %s %s %s: error %.3g +- %.2g, beyond the case's tolerance %.3g\n", c->name,
-               p->row->label, p->value, p->error, p->error_sem, c->tol);
+    double tol = cmp_row_tol(c, p->row);
+    if ((role == CMP_SWEEP || role == CMP_OWN) && finest && tol > 0 && p->outcome == CMP_OUT_BEYOND &&
+        (!quick || ends_as_full(p->row))) {
+        printf("  CHECK FAILED %s %s %s: error %.3g +- %.2g, beyond the %s tolerance %.3g\n", c->name,
+               p->row->label, p->value, p->error, p->error_sem, role == CMP_OWN ? "row's" : "case's", tol);
         return 1;
     }
     if (role == CMP_LIMIT && p->outcome == CMP_OUT_WITHIN) {
@@ -206,7 +234,8 @@ static int tolerance(const cmp_case *c, const cmp_point *p, int finest, int quic
 /* The checks of docs/comparison.md: each swept row's error does not grow as
  * its knob is tightened (values are listed coarse to fine) beyond the error
  * bars, which is how it falls until the statistical floor, and its finest
- * setting reaches the case's tolerance; a model row's value settles (its
+ * setting reaches the case's tolerance (an own row: the same against its
+ * own reference and tolerance); a model row's value settles (its
  * error against the reference is its model's); a limit row does not reach
  * the tolerance, and its failures are its result; edmd within the case's
  * tolerance of the analytic value; every other run finished with finite
@@ -237,7 +266,7 @@ int cmp_check(const cmp_case *c, const cmp_point *pts, size_t n, const cmp_refs 
         bad += tolerance(c, p, finest, quick);
         if (p->row->role == CMP_MODEL && i + 2 < n && pts[i + 2].row == p->row)
             bad += settles(c, p, p + 1, p + 2);
-        if (p->row->role == CMP_SWEEP && i + 1 < n && pts[i + 1].row == p->row) {
+        if ((p->row->role == CMP_SWEEP || p->row->role == CMP_OWN) && i + 1 < n && pts[i + 1].row == p->row) {
             const cmp_point *q = &pts[i + 1];
             double slack = 2 * hypot(p->error_sem, q->error_sem) + 1e-9;
             if (!(q->error <= 1.1 * p->error + slack)) {

@@ -13,6 +13,9 @@ typedef struct {
     double mean, sem;      /* the measured quantity and its error bar */
     double aux;            /* the second quantity (mean over seeds) */
     double wall, steps;    /* per run */
+    double ref, ref_sem, aux_ref; /* what the error is against: the case's reference, or a
+                                     CMP_OWN row's own answers (mean over its runs) */
+    double own_ratio, own_ratio_sem; /* a CMP_OWN row: value / own answer, mean over runs */
     double error, error_sem; /* |mean - ref| / |ref| and sem / |ref| */
     char msg[640];         /* the first failure */
     char diag[CMP_DIAG];   /* the first run's broken validity limits ("" if none) */
@@ -36,6 +39,8 @@ typedef struct {
     double aux, aux_analytic;
 } cmp_refs;
 
+/* The tolerance row r's errors are held to: its own, else the case's. */
+double cmp_row_tol(const cmp_case *c, const cmp_row *r);
 /* The points of case c in plan order (room for pl->nunits) and its
  * references (NaN when the case has no runs). */
 int cmp_collect(const cmp_plan *pl, char *const *parts, const cmp_case *c, cmp_point *pts, size_t *npts,

@@ -149,14 +149,14 @@ static int measure(const cmp_plan *pl, const cmp_unit *u, cmp_meas *m, double *w
     gr_particles *p = sc ? gr_particles_create(0, err) : NULL;
     int rc = !p;
     if (!rc)
-        rc = u->c->prepare ? u->c->prepare(sc, p, err) : gr_init_particles(sc, p, err);
+        rc = u->c->prepare && !u->row->measure ? u->c->prepare(sc, p, err) : gr_init_particles(sc, p, err);
     gr_sim *s = NULL;
     double t0 = gr_wall_seconds();
     exp_watch w;
     if (!rc && !(rc = gr_sim_create(mt, sc, p, &s, err))) {
         exp_watch_init(&w, s, &sc->run);
         m->watch = &w;
-        rc = u->c->measure(u->c, s, sc, m, err);
+        rc = (u->row->measure ? u->row->measure : u->c->measure)(u->c, s, sc, m, err);
         m->watch = NULL;
     }
     *wall = gr_wall_seconds() - t0;
@@ -168,7 +168,8 @@ static int measure(const cmp_plan *pl, const cmp_unit *u, cmp_meas *m, double *w
     return rc ? (err->code ? err->code : GR_ERUN) : GR_OK;
 }
 
-/* The part: key, ok, value, sem, aux, steps, wall; a failed run leaves its
+/* The part: key, ok, value, sem, aux, steps, wall (an own row's run, its
+ * own answers beside them); a failed run leaves its
  * message (a method may go unstable at a coarse setting: that is a result),
  * and the run its broken validity limits. The wall time and steps of a
  * failed run are those to the failure. */
@@ -176,7 +177,7 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
                  gr_err *err)
 {
     const cmp_plan *pl = ctx;
-    cmp_meas m = {.value = NAN, .sem = NAN, .aux = NAN, .steps = NAN};
+    cmp_meas m = {.value = NAN, .sem = NAN, .aux = NAN, .own = NAN, .own_aux = NAN, .steps = NAN};
     double wall = NAN;
     gr_err run_err = {0};
     int rc = measure(pl, &pl->units[unit], &m, &wall, &run_err);
@@ -191,7 +192,8 @@ int cmp_run_unit(size_t unit, const char *part, const char *key, void *ctx, vola
     int w = gr_ckpt_put_bytes(ck, "key", key, strlen(key), err) || gr_ckpt_put_f64(ck, "result", v, 6, err) ||
             (rc && gr_ckpt_put_bytes(ck, "message", run_err.msg, strlen(run_err.msg) + 1, err)) ||
             (m.diag[0] && gr_ckpt_put_bytes(ck, "diag", m.diag, strlen(m.diag) + 1, err)) ||
-            (!rc && m.nprof && gr_ckpt_put_f64(ck, "profile", m.prof, (size_t)m.nprof, err));
+            (!rc && m.nprof && gr_ckpt_put_f64(ck, "profile", m.prof, (size_t)m.nprof, err)) ||
+            (!rc && isfinite(m.own) && gr_ckpt_put_f64(ck, "own", (double[2]){m.own, m.own_aux}, 2, err));
     if (w) {
         gr_ckpt_discard(ck);
         return err->code;

@@ -273,5 +273,6 @@ void lgca_free(lgca *L)
     free(L->seg), free(L->seg_j), free(L->lane);
     free(L->solid), free(L->valid), free(L->walls), free(L->scratch), free(L->edge), free(L->sweep);
     free(L->stop_mask);
+    gr_stress_acc_free(L->stress);
     free(L);
 }

@@ -21,6 +21,7 @@
 #include "particles.h"
 #include "rng.h"
 #include "scene.h"
+#include "stress.h"
 
 #define LGCA_CH 7
 #define LGCA_REST 6
@@ -150,6 +151,7 @@ typedef struct lgca {
     uint64_t *edge;         /* per step parity and thread: a slot of 4 planes of a block's edge lanes */
     uint64_t *sweep;        /* per thread: 4 planes, the sweep's copies of a chunk's last lane (lgca_step.c) */
     int prefetch;           /* a thread's lanes outgrow L2: the collision prefetches the next chunk's */
+    gr_stress_acc *stress;  /* the open stress window (lgca_stress.c), or NULL */
 } lgca;
 
 /* Words per slot of L->edge: 4 planes, rounded up to whole pairs of cache
@@ -222,5 +224,12 @@ void lgca_to_bytes(const lgca *L, uint8_t *bytes);
 void lgca_observe(const lgca *L, gr_obs *o);
 int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err);
 void lgca_populations(const lgca *L, uint64_t *moving, uint64_t *resting);
+
+/* lgca_stress.c: the kinetic stress window (methods/method.h's stress);
+ * sample adds the state after a step while a window is open. */
+void lgca_stress_sample(lgca *L);
+int lgca_stress(lgca *L, int nx, int ny, double global[4], double *cells, gr_err *err);
+int lgca_stress_save(const lgca *L, gr_ckpt *ck, gr_err *err);
+int lgca_stress_load(lgca *L, gr_ckpt *ck, gr_err *err);
 
 #endif

@@ -1,5 +1,5 @@
 /* The lattice-gas backend's table (methods/method.h): a lattice, so no
- * snapshot; fields and observables from the node occupations. */
+ * snapshot; fields, observables and the stress from the node occupations. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,10 +61,29 @@ static int m_advance(void *s, double t_end, uint64_t max_steps, gr_err *err)
     uint64_t n = need > (double)L->step ? (need > 1e18 ? UINT64_MAX : (uint64_t)need - L->step) : 0;
     if (max_steps && n > max_steps)
         n = max_steps;
-    return lgca_steps(L, n, err);
+    if (!L->stress)
+        return lgca_steps(L, n, err);
+    /* an open stress window samples every step */
+    for (uint64_t k = 0; k < n; k++) {
+        if (lgca_steps(L, 1, err))
+            return err->code;
+        lgca_stress_sample(L);
+    }
+    return GR_OK;
 }
 
-static int m_step(void *s, gr_err *err) { return lgca_steps(s, 1, err); }
+static int m_step(void *s, gr_err *err)
+{
+    int rc = lgca_steps(s, 1, err);
+    if (!rc)
+        lgca_stress_sample(s);
+    return rc;
+}
+
+static int m_stress(void *s, int nx, int ny, double global[4], double *cells, gr_err *err)
+{
+    return lgca_stress(s, nx, ny, global, cells, err);
+}
 
 static double m_time(const void *s)
 {
@@ -105,7 +124,8 @@ static int m_save(const void *s, gr_ckpt *ck, gr_err *err)
         return gr_fail(err, GR_ERUN, "out of memory for a checkpoint of %zu words", n);
     for (int j = 0; j < L->nj; j++)
         memcpy(all + (size_t)j * lw, L->lane[j], lw * sizeof *all);
-    int rc = gr_ckpt_put_u64(ck, "lgca_misc", misc, 6, err) || gr_ckpt_put_u64(ck, "lgca_state", all, n, err);
+    int rc = gr_ckpt_put_u64(ck, "lgca_misc", misc, 6, err) || gr_ckpt_put_u64(ck, "lgca_state", all, n, err) ||
+             lgca_stress_save(L, ck, err);
     free(all);
     return rc ? err->code : GR_OK;
 }
@@ -136,7 +156,7 @@ static int m_load(void *s, gr_ckpt *ck, gr_err *err)
         memcpy(L->lane[j], all + (size_t)j * LGCA_CH * (size_t)L->nw, LGCA_CH * (size_t)L->nw * sizeof *all);
     free(all);
     L->step = misc[0], L->outflow = misc[1], L->reinserted = misc[2], L->lost = misc[3];
-    return GR_OK;
+    return lgca_stress_load(L, ck, err);
 }
 
 static void m_free(void *s) { lgca_free(s); }
@@ -176,4 +196,5 @@ const gr_method_type gr_lgca_method = {
     .fields = m_fields,
     .counters = m_counters,
     .step = m_step,
+    .stress = m_stress,
 };
