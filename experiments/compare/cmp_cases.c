@@ -18,9 +18,12 @@
  * (the row's scene: silo.ini's geometry without friction or restitution,
  * which the lattice refuses, and its own dissipation and wall roughness in
  * their place), over the lattice resolution; its time unit is its own, so
- * that case compares the shape Q(D) / Q(6 d), not the rate. It cannot model
- * the vibrated bed (a vibrating floor), and the other cases need a
- * restitution, friction or contact forces (docs/comparison.md).
+ * that case compares the shape Q(D) / Q(6 d), not the rate. In the column
+ * and the dilute cooling it runs its own scenes and is held to its own
+ * mean-field answers (CMP_OWN: the share of the weight its floor carries,
+ * its movers' fall; cmp_lattice.c). It cannot model the vibrated bed (a
+ * vibrating floor), and the other cases need a restitution, friction or
+ * contact forces (docs/comparison.md).
  */
 #include <stddef.h>
 
@@ -59,7 +62,7 @@ static const cmp_case cases[] = {
           "dsmc.dt=0.1;dsmc.cell=8"},
          /* knob: the lattice spacing in the case's box (--quick's smaller box too; no grains) */
          {"lgca", "lgca", "species.diameter", "1,0.5,0.25", "1,0.5", "species.count=0", CMP_OWN, "cooling-lgca.ini",
-          .measure = cmp_measure_lattice_cooling, .own_label = "the Boltzmann map of its collision table",
+          .measure = cmp_measure_lattice_cooling, .own_label = "the Boltzmann map of its granular rules",
           .tol = 0.01},
      }},
     {.name = "cooling-dense", .scene = "cooling-dense.ini", .quantity = "T/T0 at Haff's time",

@@ -1,8 +1,9 @@
 /* grano compare's rows for the lattice gas where its model states a case's
  * quantity in its own terms (CMP_OWN rows, docs/comparison.md): each run
  * also gives the lattice's own mean-field answer for the state it
- * realised (methods/lgca/lgca_theory.h), since a random fill's particle
- * count moves that answer by more than the tolerance.
+ * realised (tests/oracle/lattice.h, written apart from the backend), since
+ * a random fill's particle count moves that answer by more than the
+ * tolerance.
  *
  * Column: the lattice gas at rest between a floor and a ceiling, periodic
  * sideways. Its exclusion keeps gravity from acting on a full channel's
@@ -10,14 +11,14 @@
  * that the mean-field hydrostatics gives; the grains' answer is 1.
  * Cooling: the granular rules' dissipative collisions turn movers into
  * rest particles; the moving population's fall against the Boltzmann map
- * of the same collision table. */
+ * of the same rules. */
 #include <math.h>
 #include <stdlib.h>
 
 #include "cmp.h"
 #include "fields.h"
 #include "params.h"
-#include "lgca/lgca_theory.h"
+#include "lattice.h"
 #include "stats.h"
 
 #define NBLOCKS 10
@@ -44,7 +45,8 @@ static int lattice_of(gr_sim *s, const gr_scene *sc, int whole, lattice *l, gr_e
         l->nj &= ~1;
     if (isnan(l->g)) /* the backend's default (docs/methods/lgca.md) */
         l->g = sc->gravity * l->dt * l->dt / l->a;
-    if (whole && (fabs(l->ni * l->a - sc->height) > 1e-9 * sc->height || fabs(l->nj * l->h - sc->width) > 1e-9 * sc->width))
+    if (whole && (fabs(l->ni * l->a - sc->height) > 1e-9 * sc->height ||
+                  fabs(l->nj * l->h - sc->width) > 1e-9 * sc->width))
         return gr_fail(err, GR_EINPUT, "%s: the lattice case needs whole rows and lanes: height %g = rows x %g, "
                        "width %g = lanes x %g", sc->path, sc->height, l->a, sc->width, l->h);
     return GR_OK;
@@ -88,7 +90,7 @@ int cmp_measure_lattice_column(const cmp_case *c, gr_sim *s, const gr_scene *sc,
         mid[b] = nm, nsum += n;
     }
     double dbar = nsum / NBLOCKS / (7.0 * l.nj * rows);
-    if (!rc && lgca_theory_column(dbar, l.g, rows, d))
+    if (!rc && gr_lattice_column(dbar, l.g, rows, d))
         rc = gr_fail(err, GR_ERUN, "%s: no hydrostatic profile of mean occupation %g at g = %g", sc->path, dbar, l.g);
     if (!rc) {
         double sem;
@@ -142,11 +144,11 @@ int cmp_measure_lattice_cooling(const cmp_case *c, gr_sim *s, const gr_scene *sc
     if (!(m0 > 0))
         return gr_fail(err, GR_EINPUT, "%s: the lattice's cooling starts with no moving particle", sc->path);
     double f0 = m0 / (6 * nodes), q0 = r0 / nodes, f, r;
-    if (lgca_theory_cooling(f0, q0, l.p, (long)(st1 - st0), &f, &r))
+    if (gr_lattice_cooling(f0, q0, l.p, (long)(st1 - st0), &f, &r))
         return gr_fail(err, GR_ERUN, "%s: no Boltzmann map at f = %g, r = %g, p = %g", sc->path, f0, q0, l.p);
     out->value = m1 / m0, out->aux = mh / m0, out->sem = NAN;
     out->own = f / f0;
-    lgca_theory_cooling(f0, q0, l.p, (long)(sth - st0), &f, &r);
+    gr_lattice_cooling(f0, q0, l.p, (long)(sth - st0), &f, &r);
     out->own_aux = f / f0;
     out->steps = (double)(st1 - st0);
     return GR_OK;

@@ -278,7 +278,8 @@ static int plot_summary(const char *dir, const cmp_case *cs, const cmp_point *co
     for (int panel = 0; panel < 2; panel++) {
         if (!any) { /* only rows against their own models, or none finished */
             fprintf(gp, "set ylabel '%s'\nset label 1 'no method line against a case reference' at graph 0.5, "
-                        "graph 0.5 center\nset yrange [0:1]\nunset ytics\nplot -1 notitle\n", panel ? "wall time per run / s" : "relative error");
+                        "graph 0.5 center\nset yrange [0:1]\nunset ytics\nplot -1 notitle\n",
+                    panel ? "wall time per run / s" : "relative error");
             continue;
         }
         gr_plot_log_axis(gp, "y", lo[panel], hi[panel]);

@@ -26,6 +26,15 @@
 #define LGCA_CH 7
 #define LGCA_REST 6
 
+/* The unit velocity of moving channel k < 6 in (x, y) (lattice speeds). */
+static inline void lgca_unit_velocity(int k, double *vx, double *vy)
+{
+    static const double sx[6] = {0, 0.86602540378443865, 0.86602540378443865, 0, -0.86602540378443865,
+                                 -0.86602540378443865};
+    static const double sy[6] = {1, 0.5, -0.5, -1, -0.5, 0.5};
+    *vx = sx[k], *vy = sy[k];
+}
+
 enum { LGCA_RULES_FHP3 = 0, LGCA_RULES_GRANULAR = 1, LGCA_NRULES = 2 };
 
 typedef struct {

@@ -6,9 +6,6 @@
 
 #include "lgca_int.h"
 
-static const double SX[6] = {0, 0.86602540378443865, 0.86602540378443865, 0, -0.86602540378443865, -0.86602540378443865};
-static const double SY[6] = {1, 0.5, -0.5, -1, -0.5, 0.5};
-
 void lgca_populations(const lgca *L, uint64_t *moving, uint64_t *resting)
 {
     size_t nw = (size_t)L->nw;
@@ -46,8 +43,10 @@ void lgca_observe(const lgca *L, gr_obs *o)
         total += n[k];
         if (k < 6) {
             moving += n[k];
-            px += (double)n[k] * SX[k];
-            py += (double)n[k] * SY[k];
+            double ux, uy;
+            lgca_unit_velocity(k, &ux, &uy);
+            px += (double)n[k] * ux;
+            py += (double)n[k] * uy;
         }
     }
     o->t = (double)L->step * L->par.dt;
@@ -108,8 +107,11 @@ int lgca_fields(const lgca *L, gr_field *f, double w, gr_err *err)
                 for (int k = 0; k < LGCA_CH; k++)
                     if (lane[(size_t)k * nw + wd] >> (i & 63) & 1u) {
                         n++;
-                        if (k < 6)
-                            moving++, vx += SX[k] * c, vy += SY[k] * c;
+                        if (k < 6) {
+                            double ux, uy;
+                            lgca_unit_velocity(k, &ux, &uy);
+                            moving++, vx += ux * c, vy += uy * c;
+                        }
                     }
                 add_area(f, x, y, 0.5 * L->h, 0.5 * L->a, w * n * share);
                 if (cell < 0)

@@ -9,9 +9,6 @@
  * no other file of the backend. */
 #include "lgca_int.h"
 
-static const double SX[6] = {0, 0.86602540378443865, 0.86602540378443865, 0, -0.86602540378443865, -0.86602540378443865};
-static const double SY[6] = {1, 0.5, -0.5, -1, -0.5, 0.5};
-
 /* Every particle after the step, weighted by the step's duration. */
 void lgca_stress_sample(lgca *L)
 {
@@ -22,7 +19,9 @@ void lgca_stress_sample(lgca *L)
     for (int j = 0; j < L->nj; j++)
         for (size_t k = 0; k < LGCA_CH; k++) {
             const uint64_t *x = L->lane[j] + k * nw;
-            double vx = k < 6 ? c * SX[k] : 0, vy = k < 6 ? c * SY[k] : 0;
+            double vx = 0, vy = 0;
+            if (k < 6)
+                lgca_unit_velocity((int)k, &vx, &vy), vx *= c, vy *= c;
             const double mom[6] = {mh, mh * vx, mh * vy, mh * vx * vx, mh * vx * vy, mh * vy * vy};
             for (size_t w = 0; w < nw; w++)
                 for (uint64_t b = x[w]; b; b &= b - 1) {
