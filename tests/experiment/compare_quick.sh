@@ -50,7 +50,8 @@ check $? "grano advise refuses a tolerance no row reaches, naming --tolerance (g
 "$GRANO" run "$src/tests/hard/bed.ini" --method auto --from "$tmp/q/compare.h5" --until 0.5 --quiet \
     --out "$tmp/auto.h5" >/dev/null 2>"$tmp/err"
 rc=$?
-[ $rc = 0 ] && grep -q -- "--method auto: dem with dem.dt=" "$tmp/err"
+# (which method is cheapest on the column case is a matter of wall time, dem or cd)
+[ $rc = 0 ] && grep -Eq -- "--method auto: [a-z]+ with [a-z]+\.[a-z_]+=" "$tmp/err"
 check $? "grano run --method auto runs the advice with its setting (got $rc)"
 # no holes: every method that models a case's scene has a row in it (a
 # method that gains a case's features fails here until it gets one)

@@ -101,8 +101,9 @@ def main():
         n, text, _ = info_frames(out)
         check("the finished file is not 'being written'", "writing " not in text, text)
 
-        # killed: the same reads, the same frames
-        p = subprocess.Popen([GRANO, "run", scene, "-o", out, "-q", "--force"])
+        # killed: the same reads, the same frames (a run ten times longer,
+        # which no machine finishes before the kill)
+        p = subprocess.Popen([GRANO, "run", scene, "-o", out, "-q", "--force", "--until", "80"])
         time.sleep(1.0)
         while p.poll() is None and info_frames(out)[0] < 5:
             time.sleep(0.1)
