@@ -52,12 +52,6 @@ static int lattice_of(gr_sim *s, const gr_scene *sc, int whole, lattice *l, gr_e
     return GR_OK;
 }
 
-/* One sample of the particles per row into the field's counts. */
-static int sample_rows(gr_sim *s, gr_field *f, gr_err *err)
-{
-    return gr_sim_fields(s, f, 1, err);
-}
-
 int cmp_measure_lattice_column(const cmp_case *c, gr_sim *s, const gr_scene *sc, cmp_meas *out, gr_err *err)
 {
     (void)c;
@@ -77,7 +71,7 @@ int cmp_measure_lattice_column(const cmp_case *c, gr_sim *s, const gr_scene *sc,
         gr_field_clear(f);
         for (int k = 1; k <= NSUB && !rc; k++)
             rc = cmp_advance(s, sc, out, t0 + (sc->run.until - t0) * (b * NSUB + k) / (NBLOCKS * NSUB), err) ||
-                 sample_rows(s, f, err);
+                 gr_sim_fields(s, f, 1, err); /* the particles per row, into f's counts */
         if (rc || (rc = gr_sim_stress(s, 1, l.ni, global, cells, err)))
             break;
         double n = 0, nm = 0;

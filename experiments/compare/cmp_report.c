@@ -62,6 +62,16 @@ static int outcome(const cmp_point *p, double tol)
     return p->error - 2 * p->error_sem > tol ? CMP_OUT_BEYOND : CMP_OUT_UNCLEAR;
 }
 
+/* The error bar of the mean of m samples from their sum and sum of
+ * squares (their scatter); 0 below two. */
+static double scatter_sem(double sum, double sum2, int m)
+{
+    if (m < 2)
+        return 0;
+    double mean = sum / m;
+    return sqrt(fmax(sum2 / m - mean * mean, 0) / (m - 1));
+}
+
 /* Pool the seeds of point *pt (units first..first+nseeds-1). */
 static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point *pt, gr_err *err)
 {
@@ -98,7 +108,7 @@ static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point 
     int m = pt->nok;
     pt->ref = nown ? pt->ref / nown : NAN, pt->aux_ref = nown ? pt->aux_ref / nown : NAN;
     pt->own_ratio = nown ? rsum / nown : NAN;
-    pt->own_ratio_sem = nown >= 2 ? sqrt(fmax(rsum2 / nown - pt->own_ratio * pt->own_ratio, 0) / (nown - 1)) : 0;
+    pt->own_ratio_sem = scatter_sem(rsum, rsum2, nown);
     pt->fail_wall = nfail ? pt->fail_wall / nfail : NAN;
     pt->mean = m ? sum / m : NAN;
     pt->aux = m ? pt->aux / m : NAN;
@@ -106,7 +116,7 @@ static int pool(const cmp_plan *pl, char *const *parts, size_t first, cmp_point 
     pt->steps = m ? pt->steps / m : NAN;
     /* independent seeds give the error bar; one run, its own (block) one */
     if (m >= 2)
-        pt->sem = sqrt(fmax(sum2 / m - pt->mean * pt->mean, 0) * m / (m - 1) / m);
+        pt->sem = scatter_sem(sum, sum2, m);
     else
         pt->sem = nsem ? sqrt(semw / nsem) : 0;
     return GR_OK;
