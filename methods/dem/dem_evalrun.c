@@ -273,6 +273,13 @@ void gr_dem_eval_run(gr_dem *d)
 #pragma omp parallel num_threads(nth)
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);
+    } else if (omp_in_parallel()) {
+        /* a thread of a caller's team (several instances advanced at once):
+         * the colours' barriers and single constructs must bind to a team
+         * of this instance, not to the caller's */
+#pragma omp parallel num_threads(1)
+        for (int col = 0; col < ncol; col++)
+            gr_dem_eval_colour(d, col);
     } else {
         for (int col = 0; col < ncol; col++)
             gr_dem_eval_colour(d, col);

@@ -442,12 +442,14 @@ int lgca_steps(lgca *L, uint64_t n, gr_err *err)
     lgca_flag flag[256];
     for (int t = 0; t < T; t++)
         atomic_init(&flag[t].saved, L->step);
-    if (T > 1 && n > 0) {
-        /* the team may be smaller than asked: blocks follow its size */
+    /* a region even for one thread: run_block's barriers and single
+     * constructs would otherwise bind to a caller's team (two lattices
+     * advanced by the threads of a program's parallel loop); the team may
+     * be smaller than asked: blocks follow its size */
+    if (n > 0) {
 #pragma omp parallel num_threads(T)
         run_block(L, omp_get_thread_num(), omp_get_num_threads(), n, lost, flag);
-    } else
-        run_block(L, 0, 1, n, lost, flag);
+    }
     for (int t = 0; t < 256; t++)
         L->lost += lost[t];
     return GR_OK;

@@ -4,6 +4,7 @@
  * the run), snapshots in id order, monotone time, finite observables and
  * fields (the packing field holds every grain's area); a window-averaged
  * stress that restarts bit for bit, averages its cells and changes nothing;
+ * the same bits when a caller's OpenMP team runs two instances at once;
  * on a scene it does not declare: refusal naming the feature and file. */
 #include "test.h"
 
@@ -100,6 +101,24 @@ static void threads_change_nothing(const conf_case *c, const conf_outcome *one)
     gr_scene_free(sc);
 }
 
+/* Two instances advanced at once by the threads of a caller's OpenMP team
+ * (a program running several scenes in parallel) end as one alone: a
+ * backend's barrier or single construct must not bind to the caller's
+ * team. */
+static void inside_a_team(const gr_method_type *m, const gr_scene *sc, double t_end, const conf_outcome *alone)
+{
+    conf_outcome o[2];
+#pragma omp parallel for num_threads(2) schedule(static, 1)
+    for (int k = 0; k < 2; k++) {
+        gr_sim *s = conf_create(m, sc);
+        advance(s, t_end);
+        o[k] = conf_look(s);
+        gr_sim_free(s);
+    }
+    for (int k = 0; k < 2; k++)
+        conf_same(&o[k], alone), conf_outcome_free(&o[k]);
+}
+
 /* The window-averaged stress (a backend that gives one): opened at the
  * start, read at t_end: finite, its global value the mean of its cells,
  * the same bits after a restart from a checkpoint taken inside the window,
@@ -180,6 +199,7 @@ static void contract(const conf_case *c, const gr_scene *sc)
     conf_same(&u, &a);
     conf_same(&r, &a);
     threads_change_nothing(c, &a);
+    inside_a_team(m, sc, cs->t_end, &a);
     if (m->stress)
         stress_window(m, cs, sc, path, &a);
     if (m->snapshot || m->fields) {
