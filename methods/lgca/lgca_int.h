@@ -37,6 +37,13 @@ static inline void lgca_unit_velocity(int k, double *vx, double *vy)
 
 enum { LGCA_RULES_FHP3 = 0, LGCA_RULES_GRANULAR = 1, LGCA_NRULES = 2 };
 
+/* Which particle gravity turns first at a drawn node (Peng and Herrmann's
+ * lattice has a horizontal axis, so theirs does not carry over): the rest
+ * particle, then up-right, then up-left (REST); up-right, up-left, then the
+ * rest particle (MOVERS); the rest particle, then the side the step's
+ * parity says (ALTERNATE: no preferred side). */
+enum { LGCA_GRAV_REST = 0, LGCA_GRAV_MOVERS = 1, LGCA_GRAV_ALTERNATE = 2 };
+
 typedef struct {
     double dt;   /* time per step (tau) */
     double p;    /* dissipation probability (granular rules) */
@@ -44,6 +51,7 @@ typedef struct {
     double b;    /* wall roughness: bounce-back probability */
     double stop; /* a head-on pair meeting a rest particle stops (granular) */
     int rules;   /* LGCA_RULES_* */
+    int gravity; /* LGCA_GRAV_* */
     int threads;
 } lgca_params;
 
@@ -222,6 +230,9 @@ typedef struct {
 void lgca_stop_node(const lgca *L, int i, int j, uint64_t step, const lgca_access *a);
 void lgca_stop_pass(lgca *L, uint64_t *mask);
 
+/* lgca_step.c: gravity's three moves (from, to channel) in the order
+ * LGCA_GRAV_* `order` gives at `step`. */
+void lgca_gravity_moves(int order, uint64_t step, unsigned char mv[3][2]);
 /* lgca_step.c: n steps (collision, gravity, walls, propagation, exits). */
 int lgca_steps(lgca *L, uint64_t n, gr_err *err);
 /* lgca_ref.c: the same step on one byte per node through the table, for

@@ -19,14 +19,11 @@ void lgca_to_bytes(const lgca *L, uint8_t *bytes)
 }
 
 /* Gravity on one node's byte (lgca_step.c's rule, one node). */
-static unsigned gravity(unsigned s)
+static unsigned gravity(unsigned s, const unsigned char mv[3][2])
 {
-    if ((s >> 6 & 1u) && !(s >> 3 & 1u))
-        return s ^ (1u << 6 | 1u << 3);
-    if ((s >> 1 & 1u) && !(s >> 2 & 1u))
-        return s ^ (1u << 1 | 1u << 2);
-    if ((s >> 5 & 1u) && !(s >> 4 & 1u))
-        return s ^ (1u << 5 | 1u << 4);
+    for (int k = 0; k < 3; k++)
+        if ((s >> mv[k][0] & 1u) && !(s >> mv[k][1] & 1u))
+            return s ^ (1u << mv[k][0] | 1u << mv[k][1]);
     return s;
 }
 
@@ -62,14 +59,16 @@ static void collide_lane(const lgca *L, int j, uint8_t *b, uint64_t step, const 
     }
     if (!L->thr_g)
         return;
+    unsigned char mv[3][2];
+    lgca_gravity_moves(L->par.gravity, step, mv);
     memset(need, 0, nw * sizeof *need);
     for (int i = 0; i < L->ni; i++)
-        if (!lgca_is_solid(L, i, j) && gravity(b[i]) != b[i])
+        if (!lgca_is_solid(L, i, j) && gravity(b[i], mv) != b[i])
             need[i >> 6] |= (uint64_t)1 << (i & 63);
     lgca_rand_biased_lanes(L->key, (uint64_t)j, 1, nw, LGCA_RND_G, step, L->thr_g, need, bits, scratch);
     for (int i = 0; i < L->ni; i++)
         if (bits[i >> 6] >> (i & 63) & 1u)
-            b[i] = (uint8_t)gravity(b[i]);
+            b[i] = (uint8_t)gravity(b[i], mv);
 }
 
 static int collide(const lgca *L, uint8_t *b, uint64_t step, const uint8_t *tab)

@@ -13,19 +13,29 @@
 #include "spin.h"
 
 /* Gravity: at a fluid node drawn with probability g, one unit of downward
- * momentum: a rest particle starts down, or else up-right turns down-right,
- * or else up-left turns down-left (each only into an empty channel). */
-static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m)
+ * momentum: the first of the order's moves whose particle is there and
+ * whose target channel is empty (rest particle to down, up-right to
+ * down-right, up-left to down-left). */
+static const unsigned char grav_moves[2][3][2] = {{{6, 3}, {1, 2}, {5, 4}}, {{6, 3}, {5, 4}, {1, 2}}};
+
+/* The order of the three moves at step `step` (lgca_ref.c applies it too). */
+void lgca_gravity_moves(int order, uint64_t step, unsigned char mv[3][2])
+{
+    int alt = order == LGCA_GRAV_ALTERNATE && (step & 1), first = order == LGCA_GRAV_MOVERS;
+    for (int k = 0; k < 3; k++)
+        for (int e = 0; e < 2; e++)
+            mv[k][e] = grav_moves[alt][(k + first) % 3][e];
+}
+
+static void gravity(uint64_t *lane, size_t nw, size_t w, uint64_t m, const unsigned char mv[3][2])
 {
     uint64_t *c = lane + w;
-    uint64_t g1 = m & c[6 * nw] & ~c[3 * nw];
-    c[6 * nw] ^= g1, c[3 * nw] |= g1;
-    m &= ~g1;
-    uint64_t g2 = m & c[1 * nw] & ~c[2 * nw];
-    c[1 * nw] ^= g2, c[2 * nw] |= g2;
-    m &= ~g2;
-    uint64_t g3 = m & c[5 * nw] & ~c[4 * nw];
-    c[5 * nw] ^= g3, c[4 * nw] |= g3;
+    for (int k = 0; k < 3; k++) {
+        size_t a = mv[k][0] * nw, b = mv[k][1] * nw;
+        uint64_t t = m & c[a] & ~c[b];
+        c[a] ^= t, c[b] |= t;
+        m &= ~t;
+    }
 }
 
 /* ---- propagation ---- */
@@ -157,13 +167,15 @@ static uint64_t collide_block(lgca *L, int j0, int j1, int jpf, uint64_t *scr, u
         } else
             lgca_delta_fhp3_lanes(lanes, (size_t)(jb - ja), nw, fluid, ch);
         if (L->thr_g) {
+            unsigned char mv[3][2];
+            lgca_gravity_moves(L->par.gravity, step, mv);
             for (size_t o = 0; o < n; o += nw)
                 need_gravity(lanes + o * LGCA_CH, nw, fluid + o, need + o);
             lgca_rand_biased_lanes(L->key, (uint64_t)ja, (size_t)(jb - ja), nw, LGCA_RND_G, step, L->thr_g, need, pb,
                                    dense);
             for (size_t o = 0; o < n; o += nw)
                 for (size_t w = 0; w < nw; w++)
-                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w]);
+                    gravity(lanes + o * LGCA_CH, nw, w, pb[o + w], mv);
         }
         /* without serial work between, channels 0 and 3 move along the lane
          * while the chunk is in cache */

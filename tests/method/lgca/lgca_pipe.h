@@ -33,23 +33,21 @@ static inline void lgca_pipe_rows(const lgca *L, double *r)
                     r[w * 64 + (size_t)__builtin_ctzll(x)] += 1;
 }
 
-/* The contrast of long density waves: the structure factor of the density
- * on bins of 4 rows, its mean over the four longest wavelengths over its
- * mean at wavelengths near 16 rows (1 for uncorrelated noise), averaged
- * over the run every 16 steps. rows_out (steps x rows, or NULL) receives
- * the particles per row at every step. */
-static inline double lgca_pipe_run(const lgca_pipe *q, float *rows_out)
+/* The pipe q after its transient: scene seed `seed`, filled with the
+ * stream `fill`, gravity's order LGCA_GRAV_* `order`. */
+static inline gr_sim *lgca_pipe_start(const lgca_pipe *q, int seed, int fill, int order, gr_scene **sc)
 {
+    static const char *const orders[] = {"rest", "movers", "alternate"};
     char text[1024];
     snprintf(text, sizeof text,
-             "[scene]\nseed = 5\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = wall\nright = wall\n"
+             "[scene]\nseed = %d\n[domain]\nwidth = %.17g\nheight = %.17g\nleft = wall\nright = wall\n"
              "bottom = periodic\ntop = periodic\n[init]\nkind = occupation\noccupation = 0\n[lgca]\ndt = 1\n"
-             "rules = granular\np = %g\nb = %g\nstop = %g\n",
-             (q->lanes + 2) * sqrt(3.0) / 2 * (1 + 1e-12), q->rows * (1 + 1e-12), q->p, q->b, q->stop);
-    gr_scene *sc;
-    gr_sim *s = lgca_make(text, &sc);
+             "rules = granular\np = %g\nb = %g\nstop = %g\ngravity_order = %s\n",
+             seed, (q->lanes + 2) * sqrt(3.0) / 2 * (1 + 1e-12), q->rows * (1 + 1e-12), q->p, q->b, q->stop,
+             orders[order]);
+    gr_sim *s = lgca_make(text, sc);
     lgca *L = gr_sim_state(s);
-    lgca_fill(L, lgca_pipe_fill, (void *)&q->d, 7);
+    lgca_fill(L, lgca_pipe_fill, (void *)&q->d, (uint64_t)fill);
     for (int j = 0; j < L->nj; j += L->nj - 1) /* nothing inside the walls */
         for (int i = 0; i < L->ni; i++)
             for (int c = 0; c < LGCA_CH; c++)
@@ -57,6 +55,20 @@ static inline double lgca_pipe_run(const lgca_pipe *q, float *rows_out)
     L->thr_g = (uint32_t)lround(q->g * 65536);
     gr_err e = {0};
     assert_int_equal(gr_sim_advance(s, (uint64_t)q->transient, 0, &e), GR_OK);
+    return s;
+}
+
+/* The contrast of long density waves: the structure factor of the density
+ * on bins of 4 rows, its mean over the four longest wavelengths over its
+ * mean at wavelengths near 16 rows (1 for uncorrelated noise), averaged
+ * over the run every 16 steps. rows_out (steps x rows, or NULL) receives
+ * the particles per row at every step. */
+static inline double lgca_pipe_run(const lgca_pipe *q, float *rows_out)
+{
+    gr_scene *sc;
+    gr_sim *s = lgca_pipe_start(q, 5, 7, LGCA_GRAV_REST, &sc);
+    lgca *L = gr_sim_state(s);
+    gr_err e = {0};
     int ni = L->ni, nb = ni / 4;
     double *r = malloc(sizeof *r * (size_t)ni), lo = 0, mid = 0;
     assert_non_null(r);

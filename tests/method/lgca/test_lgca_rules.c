@@ -192,7 +192,9 @@ static void fast_equals_reference(void **unused)
     const char *variants[] = {"rules = fhp3\nthreads = 1\n", "rules = granular\np = 0.3\nthreads = 1\n",
                               "rules = granular\np = 0.3\nthreads = 3\n", "rules = fhp3\nthreads = 2\ng = 0\n",
                               "rules = granular\np = 0.3\nstop = 0.5\nthreads = 1\n",
-                              "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n"};
+                              "rules = granular\np = 0.3\nstop = 0.5\nthreads = 2\n",
+                              "rules = granular\np = 0.3\nstop = 0.5\ngravity_order = movers\nthreads = 2\n",
+                              "rules = fhp3\ngravity_order = alternate\nthreads = 1\n"};
     against_reference(base, variants, sizeof variants / sizeof variants[0], 1, 0);
 }
 
@@ -206,7 +208,9 @@ static void fast_equals_reference_unwalled(void **unused)
                        "right = periodic\nbottom = periodic\ntop = periodic\n[init]\nkind = occupation\n"
                        "occupation = 0.3\nrest_occupation = 0.2\n[lgca]\ndt = 1\n";
     const char *variants[] = {"rules = fhp3\nthreads = 2\n", "rules = granular\np = 0.3\nthreads = 3\n",
-                              "rules = granular\np = 0.3\nthreads = 1\n"};
+                              "rules = granular\np = 0.3\nthreads = 1\n",
+                              "rules = granular\np = 0.3\ngravity_order = alternate\nthreads = 2\n",
+                              "rules = granular\np = 0.3\ngravity_order = movers\nthreads = 1\n"};
     /* g = 0.05 set on the lattice for the granular rules (a periodic scene has no gravity) */
     against_reference(base, variants, sizeof variants / sizeof variants[0], 7, 3277);
     /* lanes of 900 nodes (15 words): the kernel's eight-word (AVX-512),
