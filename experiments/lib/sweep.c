@@ -162,6 +162,17 @@ int exp_sweep_and_report(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label
     return rc;
 }
 
+/* The first unit, and a quarter, a half and three quarters of them. */
+static int paced_at(size_t finished, size_t ntodo)
+{
+    if (finished == 1)
+        return 1;
+    for (size_t k = 1; k < 4; k++)
+        if (finished == (k * ntodo + 3) / 4)
+            return 1;
+    return 0;
+}
+
 int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                    exp_label_fn keyf, void *ctx, char **paths, size_t *done_before, gr_err *err)
 {
@@ -186,6 +197,7 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
     gr_progress *pg = sw->progress && ntodo ? gr_progress_create(stderr, 0, (double)ntodo, 1.0) : NULL;
     gr_progress_label(pg, "units");
     size_t next = 0, running = 0, finished = 0;
+    double t0 = gr_wall_seconds();
     int rc = GR_OK;
     int jobs = sw->jobs > 0 ? sw->jobs : 1;
     while (finished < ntodo) {
@@ -219,6 +231,8 @@ int exp_sweep_run(const exp_sweep *sw, exp_unit_fn fn, exp_label_fn label,
                 running--;
                 finished++;
                 rc = reap_unit(u, status, label, ctx, paths, slot, rc, err);
+                if (!rc && sw->paced && finished < ntodo && paced_at(finished, ntodo))
+                    sw->paced(sw->paced_ctx, gr_wall_seconds() - t0, finished, ntodo - finished, jobs);
             }
             continue;
         }

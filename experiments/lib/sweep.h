@@ -22,6 +22,12 @@ typedef struct {
     int progress;        /* progress line on a terminal */
     const char *what;    /* progress label */
     int force;           /* redo every unit, whatever parts exist */
+    /* optional: called when the first unit run here has finished, and a
+     * quarter, a half and three quarters of them, with the wall seconds
+     * since the sweep began, the units finished and still to finish, and
+     * the jobs (an estimate calibrated on this machine) */
+    void (*paced)(void *paced_ctx, double elapsed, size_t finished, size_t left, int jobs);
+    void *paced_ctx;
 } exp_sweep;
 
 /* label(unit) -> file-name label; key(unit) -> parameter key string. */

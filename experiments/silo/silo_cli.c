@@ -188,6 +188,16 @@ const char *silo_cli_dir(const silo_cli *cli, const silo_opts *o, char *dir, siz
     return dir;
 }
 
+/* A wall time as minutes, or seconds under two minutes. */
+static const char *wall_text(double seconds, char *buf, size_t n)
+{
+    if (seconds < 120)
+        snprintf(buf, n, "%.0f s", seconds);
+    else
+        snprintf(buf, n, "%.0f min", seconds / 60);
+    return buf;
+}
+
 /* "estimated ..." before a full run: the units' CPU seconds (the
  * command's estimate at the rate measured unloaded) spread over the
  * workers, phase by phase. */
@@ -202,10 +212,40 @@ static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t n
     char first[96] = "";
     if (npre)
         snprintf(first, sizeof first, "%s: %zu of ~%.0f CPU s, then ", cli->pre_what, npre, pre);
+    char t[32];
     fprintf(stderr,
-            "grano %s: estimated %.0f min wall on %zu worker%s: %s%s: %zu of ~%.0f CPU s (at the rate measured "
+            "grano %s: estimated %s wall on %zu worker%s: %s%s: %zu of ~%.0f CPU s (at the rate measured "
             "on an idle core; a loaded machine is slower)\n",
-            cli->name, wall / 60, w, w > 1 ? "s" : "", first, cli->units_what, nunits, unit);
+            cli->name, wall_text(wall, t, sizeof t), w, w > 1 ? "s" : "", first, cli->units_what, nunits, unit);
+}
+
+/* The estimate calibrated on this machine as a phase's units finish (the
+ * first, then each quarter): the wall time a unit took a worker so far,
+ * against the estimate's, sets the pace of what is left (the later
+ * phase's units included). */
+typedef struct {
+    const silo_cli *cli;
+    const char *what;      /* the phase's units */
+    double est, est_after; /* the estimate's CPU s of a unit of this phase and of the next */
+    size_t n_after;        /* the next phase's units (0: none) */
+} silo_pace;
+
+static void paced(void *ctx, double elapsed, size_t finished, size_t left, int jobs)
+{
+    const silo_pace *p = ctx;
+    size_t w = jobs > 0 ? (size_t)jobs : 1;
+    /* the first w units ran side by side: one took the elapsed time */
+    double unit = elapsed / (double)((finished + w - 1) / w);
+    if (!(p->est > 0) || !(unit > 0))
+        return;
+    double pace = p->est / unit;
+    double wall = unit * (double)left / (double)w + (double)((p->n_after + w - 1) / w) * p->est_after / pace;
+    char t[32], e[32];
+    fprintf(stderr,
+            "grano %s: %zu of the %zu %s done in %s wall (~%.0f s a unit a worker, estimated ~%.0f CPU s: this "
+            "machine runs at %.2f of the estimate's pace); estimated %s wall left on %zu worker%s\n",
+            p->cli->name, finished, finished + left, p->what, wall_text(elapsed, e, sizeof e), unit, p->est, pace,
+            wall_text(wall, t, sizeof t), w, w > 1 ? "s" : "");
 }
 
 int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre_ctx, size_t npre, size_t nunits,
@@ -221,13 +261,21 @@ int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre
     size_t reused = 0;
     if (d.rank == 0 && !o->quiet && !o->quick && cli->estimate)
         print_estimate(cli, ctx, npre, nunits, jobs * d.size);
+    double est_pre = NAN, est_unit = NAN;
+    if (cli->estimate)
+        cli->estimate(ctx, &est_pre, &est_unit);
+    int calibrate = d.size == 1 && !o->quiet && !o->quick && cli->estimate;
+    silo_pace pace_pre = {cli, cli->pre_what, est_pre, est_unit, nunits};
+    silo_pace pace_units = {cli, cli->units_what, est_unit, 0, 0};
     double t0 = gr_wall_seconds();
     int rc = GR_OK;
     if (npre && cli->pre_unit) {
-        exp_sweep pre = {npre, jobs, pdir, cli->pre_prefix, !o->quiet, cli->pre_what, o->force};
+        exp_sweep pre = {npre, jobs, pdir, cli->pre_prefix, !o->quiet, cli->pre_what, o->force,
+                         calibrate ? paced : NULL, &pace_pre};
         rc = exp_dist_sweep(&d, &pre, cli->pre_unit, cli->pre_label, cli->pre_key, pre_ctx, &e);
     }
-    exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force};
+    exp_sweep sw = {nunits, jobs, pdir, cli->prefix, !o->quiet, cli->progress_what, o->force,
+                    calibrate ? paced : NULL, &pace_units};
     if (!rc && d.size > 1) {
         rc = exp_dist_sweep(&d, &sw, cli->unit, cli->label, cli->key, ctx, &e);
         sw.force = 0; /* rank 0 reads the parts every rank wrote */
