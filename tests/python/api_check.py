@@ -203,8 +203,11 @@ def gil(tap, grano, root):
             n += 1
         th.join()
         return n, took[0]
-    free, took = count(_lib.run, 2.0)
-    held, took_held = count(_lib.lib, 2.0)
+    # the held call's loops are those before it takes the GIL, a fixed
+    # number, and the free call's grow with its length: a call of half a
+    # second keeps the ratio clear of a loaded machine's (0.1 s gave 4.7)
+    free, took = count(_lib.run, 10.0)
+    held, took_held = count(_lib.lib, 10.0)
     tap.check(free > 5 * held, "the GIL is released in advance: during a %.2f s call the main thread looped "
               "%d times (%d during a %.2f s call that holds it)" % (took, free, held, took_held))
     buf = io.StringIO()
