@@ -201,10 +201,8 @@ static const char *wall_text(double seconds, char *buf, size_t n)
 /* "estimated ..." before a full run: the units' CPU seconds (the
  * command's estimate at the rate measured unloaded) spread over the
  * workers, phase by phase. */
-static void print_estimate(const silo_cli *cli, void *ctx, size_t npre, size_t nunits, int workers)
+static void print_estimate(const silo_cli *cli, double pre, double unit, size_t npre, size_t nunits, int workers)
 {
-    double pre = 0, unit = 0;
-    cli->estimate(ctx, &pre, &unit);
     if (!isfinite(pre) || !isfinite(unit))
         return;
     size_t w = workers > 0 ? (size_t)workers : 1;
@@ -259,11 +257,11 @@ int silo_cli_sweep(const silo_cli *cli, const silo_opts *o, void *ctx, void *pre
     /* one process per rank under MPI: mpirun places the ranks on the cores */
     int jobs = d.size > 1 ? 1 : (int)o->jobs;
     size_t reused = 0;
-    if (d.rank == 0 && !o->quiet && !o->quick && cli->estimate)
-        print_estimate(cli, ctx, npre, nunits, jobs * d.size);
     double est_pre = NAN, est_unit = NAN;
     if (cli->estimate)
         cli->estimate(ctx, &est_pre, &est_unit);
+    if (d.rank == 0 && !o->quiet && !o->quick && cli->estimate)
+        print_estimate(cli, est_pre, est_unit, npre, nunits, jobs * d.size);
     int calibrate = d.size == 1 && !o->quiet && !o->quick && cli->estimate;
     silo_pace pace_pre = {cli, cli->pre_what, est_pre, est_unit, nunits};
     silo_pace pace_units = {cli, cli->units_what, est_unit, 0, 0};

@@ -6,6 +6,7 @@
 #define GR_LGCA_PIPE_H
 
 #include "lgca_test.h"
+#include "lgca_waves.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,13 @@ static inline void lgca_pipe_rows(const lgca *L, double *r)
             for (size_t w = 0; w < nw; w++)
                 for (uint64_t x = L->lane[j][(size_t)c * nw + w]; x; x &= x - 1)
                     r[w * 64 + (size_t)__builtin_ctzll(x)] += 1;
+}
+
+/* Particles per bin of 4 rows from the particles per row r. */
+static inline void lgca_pipe_bins(const double *r, int nb, float *bins)
+{
+    for (int b = 0; b < nb; b++)
+        bins[b] = (float)(r[4 * b] + r[4 * b + 1] + r[4 * b + 2] + r[4 * b + 3]);
 }
 
 /* The pipe q after its transient: scene seed `seed`, filled with the
@@ -71,7 +79,8 @@ static inline double lgca_pipe_run(const lgca_pipe *q, float *rows_out)
     gr_err e = {0};
     int ni = L->ni, nb = ni / 4;
     double *r = malloc(sizeof *r * (size_t)ni), lo = 0, mid = 0;
-    assert_non_null(r);
+    float *v = malloc(sizeof *v * (size_t)nb);
+    assert_true(r && v);
     for (int t = 0; t < q->steps; t++) {
         assert_int_equal(gr_sim_step(s, &e), GR_OK);
         lgca_pipe_rows(L, r);
@@ -80,18 +89,10 @@ static inline double lgca_pipe_run(const lgca_pipe *q, float *rows_out)
                 rows_out[(size_t)t * (size_t)ni + (size_t)i] = (float)r[i];
         if (t % 16)
             continue;
-        for (int k = 1; k < nb / 2; k++) {
-            int low = k <= 4, near16 = k >= nb / 4 - 8 && k < nb / 4 + 8;
-            if (!low && !near16)
-                continue;
-            double re = 0, im = 0;
-            for (int b = 0; b < nb; b++) {
-                double v = r[4 * b] + r[4 * b + 1] + r[4 * b + 2] + r[4 * b + 3];
-                re += v * cos(2 * M_PI * k * b / nb), im += v * sin(2 * M_PI * k * b / nb);
-            }
-            *(low ? &lo : &mid) += (re * re + im * im) / (low ? 4 : 16);
-        }
+        lgca_pipe_bins(r, nb, v);
+        lgca_waves_contrast_frame(v, nb, &lo, &mid);
     }
+    free(v);
     free(r);
     lgca_drop(s, sc);
     return lo / mid;

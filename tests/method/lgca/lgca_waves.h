@@ -50,27 +50,33 @@ static inline void lgca_fft(double *re, double *im, size_t n)
     }
 }
 
-static int lgca_waves_cmp(const void *a, const void *b)
+static inline int lgca_waves_cmp(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
+}
+
+/* One frame's share of the long-wave contrast: the structure factor of
+ * the bins v at the four longest wavelengths into *lo, near 16 rows into
+ * *mid (the contrast is lo / mid summed over frames). */
+static inline void lgca_waves_contrast_frame(const float *v, int nb, double *lo, double *mid)
+{
+    for (int k = 1; k < nb / 2; k++) {
+        int low = k <= 4, near16 = k >= nb / 4 - 8 && k < nb / 4 + 8;
+        if (!low && !near16)
+            continue;
+        double re = 0, im = 0;
+        for (int b = 0; b < nb; b++)
+            re += v[b] * cos(2 * M_PI * k * b / nb), im += v[b] * sin(2 * M_PI * k * b / nb);
+        *(low ? lo : mid) += (re * re + im * im) / (low ? 4 : 16);
+    }
 }
 
 static inline double lgca_waves_contrast(const float *bins, size_t T, size_t nb)
 {
     double lo = 0, mid = 0;
     for (size_t t = 0; t < T; t += 16)
-        for (size_t k = 1; k < nb / 2; k++) {
-            int low = k <= 4, near16 = k + 8 >= nb / 4 && k < nb / 4 + 8;
-            if (!low && !near16)
-                continue;
-            double re = 0, im = 0;
-            for (size_t b = 0; b < nb; b++) {
-                double v = bins[t * nb + b];
-                re += v * cos(2 * M_PI * (double)(k * b) / (double)nb), im += v * sin(2 * M_PI * (double)(k * b) / (double)nb);
-            }
-            *(low ? &lo : &mid) += (re * re + im * im) / (low ? 4 : 16);
-        }
+        lgca_waves_contrast_frame(bins + t * nb, (int)nb, &lo, &mid);
     return lo / mid;
 }
 
@@ -80,14 +86,18 @@ static inline void lgca_waves_mode(const float *bins, size_t T, size_t nb, lgca_
     size_t N = T / 4, K = nb / 4 < 16 ? nb / 4 : 16;
     double *re = malloc(sizeof *re * N), *im = malloc(sizeof *im * N);
     w->speed = w->wavelength = NAN;
-    double best = -1, up = 0, all = 0;
+    double *cs = malloc(sizeof *cs * 2 * nb), best = -1, up = 0, all = 0;
     for (size_t k = 1; k <= K; k++) {
+        for (size_t b = 0; b < nb; b++) {
+            double ph = -2 * M_PI * (double)(k * b) / (double)nb;
+            cs[2 * b] = cos(ph), cs[2 * b + 1] = sin(ph);
+        }
         double mr = 0, mi = 0;
         for (size_t t = 0; t < N; t++) {
             double r = 0, i = 0;
             for (size_t b = 0; b < nb; b++) {
-                double ph = -2 * M_PI * (double)(k * b) / (double)nb, v = bins[4 * t * nb + b];
-                r += v * cos(ph), i += v * sin(ph);
+                double v = bins[4 * t * nb + b];
+                r += v * cs[2 * b], i += v * cs[2 * b + 1];
             }
             re[t] = r, im[t] = i, mr += r / (double)N, mi += i / (double)N;
         }
@@ -111,7 +121,7 @@ static inline void lgca_waves_mode(const float *bins, size_t T, size_t nb, lgca_
         }
     }
     w->up = up / all;
-    free(re), free(im);
+    free(re), free(im), free(cs);
 }
 
 /* The spectrum of windows of 4 rows in NF log-spaced bands from 1/T to 1/4

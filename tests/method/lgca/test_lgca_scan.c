@@ -23,7 +23,6 @@
  * Writes lgca_scan.txt (one line a run).
  *   test_lgca_scan [AXIS]   one axis only (its name's first word), printed */
 #include "lgca_pipe.h"
-#include "lgca_waves.h"
 
 #include <omp.h>
 
@@ -93,8 +92,7 @@ static lgca_waves measure(int a, int v, double d, int seed)
     for (size_t t = 0; t < T; t++) {
         assert_int_equal(gr_sim_step(s, &e), GR_OK);
         lgca_pipe_rows(L, r);
-        for (size_t b = 0; b < nb; b++)
-            bins[t * nb + b] = (float)(r[4 * b] + r[4 * b + 1] + r[4 * b + 2] + r[4 * b + 3]);
+        lgca_pipe_bins(r, (int)nb, bins + t * nb);
     }
     lgca_waves w = lgca_waves_measure(bins, T, nb);
     free(bins), free(r);
