@@ -155,9 +155,26 @@ int ss_fig_kurtosis(const char *png, const ss_res *res, size_t nr, gr_err *err)
     return gr_plot_close(gp, png, err);
 }
 
+/* Field times of orifice o with a change measured (the discharge reached
+ * the second field time). */
+static size_t stationarity_points(const ss_ctx *c, const double *table, size_t o)
+{
+    size_t n = 0;
+    for (size_t j = 0; j < c->ntimes; j++)
+        n += isfinite(table[(o * c->ntimes + j) * 3 + 2]) != 0;
+    return n;
+}
+
 int ss_fig_stationarity(const char *png, const ss_ctx *c, const ss_res *res, size_t nr,
                         const double *table, gr_err *err)
 {
+    size_t any = 0;
+    for (size_t o = 0; o < nr; o++)
+        any += stationarity_points(c, table, o);
+    if (!any) { /* discharges shorter than two field times (--max-steps): no figure, not an empty one */
+        remove(png);
+        return GR_OK;
+    }
     FILE *gp = gr_plot_open(png, 700, 480, err);
     if (!gp)
         return err->code;
@@ -172,8 +189,13 @@ int ss_fig_stationarity(const char *png, const ss_ctx *c, const ss_res *res, siz
     }
     fprintf(gp, "set logscale x\nset xlabel 'steps after opening'\nset ylabel '|v_j - v_{j-1}| / |v_j|'\n");
     fprintf(gp, "set title 'Approach of the velocity field to the stationary profile'\nplot ");
+    int first = 1;
     for (size_t o = 0; o < nr; o++)
-        fprintf(gp, "%s$s%zu using 1:2 with linespoints %s title 'D = %g d'", o ? ", " : "", o, marks[o % 6], res[o].D);
+        if (stationarity_points(c, table, o)) {
+            fprintf(gp, "%s$s%zu using 1:2 with linespoints %s title 'D = %g d'", first ? "" : ", ", o,
+                    marks[o % 6], res[o].D);
+            first = 0;
+        }
     fprintf(gp, "\n");
     return gr_plot_close(gp, png, err);
 }
