@@ -15,6 +15,8 @@
 #define OPT_METHOD 0x100
 #define OPT_PARAM 0x101
 #define OPT_VERSION 0x102
+#define OPT_OUTLET 0x103
+#define OPT_MATERIAL 0x104
 /* room for the common options, the command's own and the end mark */
 #define MAX_OPTS 24
 
@@ -23,7 +25,8 @@ static const struct option common_opts[] = {
     {"seed", required_argument, NULL, 's'},     {"jobs", required_argument, NULL, 'j'},
     {"out", required_argument, NULL, 'o'},      {"grains", required_argument, NULL, 'G'},
     {"width", required_argument, NULL, 'W'},    {"method", required_argument, NULL, OPT_METHOD},
-    {"param", required_argument, NULL, OPT_PARAM},
+    {"param", required_argument, NULL, OPT_PARAM},   {"hopper-outlet", required_argument, NULL, OPT_OUTLET},
+    {"material", required_argument, NULL, OPT_MATERIAL},
     {"quick", no_argument, NULL, 'Q'},          {"force", no_argument, NULL, 'f'},
     {"quiet", no_argument, NULL, 'q'},          {"help", no_argument, NULL, 'h'},
     {"version", no_argument, NULL, OPT_VERSION}, {NULL, 0, NULL, 0}};
@@ -51,16 +54,17 @@ int silo_parse_long(const char *s, long lo, long *out)
     return 0;
 }
 
-/* --param KEY=VALUE as a line "KEY = VALUE" of the method's section. */
-static int add_param(const silo_cli *cli, const char *arg, silo_opts *o)
+/* --param (--material) KEY=VALUE as a line "KEY = VALUE" of the method's
+ * section ([material]) in lines. */
+static int add_line(const silo_cli *cli, const char *opt, const char *arg, char *lines, size_t cap)
 {
     const char *eq = strchr(arg, '=');
-    size_t used = strlen(o->params), klen = eq ? (size_t)(eq - arg) : 0;
+    size_t used = strlen(lines), klen = eq ? (size_t)(eq - arg) : 0;
     if (!eq || !klen || !eq[1] || strchr(arg, '\n') || strspn(arg, "abcdefghijklmnopqrstuvwxyz_") != klen)
-        return silo_bad(cli, "--param", arg, "KEY=VALUE");
-    int w = snprintf(o->params + used, sizeof o->params - used, "%.*s = %s\n", (int)klen, arg, eq + 1);
-    if (w < 0 || (size_t)w >= sizeof o->params - used)
-        return silo_bad(cli, "--param", arg, "within the room for parameters");
+        return silo_bad(cli, opt, arg, "KEY=VALUE");
+    int w = snprintf(lines + used, cap - used, "%.*s = %s\n", (int)klen, arg, eq + 1);
+    if (w < 0 || (size_t)w >= cap - used)
+        return silo_bad(cli, opt, arg, "within the room for parameters");
     return 0;
 }
 
@@ -83,8 +87,14 @@ static int common_option(const silo_cli *cli, int ch, const char *arg, silo_opts
         if (*end || !(o->width >= 8) || !isfinite(o->width))
             return silo_bad(cli, "--width", arg, "a width >= 8");
         return 0;
+    case OPT_OUTLET:
+        o->outlet = strtod(arg, &end);
+        if (*end || end == arg || !(o->outlet > 0 && o->outlet < 1))
+            return silo_bad(cli, "--hopper-outlet", arg, "a fraction of the width between 0 and 1");
+        return 0;
     case OPT_METHOD: o->method = arg; return 0;
-    case OPT_PARAM: return add_param(cli, arg, o);
+    case OPT_PARAM: return add_line(cli, "--param", arg, o->params, sizeof o->params);
+    case OPT_MATERIAL: return add_line(cli, "--material", arg, o->material, sizeof o->material);
     case 'Q': o->quick = 1; return 0;
     case 'f': o->force = 1; return 0;
     case 'q': o->quiet = 1; return 0;
@@ -107,7 +117,7 @@ static void option_table(const silo_cli *cli, struct option *opts, char *shorts,
 
 int silo_cli_parse(const silo_cli *cli, int argc, char **argv, silo_opts *o, void *own)
 {
-    *o = (silo_opts){NULL, NULL, "dem", -1, 1, 1, -1, -1, 0, 0, 0, ""};
+    *o = (silo_opts){NULL, NULL, "dem", -1, 1, 1, -1, -1, -1, 0, 0, 0, "", ""};
     struct option opts[MAX_OPTS];
     char shorts[64];
     option_table(cli, opts, shorts, sizeof shorts);
@@ -160,12 +170,24 @@ int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, doubl
         base->n = o->grains;
     if (o->width > 0)
         base->width = o->width, base->height = 2 * o->width;
+    if (o->outlet > 0 && !base->hopper) {
+        fprintf(stderr, "grano %s: --hopper-outlet: the quick silo fills without a hopper\n", cli->name);
+        return 2;
+    }
+    if (o->outlet > 0 && o->outlet * base->width < 5) {
+        char v[32];
+        snprintf(v, sizeof v, "%g", o->outlet);
+        return silo_bad(cli, "--hopper-outlet", v, "an outlet of 5 d or more at this width");
+    }
+    if (o->outlet > 0)
+        base->outlet = o->outlet;
     if (exp_parse_list(o->orif ? o->orif : o->quick ? cli->quick_orifices : cli->orifices, orifice, cap, norif))
         return silo_bad(cli, "--orifices", o->orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < *norif; i++)
         if (orifice[i] >= base->width - 2)
             return silo_bad(cli, "--orifices", o->orif, "narrower than the silo");
     memcpy(base->params, o->params, sizeof base->params);
+    memcpy(base->material, o->material, sizeof base->material);
     gr_err me = {0};
     /* the silo as the units will open it */
     silo_cfg probe = *base;

@@ -1,6 +1,6 @@
 /* The command line that `grano silo-start` and `grano silo-flow` share:
  * the common options (--orifices, --realisations, --seed, --jobs, --out,
- * --grains, --width, --method, --param, --quick, --force, --quiet, --help), the
+ * --grains, --width, --hopper-outlet, --method, --material, --param, --quick, --force, --quiet, --help), the
  * base silo and orifice list they describe, and the run of the sweep with
  * its closing line. Each command describes itself in a silo_cli and keeps
  * only its own options and its own parameters of the units. */
@@ -18,9 +18,10 @@
 typedef struct {
     const char *orif, *out, *method;
     long nreal, jobs, seed, grains;
-    double width;
+    double width, outlet;
     int quick, force, quiet;
     char params[SILO_PARAMS]; /* --param lines, "key = value\n" */
+    char material[SILO_PARAMS]; /* --material lines */
 } silo_opts;
 
 /* One of the command's own options: 0 taken, 2 a bad value (said). */

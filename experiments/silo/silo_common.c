@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include <gsl/gsl_sort_double.h>
 
@@ -15,14 +16,14 @@
 void silo_cfg_thesis(silo_cfg *c, double D)
 {
     *c = (silo_cfg){.n = 5000, .width = 50, .height = 100, .base = 5, .orifice = D,
-                    .hopper = 1, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
+                    .hopper = 1, .outlet = SILO_OUTLET, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
                     .dt = 1.25e-4, .ke_tol = 1e-3, .fill_max = 400};
 }
 
 void silo_cfg_quick(silo_cfg *c, double D)
 {
     *c = (silo_cfg){.n = 800, .width = 20, .height = 48, .base = 3, .orifice = D,
-                    .hopper = 0, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
+                    .hopper = 0, .outlet = SILO_OUTLET, .reinsert = 0, .seed = 1, .method = gr_method_find("dem"),
                     .dt = 1.25e-4, .ke_tol = 1e-3, .fill_max = 40};
 }
 
@@ -38,14 +39,40 @@ static int uses_steps(const silo_cfg *c)
  * lands on the method's own steps and no rounding accumulates. */
 #define CD_STEPS 20
 
-/* Whether the --param lines set `key`. */
-static int param_given(const silo_cfg *c, const char *key)
+/* Whether "key = value" lines set `key` (its first n characters). */
+static int line_given(const char *lines, const char *key, size_t n)
 {
-    size_t n = strlen(key);
-    for (const char *l = c->params; *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : l + strlen(l))
+    for (const char *l = lines; *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : l + strlen(l))
         if (!strncmp(l, key, n) && (l[n] == ' ' || l[n] == '='))
             return 1;
     return 0;
+}
+
+static int param_given(const silo_cfg *c, const char *key) { return line_given(c->params, key, strlen(key)); }
+
+/* [material]: the default lines whose keys --material does not set, then
+ * the --material lines. */
+static void material_lines(const silo_cfg *c, const char *defaults, char *mat, size_t nmat)
+{
+    size_t k = (size_t)snprintf(mat, nmat, "[material]\n");
+    for (const char *l = defaults; *l && k < nmat;) {
+        const char *e = strchr(l, '\n');
+        size_t len = e ? (size_t)(e - l) + 1 : strlen(l);
+        if (!line_given(c->material, l, strcspn(l, " =")))
+            k += (size_t)snprintf(mat + k, nmat - k, "%.*s", (int)len, l);
+        l += len;
+    }
+    if (k < nmat)
+        snprintf(mat + k, nmat - k, "%s", c->material);
+}
+
+void silo_material(const silo_cfg *c, char *mat, size_t nmat)
+{
+    if (!strcmp(c->method->name, "cd"))
+        material_lines(c, "tangential = coulomb\nmu = 0.5\nrestitution = 0\n", mat, nmat);
+    else
+        material_lines(c, "normal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\ngamma_t = 300\nmu = 0.5\n",
+                       mat, nmat);
 }
 
 /* The [material] and the method's own section. dem: Hertz with viscous
@@ -58,7 +85,7 @@ static void method_sections(const silo_cfg *c, char *mat, size_t nmat, char *own
 {
     own[0] = 0;
     if (!strcmp(c->method->name, "cd")) {
-        snprintf(mat, nmat, "[material]\ntangential = coulomb\nmu = 0.5\nrestitution = 0\n");
+        silo_material(c, mat, nmat);
         char dt[64] = "", tol[32] = "", it[32] = "";
         if (!param_given(c, "dt"))
             snprintf(dt, sizeof dt, "dt = %.17g\n", CD_STEPS * c->dt);
@@ -69,8 +96,7 @@ static void method_sections(const silo_cfg *c, char *mat, size_t nmat, char *own
         snprintf(own, nown, "[cd]\n%s%s%s%s", dt, tol, it, c->params);
         return;
     }
-    snprintf(mat, nmat, "[material]\nnormal = hertz\ntangential = regularised\nkn = 1e5\ngamma_n = 100\n"
-                        "gamma_t = 300\nmu = 0.5\n");
+    silo_material(c, mat, nmat);
     /* the time step is dem's own key; other methods run on their defaults */
     if (uses_steps(c))
         snprintf(own, nown, "[dem]\ndt = %.17g\nthreads = 1\nmax_overlap = 0.25\n%s", c->dt, c->params);
@@ -106,10 +132,10 @@ gr_scene *silo_scene(const silo_cfg *c, double open_time, gr_err *err)
     char hop[256] = "hopper = no\n";
     if (c->hopper)
         snprintf(hop, sizeof hop, "hopper = yes\nhopper_outlet = %.17g\nhopper_bottom = %.17g\nhopper_top = %.17g\n",
-                 0.6 * W, hop_bot, hop_top);
-    char mat[160], own[SILO_PARAMS + 160];
+                 c->outlet * W, hop_bot, hop_top);
+    char mat[SILO_PARAMS + 160], own[SILO_PARAMS + 160];
     method_sections(c, mat, sizeof mat, own, sizeof own);
-    size_t cap = 4096;
+    size_t cap = 4096 + 2 * SILO_PARAMS;
     char *text = malloc(cap);
     if (!text) {
         gr_fail(err, GR_ERUN, "out of memory");
@@ -200,7 +226,9 @@ void silo_key_params(const silo_cfg *c, char *buf, size_t n)
 {
     size_t k = strlen(buf);
     if (c->params[0] && k < n)
-        snprintf(buf + k, n - k, " param:%s", c->params);
+        k += (size_t)snprintf(buf + k, n - k, " param:%s", c->params);
+    if (c->material[0] && k < n)
+        snprintf(buf + k, n - k, " material:%s", c->material);
 }
 
 int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err)
@@ -218,7 +246,10 @@ void silo_settled_free(silo_settled *s)
         return;
     gr_particles_free(s->p);
     gr_particles_free(s->filling);
+    free(s->trace);
     s->p = s->filling = NULL;
+    s->trace = NULL;
+    s->ntrace = 0;
 }
 
 /* The summed kinetic energy of the mobile grains, the most energetic 1%
@@ -253,6 +284,20 @@ static int keep_filling(silo_settled *out, const gr_particles *p, double t, gr_e
     return GR_OK;
 }
 
+/* One row of the filling's trace (silo_settled.trace). */
+static int trace_row(silo_settled *out, double t, double cpu, double inside, double ek, gr_err *err)
+{
+    if ((out->ntrace & (out->ntrace - 1)) == 0) { /* 0 or a power of two: grow */
+        double *m = realloc(out->trace, (out->ntrace ? 2 * out->ntrace : 64) * SILO_TRACE * sizeof *m);
+        if (!m)
+            return gr_fail(err, GR_ERUN, "out of memory");
+        out->trace = m;
+    }
+    double *r = out->trace + out->ntrace++ * SILO_TRACE;
+    r[0] = t, r[1] = cpu, r[2] = inside, r[3] = ek;
+    return GR_OK;
+}
+
 /* Run p (closed orifice, scene sc) until every grain is inside the
  * container and the kinetic energy per grain is below ke_tol; p becomes
  * out->p. keep: take the picture of the filling. tmax > 0: accept the
@@ -270,6 +315,7 @@ static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int ke
     if (!ebuf && !rc)
         rc = gr_fail(err, GR_ERUN, "out of memory");
     const uint64_t chunk = (uint64_t)llround(SILO_CHECK / c->dt);
+    const double cpu0 = (double)clock() / CLOCKS_PER_SEC;
     while (!rc) {
         if ((rc = silo_advance(c, st, chunk, err)) || (rc = gr_sim_snapshot(st, p, err)))
             break;
@@ -283,6 +329,8 @@ static int settle(const silo_cfg *c, const gr_scene *sc, gr_particles *p, int ke
         }
         ek /= (double)(nm - nm / 100);
         if (keep && !out->filling && (!c->hopper || inside >= nm / 2) && (rc = keep_filling(out, p, t, err)))
+            break;
+        if (keep && (rc = trace_row(out, t, (double)clock() / CLOCKS_PER_SEC - cpu0, (double)inside, ek, err)))
             break;
         if (progress)
             *progress = fmin(0.99, t / c->fill_max);

@@ -25,6 +25,7 @@ typedef struct {
     double orifice;      /* D */
     int hopper;          /* fill through a hopper from a lattice above it;
                             0: lattice inside the container (quick modes) */
+    double outlet;       /* the hopper's outlet, a fraction of the width */
     int reinsert;        /* grains that leave come back at the top */
     uint64_t seed;       /* lattice velocities and every stream after them */
     const gr_method_type *method; /* dem unless --method says otherwise */
@@ -35,13 +36,29 @@ typedef struct {
     double band_lo, band_hi; /* reinsertion band; 0: the scene default */
     char params[SILO_PARAMS]; /* "key = value\n" lines for the method's own
                                  section (--param), replacing its defaults */
+    char material[SILO_PARAMS]; /* the same for [material] (--material) */
 } silo_cfg;
+
+/* The hopper's outlet as a fraction of the width: the thesis gives no
+ * size (fig. 3.1 shows a hopper over the container) and the packing the
+ * discharges see does not depend on it (docs/experiments.md, "Filling"),
+ * while the time of a filling does. */
+#define SILO_OUTLET 0.6
+/* a macro's value as a string (the usage texts) */
+#define SILO_STR_(x) #x
+#define SILO_STR(x) SILO_STR_(x)
 
 /* The thesis silo (section 3.1) at full size, orifice D. */
 void silo_cfg_thesis(silo_cfg *c, double D);
 /* The small silo of the quick modes: n grains, a narrower container,
  * filled from a lattice inside it. */
 void silo_cfg_quick(silo_cfg *c, double D);
+
+/* The silo's [material] section: for dem Hertz with viscous damping and
+ * regularised Coulomb friction (the thesis's eqs. 3.1-3.3 and constants),
+ * for cd rigid disks with mu 0.5 and e = 0; the --material lines replace
+ * the keys they name. */
+void silo_material(const silo_cfg *c, char *mat, size_t nmat);
 
 /* Scene text for the silo; the orifice opens at open_time (INFINITY:
  * closed). Returns the parsed scene or NULL. */
@@ -62,7 +79,12 @@ typedef struct {
     gr_particles *filling; /* a picture of the filling (thesis fig. 3.1), may be NULL */
     double t_filling;
     double lift;         /* silo_rebase: how far the packing was lifted */
+    double *trace;       /* silo_fill: per check, SILO_TRACE values: time
+                            (tau), CPU s, grains inside, kinetic energy per
+                            grain (m g d); where a filling's time goes */
+    size_t ntrace;
 } silo_settled;
+#define SILO_TRACE 4
 
 /* How often a filling or a branch checks whether it has settled (tau):
  * it stops at the first check that passes, half a check late on average,
@@ -103,7 +125,7 @@ int silo_open(const silo_cfg *c, const silo_settled *s, gr_scene **sc, gr_sim **
  * multiple of 20, which every chunk of the silo commands is). */
 int silo_advance(const silo_cfg *c, gr_sim *sim, uint64_t steps, gr_err *err);
 
-/* Append the --param lines (if any) to a unit's key in buf, so that a
+/* Append the --param and --material lines (if any) to a unit's key in buf, so that a
  * part made with other parameters is not reused. */
 void silo_key_params(const silo_cfg *c, char *buf, size_t n);
 

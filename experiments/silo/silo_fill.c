@@ -13,8 +13,8 @@
 static int fill_key(const silo_fills *f, size_t r, char *buf, size_t n)
 {
     const silo_cfg *b = f->base;
-    int k = snprintf(buf, n, "silo-fill 2 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
-                     b->n, b->width, b->height, b->base, b->hopper, f->orifice, (unsigned long long)(f->seed + r),
+    int k = snprintf(buf, n, "silo-fill 3 n=%ld W=%.17g H=%.17g base=%.17g hopper=%d outlet=%.17g Dfill=%.17g seed=%llu method=%s dt=%.17g ke=%.17g",
+                     b->n, b->width, b->height, b->base, b->hopper, b->outlet, f->orifice, (unsigned long long)(f->seed + r),
                      b->method->name, b->dt, b->ke_tol);
     silo_key_params(b, buf, n);
     return k;
@@ -51,6 +51,7 @@ int silo_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vo
     if (!rc && unit == 0 && set.filling) rc = exp_put_particles(ck, "filling", set.filling, err);
     if (!rc && unit == 0 && set.filling) rc = exp_put_scalar(ck, "t_filling", set.t_filling, err);
     if (!rc) rc = gr_ckpt_put_f64(ck, "cost", cost, 5, err);
+    if (!rc && set.ntrace) rc = gr_ckpt_put_f64(ck, "trace", set.trace, set.ntrace * SILO_TRACE, err);
     if (rc && ck)
         gr_ckpt_discard(ck);
     else if (!rc)
@@ -61,7 +62,7 @@ int silo_fill_unit(size_t unit, const char *part, const char *key, void *ctx, vo
 
 int silo_fill_path(const silo_fills *f, size_t r, char *path, size_t n)
 {
-    char label[32], key[1024];
+    char label[32], key[2048];
     silo_fill_label(r, NULL, label, sizeof label);
     snprintf(path, n, "%s/parts/fill-%s.part", f->dir, label);
     fill_key(f, r, key, sizeof key);

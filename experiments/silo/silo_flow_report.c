@@ -449,11 +449,18 @@ static int write_config(const sf_rep *r, gr_err *err)
 {
     const sf_ctx *c = r->c;
     const char *method = c->base.method->name;
+    char mat_text[SILO_PARAMS + 160];
+    silo_material(&c->base, mat_text, sizeof mat_text);
+    const char *mat = mat_text;
+    double outlet = c->base.hopper ? c->base.outlet : 0.0;
     double v[13] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
                     (double)c->discard, (double)c->block, (double)c->nblocks, (double)c->block * c->base.dt,
                     c->lift, c->split, (double)c->seed, r->rho};
     const exp_col cols[] = {
         {"method", "", "the method that ran", EXP_STR, &method, 0},
+        {"material", "", "the [material] section the grains ran with (--material)", EXP_STR, &mat, 0},
+        {"hopper_outlet", "1", "the filling hopper's outlet, a fraction of the width (0: no hopper)", EXP_F64,
+         &outlet, 0},
         {"grains", "1", "grains in the silo", EXP_INT, v, 0},
         {"width", "d", "silo width", EXP_F64, v + 1, 0},
         {"height", "d", "silo height", EXP_F64, v + 2, 0},

@@ -314,11 +314,18 @@ static exp_tab_file *open_result(const ss_ctx *c, gr_err *err)
     if (!h)
         return NULL;
     const char *method = c->base.method->name;
+    char mat_text[SILO_PARAMS + 160];
+    silo_material(&c->base, mat_text, sizeof mat_text);
+    const char *mat = mat_text;
+    double outlet = c->base.hopper ? c->base.outlet : 0.0;
     double v[12] = {(double)c->base.n, c->base.width, c->base.height, c->base.dt, (double)c->nreal,
                     (double)c->fs, c->window, c->cell, c->fall_stop, (double)c->max_steps,
                     (double)c->min_steps, (double)c->seed};
     const exp_col cols[] = {
         {"method", "", "the method that ran", EXP_STR, &method, 0},
+        {"material", "", "the [material] section the grains ran with (--material)", EXP_STR, &mat, 0},
+        {"hopper_outlet", "1", "the filling hopper's outlet, a fraction of the width (0: no hopper)", EXP_F64,
+         &outlet, 0},
         {"grains", "1", "grains in the silo", EXP_INT, v, 0},
         {"width", "d", "silo width", EXP_F64, v + 1, 0},
         {"height", "d", "silo height", EXP_F64, v + 2, 0},

@@ -20,7 +20,9 @@ check $? "silo-start --help"
 "$GRANO" silo-flow --help >"$tmp/out" 2>&1 && grep -q "usage: grano silo-flow" "$tmp/out"
 check $? "silo-flow --help"
 for args in "silo-start --bogus:--bogus" "silo-start --jobs 0:--jobs" "silo-flow --orifices 3,abc:--orifices" \
-            "silo-flow --blocks x:--blocks" "silo-start --subtract mean:--subtract" "silo-flow --peer gromacs:--peer" "silo-start --orifices 60:--orifices" "silo-flow extra:extra"; do
+            "silo-flow --blocks x:--blocks" "silo-start --subtract mean:--subtract" "silo-flow --peer gromacs:--peer" "silo-start --orifices 60:--orifices" "silo-flow extra:extra" \
+            "silo-start --hopper-outlet 1.5:--hopper-outlet" "silo-flow --quick --hopper-outlet 0.8:--hopper-outlet" \
+            "silo-start --material mu:--material" "silo-start --quick --material mu=x:'mu'"; do
     cmd=${args%%:*}
     flag=${args##*:}
     # shellcheck disable=SC2086
@@ -32,6 +34,18 @@ for args in "silo-start --bogus:--bogus" "silo-start --jobs 0:--jobs" "silo-flow
         notok "grano $cmd exits 2 naming $flag (got $rc)"
     fi
 done
+
+# --- --material replaces a key of the thesis's law, and only that key
+M=$tmp/material
+"$GRANO" silo-start --quick -n 1 -D 11 --material mu=0.3 -o "$M" -q >/dev/null 2>"$tmp/err"
+check $? "silo-start --quick --material mu=0.3 runs"
+$PY - "$M/silo-start.h5" <<'PYEOF'
+import sys, h5py
+t = h5py.File(sys.argv[1], "r")["config/material"][0]
+t = t.decode() if isinstance(t, bytes) else t
+assert "mu = 0.3" in t and "mu = 0.5" not in t and "gamma_t = 300" in t, t
+PYEOF
+check $? "--material mu=0.3 is the scene's mu, the other keys the thesis's"
 
 # --- silo-start --quick
 S=$tmp/start
