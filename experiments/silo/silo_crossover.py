@@ -19,6 +19,7 @@ CROSS = 1.8
 
 def local_slopes(path):
     a = np.loadtxt(path)
+    a = a[np.isfinite(a[:, 3]) & (a[:, 2] > 0)]  # lags no discharge reached
     lag, fall, mx, my = a[:, 0], a[:, 3], a[:, 4], a[:, 5]
     mid = np.sqrt(fall[1:] * fall[:-1])
     dl = np.diff(np.log(lag))
