@@ -58,6 +58,8 @@ int silo_parse_long(const char *s, long lo, long *out)
  * section ([material]) in lines. */
 static int add_line(const silo_cli *cli, const char *opt, const char *arg, char *lines, size_t cap)
 {
+    if (!arg)
+        return silo_bad(cli, opt, "", "KEY=VALUE");
     const char *eq = strchr(arg, '=');
     size_t used = strlen(lines), klen = eq ? (size_t)(eq - arg) : 0;
     if (!eq || !klen || !eq[1] || strchr(arg, '\n') || strspn(arg, "abcdefghijklmnopqrstuvwxyz_") != klen)
