@@ -172,17 +172,17 @@ int silo_cli_silo(const silo_cli *cli, const silo_opts *o, silo_cfg *base, doubl
         base->n = o->grains;
     if (o->width > 0)
         base->width = o->width, base->height = 2 * o->width;
-    if (o->outlet > 0 && !base->hopper) {
-        fprintf(stderr, "grano %s: --hopper-outlet: the quick silo fills without a hopper\n", cli->name);
-        return 2;
-    }
-    if (o->outlet > 0 && o->outlet * base->width < 5) {
+    if (o->outlet > 0) {
+        if (!base->hopper) {
+            fprintf(stderr, "grano %s: --hopper-outlet: the quick silo fills without a hopper\n", cli->name);
+            return 2;
+        }
         char v[32];
         snprintf(v, sizeof v, "%g", o->outlet);
-        return silo_bad(cli, "--hopper-outlet", v, "an outlet of 5 d or more at this width");
-    }
-    if (o->outlet > 0)
+        if (o->outlet * base->width < 5)
+            return silo_bad(cli, "--hopper-outlet", v, "an outlet of 5 d or more at this width");
         base->outlet = o->outlet;
+    }
     if (exp_parse_list(o->orif ? o->orif : o->quick ? cli->quick_orifices : cli->orifices, orifice, cap, norif))
         return silo_bad(cli, "--orifices", o->orif, "a comma-separated list of positive widths");
     for (size_t i = 0; i < *norif; i++)

@@ -84,8 +84,8 @@ void silo_material(const silo_cfg *c, char *mat, size_t nmat)
 static void method_sections(const silo_cfg *c, char *mat, size_t nmat, char *own, size_t nown)
 {
     own[0] = 0;
+    silo_material(c, mat, nmat);
     if (!strcmp(c->method->name, "cd")) {
-        silo_material(c, mat, nmat);
         char dt[64] = "", tol[32] = "", it[32] = "";
         if (!param_given(c, "dt"))
             snprintf(dt, sizeof dt, "dt = %.17g\n", CD_STEPS * c->dt);
@@ -96,7 +96,6 @@ static void method_sections(const silo_cfg *c, char *mat, size_t nmat, char *own
         snprintf(own, nown, "[cd]\n%s%s%s%s", dt, tol, it, c->params);
         return;
     }
-    silo_material(c, mat, nmat);
     /* the time step is dem's own key; other methods run on their defaults */
     if (uses_steps(c))
         snprintf(own, nown, "[dem]\ndt = %.17g\nthreads = 1\nmax_overlap = 0.25\n%s", c->dt, c->params);
